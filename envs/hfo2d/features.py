@@ -1,0 +1,403 @@
+"""HFO's low-level state features, paper era (58 features for 1v0, 66 against one goalie).
+
+The layout, encodings and normalisers are those of HFO's ``LowLevelFeatureExtractor`` as it stood before
+July 2017, the version Hausknecht & Stone (ICLR 2016) trained on (hfo_reference §2 and §9):
+
+* flags are +1 / -1;
+* an angle is the pair (sin θ, cos θ);
+* a proximity is ``1 - 2 * clip(d / dmax, 0, 1)``: +1 when co-located, -1 at ``dmax`` or beyond;
+* a scalar over [lo, hi] is mapped linearly onto [-1, 1] after clipping;
+* a landmark is (sin, cos) of its bearing relative to the body, ``atan2(landmark - self) - body``, followed by its
+  proximity with ``dmax = MAX_HFO_DIST``. With rcssserver's frame (+y down) a positive bearing puts the landmark
+  on the agent's right, so a ball straight to the right of an agent facing +x reads (sin, cos) = (1, 0).
+
+Normalisers (hfo_reference §2.1, §2.2, §9): ``MAX_HFO_DIST = sqrt(52.5² + 34²) = 62.55`` (the value before
+2018-09), out-of-bounds ``dmax`` 52.5 for x and 68 for y (before 2019-03), self speed 0.46, other players' speed
+0.75, ball speed 5.0, stamina 8000. The state is "fullstate": exact, with every valid flag +1. Nobody tackles, so
+the frozen flag is always -1. The kickable flag follows librcsc's world model: the ball's centre lies within
+``kickable_area - 0.055 = 1.03`` m (hfo_reference §2.3).
+
+Per other player (8 features): landmark at its position (3), its body angle (2), its speed over [0, 0.75] (1), its
+velocity heading (2). Teammates come first, then opponents, each sorted by distance from self; a player is
+listed only while its x > 0 (HFO's test), otherwise its slot is zeros.
+
+The code is plain ``math`` on Python floats: the env needs tens of thousands of feature vectors per second and a
+few dozen tiny numpy operations would cost more than the whole computation.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    from hfo2d.physics import BallState, PlayerState, World
+
+# ---------------------------------------------------------------------------------------------------------------
+# Normalisers (hfo_reference §2.1, §9; HFO feature_extractor of 2015-2016)
+# ---------------------------------------------------------------------------------------------------------------
+PITCH_HALF_LENGTH = 52.5
+PITCH_HALF_WIDTH = 34.0
+PITCH_WIDTH = 68.0
+GOAL_HALF_WIDTH = 7.01
+PENALTY_AREA_X = 36.0  # pitch_half_length - penalty_area_length (16.5)
+PENALTY_AREA_HALF_WIDTH = 20.16
+MAX_HFO_DIST = math.sqrt(PITCH_HALF_LENGTH**2 + PITCH_HALF_WIDTH**2)  # 62.55 m, paper-era maxHFODist
+OUT_OF_BOUNDS_X_DIST_MAX = PITCH_HALF_LENGTH  # 52.5 m, features 46 and 47 before 2019-03
+OUT_OF_BOUNDS_Y_DIST_MAX = PITCH_WIDTH  # 68 m, features 48 and 49 before 2019-03
+SELF_SPEED_MAX = 0.46  # m/cycle, HFO's observedSelfSpeedMax
+PLAYER_SPEED_MAX = 0.75  # m/cycle, HFO's observedPlayerSpeedMax
+BALL_SPEED_MAX = 5.0  # m/cycle, HFO's observedBallSpeedMax
+STAMINA_MAX = 8000.0  # HFO's observedStaminaMax
+KICKABLE_BUFFER = 0.055  # m; librcsc marks the ball kickable within kickable_area - 0.055 (1.03 m)
+
+NUM_BASIC_FEATURES = 58
+FEATURES_PER_PLAYER = 8
+
+# ---------------------------------------------------------------------------------------------------------------
+# Feature indices (hfo_reference §2.2)
+# ---------------------------------------------------------------------------------------------------------------
+SELF_POS_VALID = 0
+SELF_VEL_VALID = 1
+SELF_VEL_ANGLE_SIN = 2  # sin(body - own velocity heading)
+SELF_VEL_ANGLE_COS = 3
+SELF_SPEED = 4
+SELF_BODY_SIN = 5  # global body angle
+SELF_BODY_COS = 6
+SELF_STAMINA = 7
+SELF_FROZEN = 8
+COLLIDING_WITH_BALL = 9
+COLLIDING_WITH_PLAYER = 10
+COLLIDING_WITH_POST = 11
+KICKABLE = 12
+GOAL_CENTER_SIN = 13
+GOAL_CENTER_COS = 14
+GOAL_CENTER_PROXIMITY = 15
+GOAL_POST_TOP_SIN = 16
+GOAL_POST_TOP_COS = 17
+GOAL_POST_TOP_PROXIMITY = 18
+GOAL_POST_BOTTOM_SIN = 19
+GOAL_POST_BOTTOM_COS = 20
+GOAL_POST_BOTTOM_PROXIMITY = 21
+PENALTY_BOX_CENTER_SIN = 22
+PENALTY_BOX_CENTER_COS = 23
+PENALTY_BOX_CENTER_PROXIMITY = 24
+PENALTY_BOX_TOP_SIN = 25
+PENALTY_BOX_TOP_COS = 26
+PENALTY_BOX_TOP_PROXIMITY = 27
+PENALTY_BOX_BOTTOM_SIN = 28
+PENALTY_BOX_BOTTOM_COS = 29
+PENALTY_BOX_BOTTOM_PROXIMITY = 30
+CENTER_FIELD_SIN = 31
+CENTER_FIELD_COS = 32
+CENTER_FIELD_PROXIMITY = 33
+CORNER_TOP_LEFT_SIN = 34
+CORNER_TOP_LEFT_COS = 35
+CORNER_TOP_LEFT_PROXIMITY = 36
+CORNER_TOP_RIGHT_SIN = 37
+CORNER_TOP_RIGHT_COS = 38
+CORNER_TOP_RIGHT_PROXIMITY = 39
+CORNER_BOTTOM_RIGHT_SIN = 40
+CORNER_BOTTOM_RIGHT_COS = 41
+CORNER_BOTTOM_RIGHT_PROXIMITY = 42
+CORNER_BOTTOM_LEFT_SIN = 43
+CORNER_BOTTOM_LEFT_COS = 44
+CORNER_BOTTOM_LEFT_PROXIMITY = 45
+OUT_OF_BOUNDS_LEFT = 46  # proximity of x = 0:    1 - 2 * min(x / 52.5, 1)
+OUT_OF_BOUNDS_RIGHT = 47  # proximity of x = 52.5: 1 - 2 * min((52.5 - x) / 52.5, 1)
+OUT_OF_BOUNDS_TOP = 48  # proximity of y = -34:   1 - 2 * min((34 + y) / 68, 1)
+OUT_OF_BOUNDS_BOTTOM = 49  # proximity of y = +34: 1 - 2 * min((34 - y) / 68, 1)
+BALL_POS_VALID = 50
+BALL_ANGLE_SIN = 51
+BALL_ANGLE_COS = 52
+BALL_PROXIMITY = 53
+BALL_VEL_VALID = 54
+BALL_SPEED = 55
+BALL_VEL_ANGLE_SIN = 56  # global heading of the ball's velocity
+BALL_VEL_ANGLE_COS = 57
+
+# Offsets inside an 8-feature player block.
+PLAYER_ANGLE_SIN = 0
+PLAYER_ANGLE_COS = 1
+PLAYER_PROXIMITY = 2
+PLAYER_BODY_SIN = 3
+PLAYER_BODY_COS = 4
+PLAYER_SPEED = 5
+PLAYER_VEL_ANGLE_SIN = 6
+PLAYER_VEL_ANGLE_COS = 7
+
+# The goalie block of the 66-feature (1v1) vector: the one opponent, right after the basic features.
+GOALIE_ANGLE_SIN = NUM_BASIC_FEATURES + PLAYER_ANGLE_SIN  # 58
+GOALIE_ANGLE_COS = NUM_BASIC_FEATURES + PLAYER_ANGLE_COS  # 59
+GOALIE_PROXIMITY = NUM_BASIC_FEATURES + PLAYER_PROXIMITY  # 60
+GOALIE_BODY_SIN = NUM_BASIC_FEATURES + PLAYER_BODY_SIN  # 61
+GOALIE_BODY_COS = NUM_BASIC_FEATURES + PLAYER_BODY_COS  # 62
+GOALIE_SPEED = NUM_BASIC_FEATURES + PLAYER_SPEED  # 63
+GOALIE_VEL_ANGLE_SIN = NUM_BASIC_FEATURES + PLAYER_VEL_ANGLE_SIN  # 64
+GOALIE_VEL_ANGLE_COS = NUM_BASIC_FEATURES + PLAYER_VEL_ANGLE_COS  # 65
+
+# Landmarks in feature order: name -> (x, y) in metres (HFO LowLevelFeatureExtractor, paper era).
+LANDMARKS: tuple[tuple[str, tuple[float, float]], ...] = (
+    ("goal_center", (PITCH_HALF_LENGTH, 0.0)),
+    ("goal_post_top", (PITCH_HALF_LENGTH, -GOAL_HALF_WIDTH)),
+    ("goal_post_bottom", (PITCH_HALF_LENGTH, GOAL_HALF_WIDTH)),
+    ("penalty_box_center", (PENALTY_AREA_X, 0.0)),
+    ("penalty_box_top", (PENALTY_AREA_X, -PENALTY_AREA_HALF_WIDTH)),
+    ("penalty_box_bottom", (PENALTY_AREA_X, PENALTY_AREA_HALF_WIDTH)),
+    ("center_field", (0.0, 0.0)),
+    ("corner_top_left", (0.0, -PITCH_HALF_WIDTH)),
+    ("corner_top_right", (PITCH_HALF_LENGTH, -PITCH_HALF_WIDTH)),
+    ("corner_bottom_right", (PITCH_HALF_LENGTH, PITCH_HALF_WIDTH)),
+    ("corner_bottom_left", (0.0, PITCH_HALF_WIDTH)),
+)
+_LANDMARK_POINTS: tuple[tuple[float, float], ...] = tuple(point for _, point in LANDMARKS)
+FIRST_LANDMARK = GOAL_CENTER_SIN  # 13
+
+
+def _basic_feature_names() -> tuple[str, ...]:
+    names = [
+        "self_pos_valid",
+        "self_vel_valid",
+        "self_vel_angle_sin",
+        "self_vel_angle_cos",
+        "self_speed",
+        "self_body_sin",
+        "self_body_cos",
+        "self_stamina",
+        "self_frozen",
+        "colliding_with_ball",
+        "colliding_with_player",
+        "colliding_with_post",
+        "kickable",
+    ]
+    for name, _ in LANDMARKS:
+        names += [f"{name}_sin", f"{name}_cos", f"{name}_proximity"]
+    names += ["out_of_bounds_left", "out_of_bounds_right", "out_of_bounds_top", "out_of_bounds_bottom"]
+    names += ["ball_pos_valid", "ball_angle_sin", "ball_angle_cos", "ball_proximity"]
+    names += ["ball_vel_valid", "ball_speed", "ball_vel_angle_sin", "ball_vel_angle_cos"]
+    return tuple(names)
+
+
+BASIC_FEATURE_NAMES: tuple[str, ...] = _basic_feature_names()
+PLAYER_FEATURE_NAMES: tuple[str, ...] = (
+    "angle_sin",
+    "angle_cos",
+    "proximity",
+    "body_sin",
+    "body_cos",
+    "speed",
+    "vel_angle_sin",
+    "vel_angle_cos",
+)
+GOALIE_FEATURE_NAMES: tuple[str, ...] = tuple(f"goalie_{name}" for name in PLAYER_FEATURE_NAMES)
+
+
+def num_features(num_teammates: int = 0, num_opponents: int = 0) -> int:
+    """Length of the feature vector: ``58 + 8 * (teammates + opponents)`` (paper era, no uniform numbers)."""
+    return NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (num_teammates + num_opponents)
+
+
+def feature_names(num_teammates: int = 0, num_opponents: int = 0) -> tuple[str, ...]:
+    """Names of the features in order; with one opponent and no teammate the block is ``goalie_*``."""
+    if num_teammates == 0 and num_opponents == 1:
+        return BASIC_FEATURE_NAMES + GOALIE_FEATURE_NAMES
+    names = list(BASIC_FEATURE_NAMES)
+    for kind, count in (("teammate", num_teammates), ("opponent", num_opponents)):
+        for slot in range(count):
+            names += [f"{kind}{slot}_{name}" for name in PLAYER_FEATURE_NAMES]
+    return tuple(names)
+
+
+_DEG_TO_RAD = math.pi / 180.0
+_TWO_OVER_MAX_HFO_DIST = 2.0 / MAX_HFO_DIST
+
+
+def _append_player_block(
+    features: list[float],
+    other: PlayerState,
+    self_x: float,
+    self_y: float,
+    body_cos: float,
+    body_sin: float,
+) -> None:
+    """Append the 8 features describing ``other`` as seen from self (position, body angle, velocity)."""
+    dx = other.x - self_x
+    dy = other.y - self_y
+    dist = math.hypot(dx, dy)
+    if dist > 0.0:
+        heading_cos = dx / dist
+        heading_sin = dy / dist
+    else:  # rcsc's Vector2D::th() of the zero vector is 0
+        heading_cos, heading_sin = 1.0, 0.0
+    other_body = other.body_deg * _DEG_TO_RAD
+    speed = math.hypot(other.vx, other.vy)
+    if speed > 0.0:
+        vel_cos = other.vx / speed
+        vel_sin = other.vy / speed
+    else:
+        vel_cos, vel_sin = 1.0, 0.0
+    features += (
+        heading_sin * body_cos - heading_cos * body_sin,
+        heading_cos * body_cos + heading_sin * body_sin,
+        1.0 - _TWO_OVER_MAX_HFO_DIST * dist if dist < MAX_HFO_DIST else -1.0,
+        math.sin(other_body),
+        math.cos(other_body),
+        2.0 * speed / PLAYER_SPEED_MAX - 1.0 if speed < PLAYER_SPEED_MAX else 1.0,
+        vel_sin,
+        vel_cos,
+    )
+
+
+def low_level_feature_list(
+    player: PlayerState,
+    ball: BallState,
+    kickable_distance: float,
+    teammates: list[PlayerState] | tuple[PlayerState, ...] = (),
+    opponents: list[PlayerState] | tuple[PlayerState, ...] = (),
+) -> list[float]:
+    """The features as a list of Python floats (the fast path; see :func:`low_level_features`).
+
+    Args:
+        player: the observing player.
+        ball: the ball.
+        kickable_distance: the ball-centre distance (m) under which the kickable flag is +1 (librcsc: 1.03).
+        teammates: the other players of the observer's side, one 8-feature slot each.
+        opponents: the players of the other side, one 8-feature slot each.
+
+    Returns:
+        ``num_features(len(teammates), len(opponents))`` floats in [-1, 1].
+    """
+    x = player.x
+    y = player.y
+    vx = player.vx
+    vy = player.vy
+    body = player.body_deg * _DEG_TO_RAD
+    body_cos = math.cos(body)
+    body_sin = math.sin(body)
+
+    speed = math.hypot(vx, vy)
+    if speed > 0.0:
+        vel_cos = vx / speed
+        vel_sin = vy / speed
+    else:  # heading of a zero velocity is 0, so body - heading = body
+        vel_cos, vel_sin = 1.0, 0.0
+    stamina = player.stamina
+
+    features: list[float] = [
+        1.0,  # self position valid (fullstate)
+        1.0,  # self velocity valid
+        body_sin * vel_cos - body_cos * vel_sin,  # sin(body - velocity heading)
+        body_cos * vel_cos + body_sin * vel_sin,
+        2.0 * speed / SELF_SPEED_MAX - 1.0 if speed < SELF_SPEED_MAX else 1.0,
+        body_sin,
+        body_cos,
+        (2.0 * stamina / STAMINA_MAX - 1.0 if stamina < STAMINA_MAX else 1.0) if stamina > 0.0 else -1.0,
+        -1.0,  # frozen: nobody tackles
+        1.0 if player.collided_ball else -1.0,
+        1.0 if player.collided_player else -1.0,
+        1.0 if player.collided_post else -1.0,
+        0.0,  # kickable, filled in with the ball below
+    ]
+    hypot = math.hypot
+    two_over_max_dist = _TWO_OVER_MAX_HFO_DIST
+    max_dist = MAX_HFO_DIST
+    for landmark_x, landmark_y in _LANDMARK_POINTS:
+        dx = landmark_x - x
+        dy = landmark_y - y
+        dist = hypot(dx, dy)
+        if dist > 0.0:
+            # (sin, cos) of bearing = heading - body, expanded so that no atan2 is needed
+            features += (
+                (dy * body_cos - dx * body_sin) / dist,
+                (dx * body_cos + dy * body_sin) / dist,
+                1.0 - two_over_max_dist * dist if dist < max_dist else -1.0,
+            )
+        else:  # rcsc's Vector2D::th() of the zero vector is 0, so the bearing is -body
+            features += (-body_sin, body_cos, 1.0)
+
+    # Out-of-bounds proximities: 1 - 2 * clip(d / dmax, 0, 1).
+    for dist, dist_max in (
+        (x, OUT_OF_BOUNDS_X_DIST_MAX),
+        (PITCH_HALF_LENGTH - x, OUT_OF_BOUNDS_X_DIST_MAX),
+        (PITCH_HALF_WIDTH + y, OUT_OF_BOUNDS_Y_DIST_MAX),
+        (PITCH_HALF_WIDTH - y, OUT_OF_BOUNDS_Y_DIST_MAX),
+    ):
+        if dist <= 0.0:
+            features.append(1.0)
+        elif dist >= dist_max:
+            features.append(-1.0)
+        else:
+            features.append(1.0 - 2.0 * dist / dist_max)
+
+    dx = ball.x - x
+    dy = ball.y - y
+    dist = hypot(dx, dy)
+    if dist > 0.0:
+        heading_cos = dx / dist
+        heading_sin = dy / dist
+    else:
+        heading_cos, heading_sin = 1.0, 0.0
+    features[KICKABLE] = 1.0 if dist <= kickable_distance else -1.0
+    ball_vx = ball.vx
+    ball_vy = ball.vy
+    ball_speed = hypot(ball_vx, ball_vy)
+    if ball_speed > 0.0:
+        ball_vel_cos = ball_vx / ball_speed
+        ball_vel_sin = ball_vy / ball_speed
+    else:
+        ball_vel_cos, ball_vel_sin = 1.0, 0.0
+    features += (
+        1.0,  # ball position valid
+        heading_sin * body_cos - heading_cos * body_sin,
+        heading_cos * body_cos + heading_sin * body_sin,
+        1.0 - _TWO_OVER_MAX_HFO_DIST * dist if dist < MAX_HFO_DIST else -1.0,
+        1.0,  # ball velocity valid
+        2.0 * ball_speed / BALL_SPEED_MAX - 1.0 if ball_speed < BALL_SPEED_MAX else 1.0,
+        ball_vel_sin,
+        ball_vel_cos,
+    )
+
+    for group in (teammates, opponents):
+        if not group:
+            continue
+        if len(group) > 1:
+            group = sorted(group, key=lambda other: (other.x - x) ** 2 + (other.y - y) ** 2)
+        listed = 0
+        for other in group:
+            if other.x > 0.0:  # HFO lists a player only inside the HFO half (x > 0)
+                _append_player_block(features, other, x, y, body_cos, body_sin)
+                listed += 1
+        features += [0.0] * (FEATURES_PER_PLAYER * (len(group) - listed))
+    return features
+
+
+def kickable_distance(world: World) -> float:
+    """Ball-centre distance (m) under which librcsc calls the ball kickable: kickable_area - 0.055 = 1.03."""
+    return world.params.kickable_area - KICKABLE_BUFFER
+
+
+def low_level_features(world: World, player: PlayerState, out: np.ndarray | None = None) -> np.ndarray:
+    """HFO's low-level features of ``player`` in ``world`` (paper era, fullstate).
+
+    Every other player of the world takes one 8-feature slot: teammates (same side) first, then opponents, each
+    group sorted by distance from ``player``. In HFO's 1v0 that is 58 features, against a goalie 66.
+
+    Args:
+        world: the simulated world.
+        player: the observing player, one of ``world.players``.
+        out: optional float32 array of the right length to fill in place.
+
+    Returns:
+        float32 array of shape ``(num_features(T, O),)`` with values in [-1, 1]; ``out`` when given.
+    """
+    teammates = [other for other in world.players if other is not player and other.side == player.side]
+    opponents = [other for other in world.players if other.side != player.side]
+    features = low_level_feature_list(player, world.ball, kickable_distance(world), teammates, opponents)
+    if out is None:
+        return np.array(features, dtype=np.float32)
+    if out.shape != (len(features),):
+        raise ValueError(f"out has shape {out.shape}, expected ({len(features)},)")
+    out[:] = features
+    return out

@@ -1,0 +1,568 @@
+"""Gymnasium environment for RoboCup Half Field Offense (1v0 and 1v1 against a goalie) on the hfo2d simulator."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from gymnasium import spaces
+
+from hfo2d.features import (
+    KICKABLE_BUFFER,
+    low_level_feature_list,
+    num_features,
+)
+from hfo2d.physics import PITCH_HALF_LENGTH, PITCH_HALF_WIDTH, PlayerState, ServerParams, World
+from hfo2d.reward import REWARD_NAMES, make_reward
+
+# ---------------------------------------------------------------------------------------------------------------
+# Tasks, actions, episode rules
+# ---------------------------------------------------------------------------------------------------------------
+TASKS: tuple[str, ...] = ("empty_goal", "static_keeper", "keeper")
+ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
+ACTION_NAMES: tuple[str, ...] = ("DASH", "TURN", "KICK")
+DASH, TURN, KICK = 0, 1, 2
+# [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir]
+FLAT_ACTION_SIZE = 8
+POWER_MIN, POWER_MAX = 0.0, 100.0  # gym-soccer / paper dash and kick power range (hfo_reference §3.3)
+DIRECTION_MIN, DIRECTION_MAX = -180.0, 180.0  # degrees relative to the body
+
+# HFO statuses (HFO's hfo::Status names)
+IN_GAME = "IN_GAME"
+GOAL = "GOAL"
+CAPTURED_BY_DEFENSE = "CAPTURED_BY_DEFENSE"
+OUT_OF_BOUNDS = "OUT_OF_BOUNDS"
+OUT_OF_TIME = "OUT_OF_TIME"
+
+DEFAULT_FRAMES_PER_TRIAL = 500  # gym-soccer and DQNHFO (hfo_reference §5.2)
+DEFAULT_UNTOUCHED_TIME = 100  # HFO default
+TURNOVER_TIME = 2  # cycles a defender must hold the ball before CAPTURED_BY_DEFENSE (HFORef)
+GOAL_LINE_X = 52.585  # pitch_half_length + ball_size: the ball's centre must cross it (rcssserver referee)
+GOAL_MOUTH_HALF_WIDTH = 7.07  # goal_width / 2 + goal post radius (hfo_reference §1)
+
+# Starting state (HFO resetField with bin/HFO defaults, hfo_reference §5.3)
+# (written out: 0.8 * 34 is 27.200000000000003 in floating point)
+BALL_X_RANGE = (0.0, 10.5)  # m: bin/HFO ball_x_min / max 0 / 0.2 of 52.5
+BALL_Y_RANGE = (-27.2, 27.2)  # m: ball_y_min / max -0.8 / 0.8 of 34
+OFFENSE_SPREAD = 10.5  # m per unit of offset: 0.2 * 52.5
+OFFENSE_OFFSETS: tuple[tuple[float, float], ...] = (
+    (-1.0, -1.0),
+    (-1.0, 1.0),
+    (1.0, 1.0),
+    (1.0, -1.0),
+    (0.0, 2.0),
+    (0.0, -2.0),
+    (-2.0, -2.0),
+    (-2.0, 2.0),
+    (2.0, 2.0),
+    (2.0, -2.0),
+)
+OFFENSE_X_RANGE = (-0.1, PITCH_HALF_LENGTH)
+OFFENSE_Y_RANGE = BALL_Y_RANGE
+KEEPER_START = (PITCH_HALF_LENGTH, 0.0)
+KEEPER_START_BODY_DEG = -180.0  # facing the field
+AGENT_SIDE, AGENT_UNUM = "l", 11  # HFO's first offense agent
+KEEPER_SIDE, KEEPER_UNUM = "r", 1
+
+RESET_OPTION_LENGTHS: dict[str, tuple[int, ...]] = {
+    "player": (3, 5),  # (x, y, body_deg[, vx, vy])
+    "ball": (2, 4),  # (x, y[, vx, vy])
+    "keeper": (3,),  # (x, y, body_deg)
+}
+
+
+class HFOEnv(gym.Env):
+    """RoboCup Half Field Offense: one striker against an empty goal or a goalie, at rcssserver's cycle rate.
+
+    One offense agent (left side, unum 11) attacks the right goal (x = +52.5) of the HFO half, x in [0, 52.5],
+    |y| <= 34. Units are rcssserver's: metres, m/cycle, degrees, +x toward the goal, +y down the screen, a positive
+    relative angle to the agent's right. One step is one 100 ms server cycle. Physics: :class:`hfo2d.physics.World`.
+
+    Tasks (``task``): ``"empty_goal"`` (1v0, ``HFO/EmptyGoal-v0``), ``"static_keeper"`` (a goalie on the goal line
+    that never moves, ``HFO/StaticKeeper-v0``), ``"keeper"`` (the scripted goalie of :mod:`hfo2d.keeper`, its
+    quality set by ``keeper_skill`` in [0, 1], ``HFO/Keeper-v0``).
+
+    Observation:
+        ``Box(-1, 1, (58,), float32)`` for ``empty_goal``, ``(66,)`` with a goalie: HFO's paper-era low-level
+        features, fullstate (see :mod:`hfo2d.features` for encodings and normalisers).
+
+        ======= =========================================================================
+        index   feature
+        ======= =========================================================================
+        0, 1    self position / velocity valid (always +1)
+        2, 3    sin, cos of (body angle - own velocity heading)
+        4       own speed over [0, 0.46] m/cycle
+        5, 6    sin, cos of the global body angle
+        7       stamina over [0, 8000]
+        8       frozen (always -1: nobody tackles)
+        9-11    colliding with ball / player / goal post (+1 / -1)
+        12      kickable (ball centre within 1.03 m, librcsc's test)
+        13-15   goal centre (52.5, 0): sin, cos of its bearing, proximity 1 - 2 d / 62.55
+        16-18   top goal post (52.5, -7.01)
+        19-21   bottom goal post (52.5, 7.01)
+        22-24   penalty box centre (36, 0)
+        25-27   penalty box top corner (36, -20.16)
+        28-30   penalty box bottom corner (36, 20.16)
+        31-33   centre field (0, 0)
+        34-36   corner top-left (0, -34)
+        37-39   corner top-right (52.5, -34)
+        40-42   corner bottom-right (52.5, 34)
+        43-45   corner bottom-left (0, 34)
+        46      left line proximity  1 - 2 min(x / 52.5, 1) (> 0 in the half away from goal)
+        47      right line proximity 1 - 2 min((52.5 - x) / 52.5, 1)
+        48      top line proximity   1 - 2 min((34 + y) / 68, 1)
+        49      bottom line proximity 1 - 2 min((34 - y) / 68, 1)
+        50      ball position valid (+1)
+        51-53   ball: sin, cos of its bearing, proximity over 62.55 m
+        54      ball velocity valid (+1)
+        55      ball speed over [0, 5] m/cycle
+        56, 57  sin, cos of the ball's velocity heading
+        58-60   goalie: sin, cos of its bearing, proximity (goalie tasks; zeros while its x <= 0)
+        61, 62  goalie: sin, cos of its body angle
+        63      goalie: speed over [0, 0.75] m/cycle
+        64, 65  goalie: sin, cos of its velocity heading
+        ======= =========================================================================
+
+    Action (``action_format``):
+        ``"flat"`` (default): ``Box(0, 1, (8,), float32)`` = [pref_dash, pref_turn, pref_kick, dash_power, dash_dir,
+        turn_dir, kick_power, kick_dir]. The largest preference picks the action (ties: the first); its parameters
+        map linearly onto power [0, 100] and direction [-180, 180] degrees relative to the body.
+        ``"parameterized"``: gym-soccer's ``Tuple(Discrete(3) {0 DASH, 1 TURN, 2 KICK}, Box([0, -180], [100, 180])
+        dash power and direction, Box([-180], [180]) turn, Box([0, -180], [100, 180]) kick power and direction)``.
+        The commands are processed as HFO's agent (librcsc) does before the server sees them: TURN asks for the
+        actual turn, the dash direction is rounded to 45 degrees, KICK fails when the ball is beyond 1.03 m.
+        Invalid actions (wrong shape, NaN / inf, outside the space) raise ValueError and leave the state unchanged.
+
+    Reward (``reward``):
+        ``"shaped"`` (default): Hausknecht & Stone's, computed as DQNHFO does from the features (see
+        :mod:`hfo2d.reward`): Δ ball proximity + 1 on the first kickable step + 3 × ball-to-goal progress + 5 on a
+        goal, deltas zero on the first and last step of an episode. ``"sparse"``: 1 for a goal, else 0.
+        ``info["reward_terms"]`` holds each term.
+
+    Episode end (HFO's referee, checked after each cycle in this order):
+        1. GOAL: the ball's centre crossed x = 52.585 during the cycle with interpolated |y| <= 7.07.
+        2. OUT_OF_BOUNDS: the ball's position at the start of the cycle lay outside x in [0, 52.5], |y| <= 34.
+        3. CAPTURED_BY_DEFENSE: the goalie is within 1.085 m of the ball (it becomes the player on ball), or a
+           defender held the ball for 2 cycles.
+        4. OUT_OF_TIME: more than ``untouched_time`` (100) cycles without any player within 1.085 m of the ball.
+        These set ``terminated``. After ``frames_per_trial`` (500) steps the episode is ``truncated`` with status
+        OUT_OF_TIME. No TimeLimit wrapper is registered.
+
+    Starting state (HFO's resetField, bin/HFO defaults; all draws from ``self.np_random``):
+        the ball at rest at x ~ U(0, 10.5), y ~ U(-27.2, 27.2); the agent at ``ball + 10.5 · (U(0, 1) + o)`` per
+        axis with ``o`` one of HFO's ten offsets, x clamped to [-0.1, 52.5] and y to [-27.2, 27.2], at rest, body
+        angle ~ U(-180, 180); the goalie at (52.5, 0) facing the field. Stamina, effort and recovery are restored.
+        ``reset(options=...)`` may place things by hand: ``{"player": (x, y, body_deg[, vx, vy]),
+        "ball": (x, y[, vx, vy]), "keeper": (x, y, body_deg)}``.
+
+    Info (every step): ``status``; ``player`` (x, y, vx, vy, body_deg); ``ball`` (x, y, vx, vy); ``keeper``
+    (x, y, vx, vy, body_deg) with a goalie; ``reward_terms``; ``action`` ("DASH" / "TURN" / "KICK");
+    ``action_success`` (False for a KICK out of reach); ``kickable`` (1.03 m rule); ``kick_power`` (power of the
+    executed kick, else 0). ``reset`` returns the same keys except the action ones.
+
+    Args:
+        task: one of TASKS.
+        render_mode: None, "human" (pygame window, drawn every step) or "rgb_array".
+        action_format: "flat" or "parameterized".
+        reward: "shaped" or "sparse".
+        noise: False turns off player, ball and kick noise (HFO's --deterministic).
+        server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}``.
+        keeper_skill: goalie quality for task "keeper", in [0, 1].
+        frames_per_trial: steps after which an episode is truncated.
+        untouched_time: cycles without a player near the ball after which the episode ends.
+    """
+
+    metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 10}
+
+    def __init__(
+        self,
+        task: str = "empty_goal",
+        render_mode: str | None = None,
+        action_format: str = "flat",
+        reward: str = "shaped",
+        noise: bool = True,
+        server_params: Mapping[str, float] | None = None,
+        keeper_skill: float = 1.0,
+        frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
+        untouched_time: int = DEFAULT_UNTOUCHED_TIME,
+    ) -> None:
+        if task not in TASKS:
+            raise ValueError(f"unknown task {task!r}; choose one of {TASKS}")
+        if action_format not in ACTION_FORMATS:
+            raise ValueError(f"unknown action_format {action_format!r}; choose one of {ACTION_FORMATS}")
+        if reward not in REWARD_NAMES:
+            raise ValueError(f"unknown reward {reward!r}; choose one of {REWARD_NAMES}")
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            raise ValueError(
+                f"unknown render_mode {render_mode!r}; choose None or one of {self.metadata['render_modes']}"
+            )
+        if isinstance(keeper_skill, bool) or not isinstance(keeper_skill, (int, float, np.number)):
+            raise ValueError(f"keeper_skill must be a number in [0, 1], got {keeper_skill!r}")
+        if not 0.0 <= float(keeper_skill) <= 1.0:
+            raise ValueError(f"keeper_skill must lie in [0, 1], got {keeper_skill!r}")
+        for name, value in (("frames_per_trial", frames_per_trial), ("untouched_time", untouched_time)):
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+                raise ValueError(f"{name} must be a positive integer, got {value!r}")
+
+        self.task = task
+        self.render_mode = render_mode
+        self.action_format = action_format
+        self.reward_name = reward
+        self.noise = bool(noise)
+        self.keeper_skill = float(keeper_skill)
+        self.frames_per_trial = int(frames_per_trial)
+        self.untouched_time = int(untouched_time)
+        self.params: ServerParams = ServerParams.with_overrides(server_params)
+        self.has_keeper = task != "empty_goal"
+        self._kickable_distance = self.params.kickable_area - KICKABLE_BUFFER
+        self._capture_distance = self.params.kickable_area
+
+        n_features = num_features(0, 1 if self.has_keeper else 0)
+        self.observation_space = spaces.Box(-1.0, 1.0, shape=(n_features,), dtype=np.float32)
+        if action_format == "flat":
+            self.action_space: spaces.Space = spaces.Box(
+                0.0, 1.0, shape=(FLAT_ACTION_SIZE,), dtype=np.float32
+            )
+        else:
+            self.action_space = spaces.Tuple(
+                (
+                    spaces.Discrete(3),
+                    spaces.Box(
+                        np.array([POWER_MIN, DIRECTION_MIN], dtype=np.float32),
+                        np.array([POWER_MAX, DIRECTION_MAX], dtype=np.float32),
+                        dtype=np.float32,
+                    ),
+                    spaces.Box(
+                        np.array([DIRECTION_MIN], dtype=np.float32),
+                        np.array([DIRECTION_MAX], dtype=np.float32),
+                        dtype=np.float32,
+                    ),
+                    spaces.Box(
+                        np.array([POWER_MIN, DIRECTION_MIN], dtype=np.float32),
+                        np.array([POWER_MAX, DIRECTION_MAX], dtype=np.float32),
+                        dtype=np.float32,
+                    ),
+                )
+            )
+
+        self._reward_fn = make_reward(reward)
+        # The world and its players live as long as the env; reset() re-places them and hands them the env's
+        # (possibly reseeded) generator, so references to env.world / env.agent stay valid across episodes.
+        rng = self.np_random
+        self.world: World = World(self.params, rng, noise=self.noise)
+        self.agent: PlayerState = self.world.add_player(AGENT_SIDE, AGENT_UNUM)
+        self.keeper: PlayerState | None = None
+        self._keeper_policy: Any = None
+        if self.has_keeper:
+            self.keeper = self.world.add_player(KEEPER_SIDE, KEEPER_UNUM, goalie=True)
+            if task == "keeper":
+                from hfo2d.keeper import ScriptedKeeper
+
+                self._keeper_policy = ScriptedKeeper(self.params, rng, skill=self.keeper_skill)
+        self._opponents: tuple[PlayerState, ...] = (self.keeper,) if self.keeper is not None else ()
+        self._rng_in_use = rng
+        self._renderer: Any = None
+        self._needs_reset = True
+        self._steps = 0
+        self._untouched = 0
+        self._take_time = 0
+        self._status = IN_GAME
+
+    # ------------------------------------------------------------------------------------------------------------
+    # Gymnasium API
+    # ------------------------------------------------------------------------------------------------------------
+    def reset(
+        self, *, seed: int | None = None, options: Mapping[str, Any] | None = None
+    ) -> tuple[np.ndarray, dict[str, Any]]:
+        """Start an episode (HFO resetField; see the class docstring). Returns (observation, info)."""
+        placements = self._parse_reset_options(options)
+        super().reset(seed=seed)
+        rng = self.np_random
+        world = self.world
+        agent = self.agent
+        if rng is not self._rng_in_use:  # reseeded: every random draw must come from the new generator
+            world.rng = rng
+            if self._keeper_policy is not None:
+                self._keeper_policy.rng = rng
+            self._rng_in_use = rng
+
+        ball_x = rng.uniform(*BALL_X_RANGE)
+        ball_y = rng.uniform(*BALL_Y_RANGE)
+        offset_x, offset_y = OFFENSE_OFFSETS[int(rng.integers(len(OFFENSE_OFFSETS)))]
+        agent_x = min(
+            max(ball_x + OFFENSE_SPREAD * (rng.uniform() + offset_x), OFFENSE_X_RANGE[0]), OFFENSE_X_RANGE[1]
+        )
+        agent_y = min(
+            max(ball_y + OFFENSE_SPREAD * (rng.uniform() + offset_y), OFFENSE_Y_RANGE[0]), OFFENSE_Y_RANGE[1]
+        )
+        agent_body = rng.uniform(-180.0, 180.0)
+
+        ball = placements.get("ball", (ball_x, ball_y, 0.0, 0.0))
+        world.place_ball(*ball)
+        player = placements.get("player", (agent_x, agent_y, agent_body, 0.0, 0.0))
+        world.place_player(agent, *player)
+        if self.keeper is not None:
+            keeper = placements.get("keeper", (*KEEPER_START, KEEPER_START_BODY_DEG))
+            world.place_player(self.keeper, *keeper)
+        world.recover_players()
+        # collisions of the last episode's final cycle are not part of the new one
+        for placed in world.players:
+            placed.collided_ball = placed.collided_player = placed.collided_post = False
+        world.ball.collided_post = False
+        if self._keeper_policy is not None:
+            self._keeper_policy.reset()
+        self._reward_fn.reset()
+
+        self._steps = 0
+        self._untouched = 0
+        self._take_time = 0
+        self._status = IN_GAME
+        self._needs_reset = False
+        features = self._features()
+        info = self._info(features)
+        info["reward_terms"] = {"move_to_ball": 0.0, "kick_bonus": 0.0, "ball_to_goal": 0.0, "goal": 0.0}
+        if self.render_mode == "human":
+            self.render()
+        return np.array(features, dtype=np.float32), info
+
+    def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
+        """Advance one server cycle: agent command, goalie command, physics, referee, features, reward."""
+        if self._needs_reset:
+            raise RuntimeError("call reset() before step()")
+        world = self.world
+        agent = self.agent
+        kind, power, direction = self._parse_action(action)
+
+        success = True
+        kick_power = 0.0
+        if kind == DASH:
+            world.client_dash(agent, power, direction)
+        elif kind == TURN:
+            world.client_turn(agent, direction)
+        else:
+            success = bool(world.client_kick(agent, power, direction))
+            if success:
+                kick_power = min(max(power, POWER_MIN), POWER_MAX)
+        if self._keeper_policy is not None and self.keeper is not None:
+            self._keeper_policy.act(world, self.keeper)
+
+        ball = world.ball
+        previous_ball_x = ball.x
+        previous_ball_y = ball.y
+        world.step()
+        self._steps += 1
+
+        status = self._referee(previous_ball_x, previous_ball_y)
+        terminated = status != IN_GAME
+        truncated = False
+        if not terminated and self._steps >= self.frames_per_trial:
+            status = OUT_OF_TIME
+            truncated = True
+        self._status = status
+
+        features = self._features()
+        reward, terms = self._reward_fn(features, status)
+        info = self._info(features)
+        info["reward_terms"] = terms
+        info["action"] = ACTION_NAMES[kind]
+        info["action_success"] = success
+        info["kick_power"] = kick_power
+        if self.render_mode == "human":
+            self.render()
+        return np.array(features, dtype=np.float32), reward, terminated, truncated, info
+
+    def render(self) -> np.ndarray | None:
+        """Draw the current state: a pygame window ("human") or an RGB array (H, W, 3) uint8 ("rgb_array")."""
+        if self.render_mode is None:
+            gym.logger.warn(
+                "You are calling render method without specifying any render mode. "
+                'You can specify the render_mode at initialization, e.g. gym.make("HFO/EmptyGoal-v0", '
+                'render_mode="rgb_array")'
+            )
+            return None
+        if self._needs_reset:
+            raise RuntimeError("call reset() before render()")
+        if self._renderer is None:
+            from hfo2d.rendering import HFORenderer  # pygame is imported only when rendering
+
+            self._renderer = HFORenderer(self.render_mode, self.params)
+        return self._renderer.render(self.world)
+
+    def close(self) -> None:
+        """Close the render window, if any."""
+        if self._renderer is not None:
+            self._renderer.close()
+            self._renderer = None
+
+    # ------------------------------------------------------------------------------------------------------------
+    # Internals
+    # ------------------------------------------------------------------------------------------------------------
+    @property
+    def status(self) -> str:
+        """HFO status of the last step ("IN_GAME" after reset)."""
+        return self._status
+
+    @property
+    def steps(self) -> int:
+        """Steps taken in the current episode."""
+        return self._steps
+
+    def _features(self) -> list[float]:
+        return low_level_feature_list(
+            self.agent, self.world.ball, self._kickable_distance, (), self._opponents
+        )
+
+    def _referee(self, previous_ball_x: float, previous_ball_y: float) -> str:
+        """HFO's referee after one cycle (HFORef order, hfo_reference §5.1); updates the counters."""
+        world = self.world
+        agent = self.agent
+        ball = world.ball
+        bx = ball.x
+        by = ball.y
+
+        # Counters first: they record who is on the ball this cycle (offense before defense, as HFORef iterates).
+        capture = self._capture_distance
+        agent_on_ball = math.hypot(agent.x - bx, agent.y - by) <= capture
+        keeper_on_ball = False
+        if agent_on_ball:
+            self._take_time = 0
+        keeper = self.keeper
+        if keeper is not None and math.hypot(keeper.x - bx, keeper.y - by) <= capture:
+            keeper_on_ball = True
+            self._take_time += 1
+        if agent_on_ball or keeper_on_ball:
+            self._untouched = 0
+        else:
+            self._untouched += 1
+
+        if previous_ball_x <= GOAL_LINE_X < bx:
+            crossing_y = previous_ball_y + (by - previous_ball_y) * (GOAL_LINE_X - previous_ball_x) / (
+                bx - previous_ball_x
+            )
+            if abs(crossing_y) <= GOAL_MOUTH_HALF_WIDTH:
+                return GOAL
+        if not (0.0 <= previous_ball_x <= PITCH_HALF_LENGTH and abs(previous_ball_y) <= PITCH_HALF_WIDTH):
+            return OUT_OF_BOUNDS
+        # The goalie being the latest player on the ball captures it at once; other defenders need TURNOVER_TIME.
+        if keeper_on_ball or self._take_time >= TURNOVER_TIME:
+            return CAPTURED_BY_DEFENSE
+        if self._untouched > self.untouched_time:
+            return OUT_OF_TIME
+        return IN_GAME
+
+    def _info(self, features: Sequence[float]) -> dict[str, Any]:
+        agent = self.agent
+        ball = self.world.ball
+        info: dict[str, Any] = {
+            "status": self._status,
+            "player": (agent.x, agent.y, agent.vx, agent.vy, agent.body_deg),
+            "ball": (ball.x, ball.y, ball.vx, ball.vy),
+            "kickable": features[12] > 0.0,
+        }
+        keeper = self.keeper
+        if keeper is not None:
+            info["keeper"] = (keeper.x, keeper.y, keeper.vx, keeper.vy, keeper.body_deg)
+        return info
+
+    # --- input validation -----------------------------------------------------------------------------------------
+    def _parse_action(self, action: Any) -> tuple[int, float, float]:
+        """(action kind, power, direction) of a valid action; ValueError naming the problem otherwise."""
+        if self.action_format == "flat":
+            return self._parse_flat_action(action)
+        return self._parse_parameterized_action(action)
+
+    def _parse_flat_action(self, action: Any) -> tuple[int, float, float]:
+        if type(action) is np.ndarray and action.shape == (FLAT_ACTION_SIZE,) and action.dtype.kind == "f":
+            values = action.tolist()
+        else:
+            values = _as_float_list(action, "flat action")
+            if len(values) != FLAT_ACTION_SIZE:
+                raise ValueError(f"flat action must have shape ({FLAT_ACTION_SIZE},), got {np.shape(action)}")
+        for index, value in enumerate(values):
+            if not 0.0 <= value <= 1.0:  # also rejects NaN
+                what = "not finite" if not math.isfinite(value) else "outside [0, 1]"
+                raise ValueError(f"flat action element {index} is {what}: {value!r}")
+        pref_dash, pref_turn, pref_kick = values[0], values[1], values[2]
+        if pref_dash >= pref_turn and pref_dash >= pref_kick:
+            return DASH, POWER_MAX * values[3], DIRECTION_MIN + 360.0 * values[4]
+        if pref_turn >= pref_kick:
+            return TURN, 0.0, DIRECTION_MIN + 360.0 * values[5]
+        return KICK, POWER_MAX * values[6], DIRECTION_MIN + 360.0 * values[7]
+
+    def _parse_parameterized_action(self, action: Any) -> tuple[int, float, float]:
+        if not isinstance(action, (tuple, list)) or len(action) != 4:
+            raise ValueError(
+                "parameterized action must be a tuple (kind, (dash_power, dash_dir), (turn_dir,), "
+                f"(kick_power, kick_dir)), got {action!r}"
+            )
+        kind_raw = action[0]
+        if isinstance(kind_raw, np.ndarray) and kind_raw.shape == () and kind_raw.dtype.kind in "iu":
+            kind_raw = kind_raw.item()
+        if (
+            isinstance(kind_raw, bool)
+            or not isinstance(kind_raw, (int, np.integer))
+            or not 0 <= kind_raw <= 2
+        ):
+            raise ValueError(
+                f"parameterized action kind must be 0 (DASH), 1 (TURN) or 2 (KICK), got {kind_raw!r}"
+            )
+        kind = int(kind_raw)
+        parsed: list[list[float]] = []
+        for name, raw, lows, highs in (
+            ("dash parameters", action[1], (POWER_MIN, DIRECTION_MIN), (POWER_MAX, DIRECTION_MAX)),
+            ("turn parameters", action[2], (DIRECTION_MIN,), (DIRECTION_MAX,)),
+            ("kick parameters", action[3], (POWER_MIN, DIRECTION_MIN), (POWER_MAX, DIRECTION_MAX)),
+        ):
+            values = _as_float_list(raw, name)
+            if len(values) != len(lows):
+                raise ValueError(f"{name} must have shape ({len(lows)},), got {np.shape(raw)}")
+            for value, low, high in zip(values, lows, highs, strict=True):
+                if not low <= value <= high:
+                    what = "not finite" if not math.isfinite(value) else f"outside [{low:g}, {high:g}]"
+                    raise ValueError(f"{name} value {value!r} is {what}")
+            parsed.append(values)
+        if kind == DASH:
+            return DASH, parsed[0][0], parsed[0][1]
+        if kind == TURN:
+            return TURN, 0.0, parsed[1][0]
+        return KICK, parsed[2][0], parsed[2][1]
+
+    def _parse_reset_options(self, options: Mapping[str, Any] | None) -> dict[str, tuple[float, ...]]:
+        """Validated hand placements from reset's ``options``, padded with zero velocities."""
+        if options is None:
+            return {}
+        if not isinstance(options, Mapping):
+            raise ValueError(f"reset options must be a dict, got {type(options).__name__}")
+        placements: dict[str, tuple[float, ...]] = {}
+        for key, raw in options.items():
+            if key not in RESET_OPTION_LENGTHS:
+                raise ValueError(
+                    f"unknown reset option {key!r}; known options are {tuple(RESET_OPTION_LENGTHS)}"
+                )
+            if key == "keeper" and not self.has_keeper:
+                raise ValueError(f"reset option 'keeper' given but task {self.task!r} has no keeper")
+            lengths = RESET_OPTION_LENGTHS[key]
+            values = _as_float_list(raw, f"reset option {key!r}")
+            if len(values) not in lengths:
+                raise ValueError(
+                    f"reset option {key!r} needs {' or '.join(str(n) for n in lengths)} numbers, got {len(values)}"
+                )
+            if not all(math.isfinite(value) for value in values):
+                raise ValueError(f"reset option {key!r} has a non-finite value: {tuple(values)}")
+            # a placement without velocity starts at rest
+            placements[key] = tuple(values) + (0.0,) * (max(lengths) - len(values))
+        return placements
+
+
+def _as_float_list(raw: Any, what: str) -> list[float]:
+    """``raw`` as a flat list of Python floats (1-D numbers only); ValueError naming ``what`` otherwise."""
+    try:
+        array = np.asarray(raw, dtype=np.float64)
+    except (TypeError, ValueError) as error:
+        raise ValueError(f"{what} must be numbers, got {raw!r}") from error
+    if array.ndim != 1:
+        raise ValueError(f"{what} must be 1-D, got shape {array.shape}")
+    return array.tolist()

@@ -1,0 +1,152 @@
+"""Rewards for HFO: Hausknecht & Stone's shaped reward as DQNHFO computes it, and the sparse goal reward.
+
+Shaped (Hausknecht & Stone, ICLR 2016; computation of mhauskn/dqn-hfo, 2016, via hfo_reference §6.1-§6.2)::
+
+    r_t = Δ ball_proximity + I_kick + 3 · (−Δ ball_to_goal) + 5 · I_goal
+
+All distances are taken from the feature vector, in normalised feature units (1 m = 2 / 62.55 = 0.032 units):
+
+* ``ball_dist = 1 − f[53]`` and ``goal_dist = 1 − f[15]`` (features are proximities ``1 − 2·d/62.55``);
+* ``ball_to_goal = sqrt(ball_dist² + goal_dist² − 2·ball_dist·goal_dist·cos α)`` (law of cosines) with α the
+  angle between the ball bearing (f[51], f[52]) and the goal-centre bearing (f[13], f[14]);
+* ``move_to_ball`` = rise of the ball proximity f[53] since the previous step;
+* ``kick_bonus`` = 1 the first time in an episode that the kickable flag f[12] jumps from −1 to +1;
+* ``ball_to_goal`` = 3 × the fall of ``ball_to_goal`` since the previous step;
+* ``goal`` = 5 on the GOAL step.
+
+The delta terms (and the kickable jump) are 0 on an episode's first step and zeroed on its last step (any status
+other than IN_GAME, truncation included), so a goal step pays exactly +5.
+
+Version choice: the 2016 DQNHFO computation is used. DQNHFO's later HEAD (2016-03 on) also conditions the terms on
+the server's "player on ball"; with a single offense player this changes the reward only while the keeper is the
+player on ball, and that ends the episode at once (CAPTURED_BY_DEFENSE), so the extra machinery would buy nothing.
+The Oct-2015 quirk of computing deltas from the state before the action (lagging one step) is not reproduced.
+
+Sparse: 1 on GOAL, else 0 (gym-soccer's Soccer-v0, hfo_reference §6.3).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Protocol
+
+from hfo2d.features import (
+    BALL_ANGLE_COS,
+    BALL_ANGLE_SIN,
+    BALL_PROXIMITY,
+    GOAL_CENTER_COS,
+    GOAL_CENTER_PROXIMITY,
+    GOAL_CENTER_SIN,
+    KICKABLE,
+)
+
+REWARD_NAMES: tuple[str, ...] = ("shaped", "sparse")
+STATUS_IN_GAME = "IN_GAME"
+STATUS_GOAL = "GOAL"
+
+GOAL_REWARD = 5.0  # DQNHFO's EOT reward for the agent's own goal
+KICK_BONUS = 1.0  # first time kickable in an episode
+BALL_TO_GOAL_WEIGHT = 3.0  # outweighs the negative move-to-ball term once the kicked ball runs away
+KICKABLE_JUMP = 1.0  # DQNHFO awards the bonus when the kickable feature rises by at least this much
+SPARSE_GOAL_REWARD = 1.0
+
+REWARD_TERM_NAMES: tuple[str, ...] = ("move_to_ball", "kick_bonus", "ball_to_goal", "goal")
+
+
+class RewardFunction(Protocol):
+    """What the env needs from a reward: reset at episode start, then one call per step."""
+
+    def reset(self) -> None: ...
+
+    def __call__(self, features: Sequence[float], status: str) -> tuple[float, dict[str, float]]: ...
+
+
+def ball_to_goal_distance(features: Sequence[float]) -> float:
+    """Ball-to-goal-centre distance in normalised feature units (2 units = 62.55 m), from the features alone.
+
+    Law of cosines on the agent-ball and agent-goal sides, as DQNHFO does.
+    """
+    ball_dist = 1.0 - features[BALL_PROXIMITY]
+    goal_dist = 1.0 - features[GOAL_CENTER_PROXIMITY]
+    # cos(ball_bearing - goal_bearing) from the (sin, cos) pairs directly
+    cos_alpha = (
+        features[BALL_ANGLE_COS] * features[GOAL_CENTER_COS]
+        + features[BALL_ANGLE_SIN] * features[GOAL_CENTER_SIN]
+    )
+    squared = ball_dist * ball_dist + goal_dist * goal_dist - 2.0 * ball_dist * goal_dist * cos_alpha
+    return math.sqrt(squared) if squared > 0.0 else 0.0
+
+
+class ShapedReward:
+    """Hausknecht & Stone's shaped reward, DQNHFO's 2016 computation (see the module docstring)."""
+
+    def __init__(self) -> None:
+        self._previous_ball_proximity = 0.0
+        self._previous_kickable = -1.0
+        self._previous_ball_to_goal = 0.0
+        self._first_step = True
+        self._kick_bonus_paid = False
+
+    def reset(self) -> None:
+        """Start a new episode: the next call is a first step and the kick bonus is available again."""
+        self._first_step = True
+        self._kick_bonus_paid = False
+
+    def __call__(self, features: Sequence[float], status: str) -> tuple[float, dict[str, float]]:
+        """Reward of the step that produced ``features`` and ended with ``status``.
+
+        Args:
+            features: the step's feature vector (58 or 66 values, feature units).
+            status: the step's HFO status ("IN_GAME", "GOAL", ...).
+
+        Returns:
+            (reward, terms) where terms maps each of REWARD_TERM_NAMES to its (weighted) share; they sum to reward.
+        """
+        ball_proximity = float(features[BALL_PROXIMITY])
+        kickable = float(features[KICKABLE])
+        ball_to_goal = ball_to_goal_distance(features)
+
+        move_to_ball = 0.0
+        kick_bonus = 0.0
+        ball_to_goal_term = 0.0
+        if not self._first_step and status == STATUS_IN_GAME:
+            move_to_ball = ball_proximity - self._previous_ball_proximity
+            ball_to_goal_term = BALL_TO_GOAL_WEIGHT * (self._previous_ball_to_goal - ball_to_goal)
+            if not self._kick_bonus_paid and kickable - self._previous_kickable >= KICKABLE_JUMP:
+                kick_bonus = KICK_BONUS
+                self._kick_bonus_paid = True
+        goal = GOAL_REWARD if status == STATUS_GOAL else 0.0
+
+        self._first_step = False
+        self._previous_ball_proximity = ball_proximity
+        self._previous_kickable = kickable
+        self._previous_ball_to_goal = ball_to_goal
+        terms = {
+            "move_to_ball": move_to_ball,
+            "kick_bonus": kick_bonus,
+            "ball_to_goal": ball_to_goal_term,
+            "goal": goal,
+        }
+        return move_to_ball + kick_bonus + ball_to_goal_term + goal, terms
+
+
+class SparseReward:
+    """1 on GOAL, 0 otherwise."""
+
+    def reset(self) -> None:
+        """Nothing to forget between episodes."""
+
+    def __call__(self, features: Sequence[float], status: str) -> tuple[float, dict[str, float]]:
+        """Reward of a step: ``(1.0 if status == "GOAL" else 0.0, terms)``; ``features`` is unused."""
+        goal = SPARSE_GOAL_REWARD if status == STATUS_GOAL else 0.0
+        return goal, {"move_to_ball": 0.0, "kick_bonus": 0.0, "ball_to_goal": 0.0, "goal": goal}
+
+
+def make_reward(name: str) -> RewardFunction:
+    """The reward called ``name`` ("shaped" or "sparse"); ValueError naming the choices otherwise."""
+    if name == "shaped":
+        return ShapedReward()
+    if name == "sparse":
+        return SparseReward()
+    raise ValueError(f"unknown reward {name!r}; choose one of {REWARD_NAMES}")
