@@ -1,0 +1,94 @@
+"""pygame rendering (hfo2d.rendering): rgb_array frames, human mode on SDL's dummy driver, missing pygame."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+# Headless: SDL reads these when pygame's display/audio start, so they must be set before any rendering.
+os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
+os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.error import DependencyNotInstalled
+
+import hfo2d  # noqa: F401  (registers the environments)
+from hfo2d.physics import ServerParams, World
+from hfo2d.rendering import (
+    COLOR_BALL,
+    COLOR_GOALIE,
+    COLOR_OFFENSE,
+    SCREEN_HEIGHT,
+    SCREEN_WIDTH,
+    HFORenderer,
+    to_screen,
+)
+
+pytest.importorskip("pygame")
+
+ENV_IDS = ("HFO/EmptyGoal-v0", "HFO/StaticKeeper-v0", "HFO/Keeper-v0")
+
+
+@pytest.mark.parametrize("env_id", ENV_IDS)
+def test_rgb_array_frames(env_id: str) -> None:
+    env = gym.make(env_id, render_mode="rgb_array")
+    env.reset(seed=0)
+    for _ in range(3):
+        env.step(env.action_space.sample())
+    frame = env.render()
+    env.close()
+    assert isinstance(frame, np.ndarray)
+    assert frame.shape == (SCREEN_HEIGHT, SCREEN_WIDTH, 3)
+    assert frame.dtype == np.uint8
+    colours = np.unique(frame.reshape(-1, 3), axis=0)
+    assert len(colours) > 5
+    has_goalie = bool(np.all(frame == COLOR_GOALIE, axis=-1).any())
+    assert has_goalie == (env_id != "HFO/EmptyGoal-v0")
+
+
+def test_objects_are_drawn_where_they_are() -> None:
+    params = ServerParams()
+    world = World(params, np.random.default_rng(0))
+    striker = world.add_player("l", 11)
+    keeper = world.add_player("r", 1, goalie=True)
+    world.place_player(striker, 20.0, -10.0, 0.0)
+    world.place_player(keeper, 50.0, 3.0, 180.0)
+    world.place_ball(30.0, 12.0)
+    renderer = HFORenderer("rgb_array", params)
+    frame = renderer.render(world)
+    renderer.close()
+    assert frame is not None
+
+    def pixel(x: float, y: float) -> tuple[int, ...]:
+        column, row = to_screen(x, y)
+        return tuple(int(value) for value in frame[row, column])
+
+    assert pixel(30.0, 12.0) == COLOR_BALL
+    # the player discs (their centre carries the body-direction line, so look just beside it)
+    assert pixel(20.0, -10.0 - 0.3) == COLOR_OFFENSE
+    assert pixel(50.0, 3.0 + 0.3) == COLOR_GOALIE
+    # screen y grows with world y (rcssserver's +y is down): the ball (y = 12) is below the striker (y = -10)
+    assert to_screen(30.0, 12.0)[1] > to_screen(20.0, -10.0)[1]
+
+
+def test_human_mode_with_dummy_driver() -> None:
+    env = gym.make("HFO/Keeper-v0", render_mode="human")
+    env.reset(seed=1)
+    for _ in range(3):
+        env.step(env.action_space.sample())
+    assert env.render() is None
+    env.close()
+    env.close()  # closing twice is harmless
+
+
+def test_unknown_render_mode_is_rejected() -> None:
+    with pytest.raises(ValueError):
+        HFORenderer("ansi", ServerParams())
+
+
+def test_missing_pygame_raises_dependency_not_installed(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "pygame", None)  # makes `import pygame` raise ImportError
+    with pytest.raises(DependencyNotInstalled, match=r"sb3-hfo\[render\]"):
+        HFORenderer("rgb_array", ServerParams())
