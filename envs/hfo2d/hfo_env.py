@@ -158,7 +158,7 @@ class HFOEnv(gym.Env):
         ``reset(options=...)`` may place things by hand: ``{"player": (x, y, body_deg[, vx, vy]),
         "ball": (x, y[, vx, vy]), "keeper": (x, y, body_deg)}``.
 
-    Info (every step): ``status``; ``player`` (x, y, vx, vy, body_deg); ``ball`` (x, y, vx, vy); ``keeper``
+    Info (every step): ``status``; ``is_success`` (status is GOAL); ``player`` (x, y, vx, vy, body_deg); ``ball`` (x, y, vx, vy); ``keeper``
     (x, y, vx, vy, body_deg) with a goalie; ``reward_terms``; ``action`` ("DASH" / "TURN" / "KICK");
     ``action_success`` (False for a KICK out of reach); ``kickable`` (1.03 m rule); ``kick_power`` (power of the
     executed kick, else 0). ``reset`` returns the same keys except the action ones.
@@ -458,6 +458,8 @@ class HFOEnv(gym.Env):
         ball = self.world.ball
         info: dict[str, Any] = {
             "status": self._status,
+            # SB3's EvalCallback and evaluate_policy read this key to report a success rate.
+            "is_success": self._status == GOAL,
             "player": (agent.x, agent.y, agent.vx, agent.vy, agent.body_deg),
             "ball": (ball.x, ball.y, ball.vx, ball.vy),
             "kickable": features[12] > 0.0,
