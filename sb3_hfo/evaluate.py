@@ -1,0 +1,453 @@
+"""Evaluate a trained SkillDDPG agent on an HFO task: scoring rate with a 95% CI and behaviour statistics.
+
+``python -m sb3_hfo.evaluate MODEL --env HFO/EmptyGoal-v0 --episodes 100 --seed 0 --deterministic --json out.json``
+
+MODEL is a SkillDDPG ``.zip`` (the suffix may be left out) or an rl-zoo3 run folder such as
+``logs/skill_ddpg/HFO-EmptyGoal-v0_1`` (its final model ``HFO-EmptyGoal-v0.zip`` is used, else
+``best_model.zip``). With a run folder, ``--env`` and the training ``env_kwargs`` default to the run's own.
+
+Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" and "avg steps to goal"):
+
+* ``scoring_rate`` with its Wilson score 95% interval (``scoring_rate_ci95``);
+* ``mean_steps_to_goal``: mean episode length in env steps (100 ms cycles) over scoring episodes only;
+* ``status_counts``: episodes per final ``info["status"]`` (GOAL, OUT_OF_BOUNDS, CAPTURED_BY_DEFENSE, OUT_OF_TIME);
+* ``kicks_per_goal``: mean number of *executed* kicks (``info["action"] == "KICK"`` and
+  ``info["action_success"]``) in scoring episodes; ``mean_kick_power``: mean ``info["kick_power"]`` over all
+  executed kicks (rcssserver power units, [0, 100]);
+* ``dribble_fraction``: fraction of all steps in which the ball is kickable (``info["kickable"]``) while the
+  player moves faster than :data:`DRIBBLE_MIN_SPEED` (speed from ``info["player"]`` vx, vy);
+* ``skill_fractions``: fraction of steps each skill acted, for models with more than one skill.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from collections import Counter
+from collections.abc import Sequence
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+#: Player speed (m/cycle) above which a step with the ball kickable counts as dribbling. The fastest a player
+#: runs is player_speed_max = 1.05 m/cycle (rcssserver 15.2.2 default, via hfo_reference §4); 0.2 m/cycle (2 m/s)
+#: excludes standing at the ball and slow turning while keeping any purposeful run with the ball.
+DRIBBLE_MIN_SPEED = 0.2
+
+#: Two-sided 95% standard normal quantile, for the Wilson score interval.
+Z_95 = 1.959963984540054
+
+GOAL_STATUS = "GOAL"
+
+
+class EvaluationError(Exception):
+    """A user error (bad path, unknown env id): reported as one line, exit code 2."""
+
+
+def wilson_interval(successes: int, trials: int, z: float = Z_95) -> tuple[float, float]:
+    """Wilson score confidence interval for a binomial proportion.
+
+    :param successes: number of successes (goals).
+    :param trials: number of trials (episodes); 0 gives the uninformative (0, 1).
+    :param z: normal quantile (1.96 for 95%).
+    :return: (lower, upper), both in [0, 1].
+    """
+    if trials <= 0:
+        return 0.0, 1.0
+    p = successes / trials
+    z2 = z * z
+    denominator = 1.0 + z2 / trials
+    centre = (p + z2 / (2 * trials)) / denominator
+    half_width = z * math.sqrt(p * (1 - p) / trials + z2 / (4 * trials * trials)) / denominator
+    # The bounds are exactly 0 (no successes) and 1 (all successes); rounding must not move them.
+    low = 0.0 if successes == 0 else max(0.0, centre - half_width)
+    high = 1.0 if successes == trials else min(1.0, centre + half_width)
+    return low, high
+
+
+@dataclass
+class EpisodeRecord:
+    """Statistics of one evaluation episode (steps are env steps = 100 ms server cycles)."""
+
+    status: str
+    steps: int
+    reward: float
+    kicks: int
+    kick_powers: list[float]
+    dribble_steps: int
+    skill_steps: list[int]
+
+
+@dataclass
+class EvaluationResult:
+    """Aggregate evaluation statistics (see the module docstring for definitions)."""
+
+    model: str
+    env_id: str
+    episodes: int
+    seed: int
+    deterministic: bool
+    goals: int
+    scoring_rate: float
+    scoring_rate_ci95: tuple[float, float]
+    mean_steps_to_goal: float | None
+    mean_episode_steps: float
+    mean_episode_reward: float
+    status_counts: dict[str, int]
+    kicks_per_goal: float | None
+    kicks_per_episode: float
+    mean_kick_power: float | None
+    dribble_fraction: float
+    dribble_min_speed: float
+    n_skills: int
+    skill_fractions: list[float] | None
+    env_kwargs: dict[str, Any] = field(default_factory=dict)
+
+
+def summarize(
+    records: Sequence[EpisodeRecord],
+    *,
+    model: str,
+    env_id: str,
+    seed: int,
+    deterministic: bool,
+    n_skills: int,
+    env_kwargs: dict[str, Any] | None = None,
+) -> EvaluationResult:
+    """Aggregate per-episode records into an :class:`EvaluationResult`."""
+    n = len(records)
+    scoring = [r for r in records if r.status == GOAL_STATUS]
+    goals = len(scoring)
+    total_steps = sum(r.steps for r in records)
+    kick_powers = [power for r in records for power in r.kick_powers]
+    skill_totals = [sum(r.skill_steps[k] for r in records) for k in range(n_skills)]
+    return EvaluationResult(
+        model=model,
+        env_id=env_id,
+        episodes=n,
+        seed=seed,
+        deterministic=deterministic,
+        goals=goals,
+        scoring_rate=goals / n if n else 0.0,
+        scoring_rate_ci95=wilson_interval(goals, n),
+        mean_steps_to_goal=sum(r.steps for r in scoring) / goals if goals else None,
+        mean_episode_steps=total_steps / n if n else 0.0,
+        mean_episode_reward=sum(r.reward for r in records) / n if n else 0.0,
+        status_counts=dict(sorted(Counter(r.status for r in records).items())),
+        kicks_per_goal=sum(r.kicks for r in scoring) / goals if goals else None,
+        kicks_per_episode=sum(r.kicks for r in records) / n if n else 0.0,
+        mean_kick_power=sum(kick_powers) / len(kick_powers) if kick_powers else None,
+        dribble_fraction=sum(r.dribble_steps for r in records) / total_steps if total_steps else 0.0,
+        dribble_min_speed=DRIBBLE_MIN_SPEED,
+        n_skills=n_skills,
+        skill_fractions=[s / total_steps for s in skill_totals] if n_skills > 1 and total_steps else None,
+        env_kwargs=dict(env_kwargs or {}),
+    )
+
+
+# --------------------------------------------------------------------------------------------------------------
+# Model and run-folder resolution
+
+
+@dataclass
+class ResolvedModel:
+    """Where a model lives and what the training run knew about its environment."""
+
+    path: Path
+    env_id: str | None
+    env_kwargs: dict[str, Any]
+
+
+def _read_run_settings(run_folder: Path) -> tuple[str | None, dict[str, Any]]:
+    """Env id and env_kwargs saved by rl-zoo3 in ``<run>/<env name>/{args,config}.yml`` (if present)."""
+    import yaml
+
+    env_id: str | None = None
+    env_kwargs: dict[str, Any] = {}
+    for args_file in sorted(run_folder.glob("*/args.yml")):
+        with open(args_file) as f:
+            saved_args = yaml.load(f, Loader=yaml.UnsafeLoader) or {}
+        env_id = saved_args.get("env") or env_id
+        config_file = args_file.with_name("config.yml")
+        if config_file.is_file():
+            with open(config_file) as f:
+                config = yaml.load(f, Loader=yaml.UnsafeLoader) or {}
+            env_kwargs.update(dict(config.get("env_kwargs") or {}))
+        # Command-line --env-kwargs overrode the config's at training time.
+        env_kwargs.update(dict(saved_args.get("env_kwargs") or {}))
+        break
+    return env_id, env_kwargs
+
+
+def resolve_model(model: str) -> ResolvedModel:
+    """Find the ``.zip`` for MODEL (file, file without suffix, rl-zoo3 run folder, or a folder of runs: the newest).
+
+    Raises:
+        EvaluationError: nothing to load there.
+    """
+    path = Path(model)
+    if path.is_dir() and not any(path.glob("*.zip")):
+        # A folder of rl-zoo3 runs (``logs/skill_ddpg``): take the newest run, ``<env name>_<N>`` with the largest N.
+        runs = [
+            p
+            for p in path.iterdir()
+            if p.is_dir() and p.name.rpartition("_")[2].isdigit() and any(p.glob("*.zip"))
+        ]
+        if runs:
+            path = max(runs, key=lambda p: int(p.name.rpartition("_")[2]))
+    if path.is_dir():
+        finals = sorted(
+            p for p in path.glob("*.zip") if p.name != "best_model.zip" and not p.name.startswith("rl_model_")
+        )
+        candidates = finals or sorted(path.glob("best_model.zip"))
+        if not candidates:
+            raise EvaluationError(f"no model .zip found in folder {model}")
+        env_id, env_kwargs = _read_run_settings(path)
+        return ResolvedModel(candidates[0], env_id, env_kwargs)
+    if not path.is_file() and path.with_name(path.name + ".zip").is_file():
+        path = path.with_name(path.name + ".zip")
+    if not path.is_file():
+        raise EvaluationError(f"model file not found: {model}")
+    env_id, env_kwargs = _read_run_settings(path.parent)
+    return ResolvedModel(path, env_id, env_kwargs)
+
+
+def check_env_id(env_id: str) -> None:
+    """Raise EvaluationError listing the registered HFO ids when ``env_id`` is not registered."""
+    import gymnasium as gym
+
+    from sb3_hfo.zoo import hfo_env_ids
+
+    known = hfo_env_ids()
+    if env_id not in gym.registry:
+        raise EvaluationError(f"unknown env id {env_id!r}; registered HFO ids: {', '.join(known)}")
+
+
+# --------------------------------------------------------------------------------------------------------------
+# Skill bookkeeping (models with n_skills > 1)
+
+
+def model_n_skills(model: Any) -> int:
+    """Number of skills (actor heads) of a SkillDDPG model; 1 for anything else."""
+    policy = getattr(model, "policy", None)
+    return int(getattr(policy, "n_skills", 1) or 1)
+
+
+def skill_index(model: Any, obs: Any) -> int:
+    """Index of the skill that acts on ``obs`` (shape (obs_dim,)), as the policy's ``skill_router`` decides."""
+    import numpy as np
+
+    router = model.policy.skill_router
+    batch = np.asarray(obs, dtype=np.float32)[None, :]
+    # SkillRouter subclasses offer numpy_route; any other router is a callable (batch, obs_dim) -> (batch,).
+    skills = router.numpy_route(batch) if hasattr(router, "numpy_route") else router(batch)
+    if hasattr(skills, "detach"):
+        skills = skills.detach().cpu().numpy()
+    return int(np.asarray(skills).reshape(-1)[0])
+
+
+# --------------------------------------------------------------------------------------------------------------
+# Evaluation loop
+
+
+def run_episodes(
+    model: Any, env: Any, episodes: int, seed: int, deterministic: bool, n_skills: int
+) -> list[EpisodeRecord]:
+    """Play ``episodes`` episodes of ``env`` (a Gymnasium env, not vectorised) with ``model.predict``.
+
+    The first reset uses ``seed``; later resets continue the env's random stream, so a (model, seed) pair always
+    gives the same episodes (up to torch nondeterminism in stochastic prediction).
+    """
+    import numpy as np
+
+    records: list[EpisodeRecord] = []
+    obs, _ = env.reset(seed=seed)
+    for _ in range(episodes):
+        steps = kicks = dribble_steps = 0
+        reward_sum = 0.0
+        kick_powers: list[float] = []
+        skill_steps = [0] * n_skills
+        status = "IN_GAME"
+        done = False
+        while not done:
+            if n_skills > 1:
+                skill_steps[skill_index(model, obs)] += 1
+            action, _ = model.predict(obs, deterministic=deterministic)
+            obs, reward, terminated, truncated, info = env.step(action)
+            steps += 1
+            reward_sum += float(reward)
+            status = str(info.get("status", status))
+            if info.get("action") == "KICK" and info.get("action_success"):
+                kicks += 1
+                kick_powers.append(float(info.get("kick_power", 0.0)))
+            player = info.get("player")
+            if info.get("kickable") and player is not None:
+                speed = float(np.hypot(player[2], player[3]))
+                if speed > DRIBBLE_MIN_SPEED:
+                    dribble_steps += 1
+            done = bool(terminated or truncated)
+        records.append(
+            EpisodeRecord(status, steps, reward_sum, kicks, kick_powers, dribble_steps, skill_steps)
+        )
+        obs, _ = env.reset()
+    return records
+
+
+def evaluate(
+    model_path: str,
+    env_id: str | None = None,
+    episodes: int = 100,
+    seed: int = 0,
+    deterministic: bool = False,
+    env_kwargs: dict[str, Any] | None = None,
+) -> EvaluationResult:
+    """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors."""
+    resolved = resolve_model(model_path)
+    env_id = env_id or resolved.env_id
+    if env_id is None:
+        raise EvaluationError("--env is required (the model is not inside an rl-zoo3 run folder)")
+    check_env_id(env_id)
+    kwargs = {**resolved.env_kwargs, **(env_kwargs or {})}
+    kwargs.pop("render_mode", None)
+
+    import gymnasium as gym
+    import torch
+
+    from sb3_hfo.zoo import skill_ddpg_class
+
+    # Small networks, one observation at a time: extra torch threads only contend for the cores.
+    torch.set_num_threads(1)
+    # A 1-transition replay buffer: evaluation never trains.
+    model = skill_ddpg_class().load(str(resolved.path), device="cpu", buffer_size=1)
+    env = gym.make(env_id, **kwargs)
+    if env.observation_space.shape != model.observation_space.shape:
+        raise EvaluationError(
+            f"model expects observations of shape {model.observation_space.shape} but {env_id} gives "
+            f"{env.observation_space.shape}: was it trained on another task?"
+        )
+    n_skills = model_n_skills(model)
+    try:
+        records = run_episodes(model, env, episodes, seed, deterministic, n_skills)
+    finally:
+        env.close()
+    return summarize(
+        records,
+        model=str(resolved.path),
+        env_id=env_id,
+        seed=seed,
+        deterministic=deterministic,
+        n_skills=n_skills,
+        env_kwargs=kwargs,
+    )
+
+
+def _format(value: float | None, digits: int = 3) -> str:
+    return "-" if value is None else f"{value:.{digits}f}"
+
+
+def print_table(result: EvaluationResult) -> None:
+    """Print the result as a rich table."""
+    from rich.console import Console
+    from rich.table import Table
+
+    low, high = result.scoring_rate_ci95
+    table = Table(
+        title=f"{result.env_id}: {result.episodes} episodes (seed {result.seed})",
+        caption=f"model: {result.model}",
+    )
+    table.add_column("metric")
+    table.add_column("value", justify="right")
+    table.add_row("scoring rate [95% CI]", f"{result.scoring_rate:.3f} [{low:.3f}, {high:.3f}]")
+    table.add_row("goals", str(result.goals))
+    table.add_row("mean steps to goal", _format(result.mean_steps_to_goal, 1))
+    table.add_row("mean episode steps", _format(result.mean_episode_steps, 1))
+    table.add_row("mean episode reward", _format(result.mean_episode_reward))
+    for status, count in result.status_counts.items():
+        table.add_row(f"episodes ending {status}", str(count))
+    table.add_row("kicks per goal", _format(result.kicks_per_goal, 2))
+    table.add_row("kicks per episode", _format(result.kicks_per_episode, 2))
+    table.add_row("mean kick power", _format(result.mean_kick_power, 1))
+    table.add_row(
+        f"dribble fraction (speed > {result.dribble_min_speed} m/cycle)", _format(result.dribble_fraction)
+    )
+    if result.skill_fractions is not None:
+        for k, fraction in enumerate(result.skill_fractions):
+            table.add_row(f"steps with skill {k}", _format(fraction))
+    table.add_row("deterministic", str(result.deterministic))
+    Console().print(table)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python -m sb3_hfo.evaluate",
+        description="Evaluate a SkillDDPG model on an HFO task (scoring rate with Wilson 95% CI, kicks, dribbling).",
+    )
+    parser.add_argument(
+        "model", help="model .zip (suffix optional) or rl-zoo3 run folder (logs/skill_ddpg/<env>_<n>)"
+    )
+    parser.add_argument(
+        "--env", default=None, help="env id, e.g. HFO/EmptyGoal-v0 (default: the run folder's)"
+    )
+    parser.add_argument("--episodes", type=int, default=100, help="number of episodes (default 100)")
+    parser.add_argument("--seed", type=int, default=0, help="seed of the first env reset (default 0)")
+    parser.add_argument(
+        "--deterministic",
+        action="store_true",
+        help="predict(deterministic=True) (SkillDDPG's actor is greedy either way; kept for other algorithms)",
+    )
+    parser.add_argument("--json", default=None, help="write the result as JSON to this file")
+    parser.add_argument(
+        "--env-kwargs",
+        nargs="+",
+        default=[],
+        metavar="KEY:VALUE",
+        help="env constructor overrides, values as Python literals (e.g. noise:False keeper_skill:0.5)",
+    )
+    return parser
+
+
+def parse_env_kwargs(items: Sequence[str]) -> dict[str, Any]:
+    """``["noise:False", "reward:'sparse'"]`` -> ``{"noise": False, "reward": "sparse"}`` (bare words stay strings)."""
+    import ast
+
+    kwargs: dict[str, Any] = {}
+    for item in items:
+        key, sep, raw = item.partition(":")
+        if not sep or not key:
+            raise EvaluationError(f"--env-kwargs expects KEY:VALUE, got {item!r}")
+        try:
+            kwargs[key] = ast.literal_eval(raw)
+        except (ValueError, SyntaxError):
+            kwargs[key] = raw
+    return kwargs
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """CLI entry point; returns the exit code (0 ok, 2 user error)."""
+    args = build_parser().parse_args(argv)
+    if args.episodes < 1:
+        print("error: --episodes must be at least 1", file=sys.stderr)
+        return 2
+    try:
+        result = evaluate(
+            args.model,
+            env_id=args.env,
+            episodes=args.episodes,
+            seed=args.seed,
+            deterministic=args.deterministic,
+            env_kwargs=parse_env_kwargs(args.env_kwargs),
+        )
+    except EvaluationError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    print_table(result)
+    if args.json:
+        Path(args.json).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.json).write_text(json.dumps(asdict(result), indent=2) + "\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
