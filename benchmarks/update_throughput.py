@@ -52,12 +52,20 @@ BATCH_SIZE = 32
 def make_contestants(buffer_size: int, learning_starts: int) -> dict[str, Callable[[], BaseAlgorithm]]:
     """Model factories by name; every model uses batch 32, tau 1e-4 and one update per environment step."""
     common: dict[str, Any] = dict(
-        buffer_size=buffer_size, learning_starts=learning_starts, batch_size=BATCH_SIZE, tau=1e-4, seed=0, device="cpu"
+        buffer_size=buffer_size,
+        learning_starts=learning_starts,
+        batch_size=BATCH_SIZE,
+        tau=1e-4,
+        seed=0,
+        device="cpu",
     )
 
     def skill_ddpg(n_skills: int) -> Callable[[], BaseAlgorithm]:
         return lambda: SkillDDPG(
-            "HFOPolicy", gym.make(ENV_ID), policy_kwargs=dict(net_arch=PAPER_ARCH, n_skills=n_skills), **common
+            "HFOPolicy",
+            gym.make(ENV_ID),
+            policy_kwargs=dict(net_arch=PAPER_ARCH, n_skills=n_skills),
+            **common,
         )
 
     def sb3_ddpg() -> BaseAlgorithm:
@@ -82,12 +90,18 @@ def time_learn(model: BaseAlgorithm, steps: int) -> float:
 
 
 def main() -> None:
-    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser = argparse.ArgumentParser(
+        description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
+    )
     parser.add_argument("--threads", type=int, default=1, help="torch.set_num_threads for every contestant")
     parser.add_argument("--updates", type=int, default=300, help="updates per timed train() call")
-    parser.add_argument("--learn-steps", type=int, default=300, help="environment steps per timed learn() call")
+    parser.add_argument(
+        "--learn-steps", type=int, default=300, help="environment steps per timed learn() call"
+    )
     parser.add_argument("--repeats", type=int, default=5, help="interleaved rounds; the median is reported")
-    parser.add_argument("--fill", type=int, default=2000, help="random transitions in the buffer before timing")
+    parser.add_argument(
+        "--fill", type=int, default=2000, help="random transitions in the buffer before timing"
+    )
     parser.add_argument("--out", type=Path, default=None, help="write the results as JSON here")
     args = parser.parse_args()
 
@@ -125,13 +139,17 @@ def main() -> None:
         "learn_steps_per_s_all": learn_rates,
     }
     results["train_ratio_vs_sb3_ddpg"] = {
-        name: rate / results["train_updates_per_s"][baseline] for name, rate in results["train_updates_per_s"].items()
+        name: rate / results["train_updates_per_s"][baseline]
+        for name, rate in results["train_updates_per_s"].items()
     }
     results["learn_ratio_vs_sb3_ddpg"] = {
-        name: rate / results["learn_steps_per_s"][baseline] for name, rate in results["learn_steps_per_s"].items()
+        name: rate / results["learn_steps_per_s"][baseline]
+        for name, rate in results["learn_steps_per_s"].items()
     }
 
-    print(f"torch {th.__version__}, {args.threads} thread(s), batch {BATCH_SIZE}, median of {args.repeats} rounds")
+    print(
+        f"torch {th.__version__}, {args.threads} thread(s), batch {BATCH_SIZE}, median of {args.repeats} rounds"
+    )
     print(f"{'contestant':<22}{'train upd/s':>13}{'ratio':>8}{'learn steps/s':>15}{'ratio':>8}")
     for name in models:
         print(

@@ -1,0 +1,195 @@
+"""Skill routers: the hand-coded rule that says which actor head (skill) acts in a given state.
+
+The seed paper ("Method"): "In the skills architecture the actor has 2 parallel output layers [...] The condition of
+which skill to use is hard coded by the developer." Its experiments ("Experiments") split the field in half: in the
+half away from the goal the skill approaches the ball and dribbles it towards the goal, in the half near the goal
+the skill shoots. A router implements such a condition from the observation alone, for a whole batch at once.
+
+A router is a plain (picklable) object with an ``n_skills`` attribute and ``__call__(obs) -> skills``:
+
+* ``obs``: ``np.ndarray`` or ``torch.Tensor`` of shape ``(batch, obs_dim)`` (what the policy sees);
+* returns integer skill indices of shape ``(batch,)`` in ``[0, n_skills)``, of the same kind as ``obs``
+  (``np.int64`` array for numpy input, ``torch.long`` tensor on ``obs.device`` for tensor input).
+
+Routers must be vectorised (no Python loop over the batch): they run on every training minibatch.
+Routers can be named by string in ``HFOPolicy(skill_router=...)`` so that YAML configs can select them; see
+:data:`ROUTERS` and :func:`make_router`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import torch as th
+
+__all__ = [
+    "ROUTERS",
+    "FieldHalfRouter",
+    "SingleSkillRouter",
+    "SkillRouter",
+    "make_router",
+    "validate_skills",
+]
+
+#: Index of the agent's own x-position feature in HFO's low-level feature set (58 / 66 features):
+#: ``obs[46] = 1 - 2 * min(x / 52.5, 1)`` (the paper-era out-of-bounds normaliser), hence ``obs[46] > 0`` exactly
+#: when ``x < 26.25`` m, i.e. the agent stands in the half of the attacked half-field away from the goal.
+#: Source: HFO's LowLevelFeatureExtractor via the project contract (hfo2d.features owns the feature layout).
+SELF_X_FEATURE_INDEX = 46
+
+
+class SkillRouter:
+    """Base class of skill routers (see the module docstring for the calling convention).
+
+    Subclasses set ``n_skills`` and implement :meth:`__call__`. They should be cheap, vectorised and picklable
+    (they are stored with the model by ``SkillDDPG.save``).
+    """
+
+    #: Number of skills the router chooses among; routers return indices in ``[0, n_skills)``.
+    n_skills: int = 1
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        """Skill index per row of ``obs`` (shape ``(batch, obs_dim)``); returns shape ``(batch,)`` integers."""
+        raise NotImplementedError
+
+    def numpy_route(self, obs: np.ndarray) -> np.ndarray:
+        """:meth:`__call__` on a numpy batch ``(batch, obs_dim)``, returned as an ``np.int64`` array ``(batch,)``."""
+        skills = self(np.asarray(obs, dtype=np.float32))
+        if isinstance(skills, th.Tensor):
+            skills = skills.detach().cpu().numpy()
+        return np.asarray(skills, dtype=np.int64)
+
+    def __repr__(self) -> str:
+        fields = ", ".join(f"{key}={value!r}" for key, value in sorted(vars(self).items()))
+        return f"{type(self).__name__}({fields})"
+
+    def __eq__(self, other: object) -> bool:
+        return type(self) is type(other) and vars(self) == vars(other)
+
+    def __hash__(self) -> int:
+        return hash((type(self).__name__, tuple(sorted(vars(self).items()))))
+
+
+class SingleSkillRouter(SkillRouter):
+    """Every state uses skill 0: the paper's plain (skill-less) agent when ``n_skills == 1``."""
+
+    n_skills = 1
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        if isinstance(obs, th.Tensor):
+            return th.zeros(obs.shape[0], dtype=th.long, device=obs.device)
+        return np.zeros(np.shape(obs)[0], dtype=np.int64)
+
+
+class FieldHalfRouter(SkillRouter):
+    """The paper's two skills: split the attacked half-field in half along x.
+
+    * skill 0 ("approach and dribble"): the agent is in the half away from the goal, ``obs[:, feature_index] > 0``
+      (with HFO's features: agent x < 26.25 m);
+    * skill 1 ("shoot"): the agent is in the half near the goal (x >= 26.25 m).
+
+    :param feature_index: column of ``obs`` holding the agent's normalised x-position feature (default 46, HFO's
+        self-x feature ``1 - 2 * min(x / 52.5, 1)``; positive away from goal).
+    :param threshold: feature value at the dividing line (0.0 is x = 26.25 m with HFO's normalisation).
+    """
+
+    n_skills = 2
+
+    def __init__(self, feature_index: int = SELF_X_FEATURE_INDEX, threshold: float = 0.0) -> None:
+        if not isinstance(feature_index, (int, np.integer)) or feature_index < 0:
+            raise ValueError(
+                f"FieldHalfRouter: feature_index must be a non-negative int, got {feature_index!r}"
+            )
+        self.feature_index = int(feature_index)
+        self.threshold = float(threshold)
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        if obs.shape[-1] <= self.feature_index:
+            raise ValueError(
+                f"FieldHalfRouter reads obs[..., {self.feature_index}] but the observation has only "
+                f"{obs.shape[-1]} features (is this an HFO environment?)"
+            )
+        x_feature = obs[..., self.feature_index]
+        if isinstance(x_feature, th.Tensor):
+            return (x_feature <= self.threshold).long()
+        return (np.asarray(x_feature) <= self.threshold).astype(np.int64)
+
+
+#: Routers selectable by name (``skill_router="field_half"`` in policy_kwargs / YAML).
+ROUTERS: dict[str, type[SkillRouter]] = {
+    "single": SingleSkillRouter,
+    "field_half": FieldHalfRouter,
+}
+
+
+def make_router(skill_router: SkillRouter | str | None, n_skills: int) -> SkillRouter:
+    """Resolve ``skill_router`` (an object, a name from :data:`ROUTERS` or ``None``) and check it against ``n_skills``.
+
+    ``None`` picks the paper's defaults: ``"single"`` for one skill, ``"field_half"`` for two; more skills need an
+    explicit router.
+
+    :raises ValueError: unknown name, ``n_skills < 1``, a router without ``__call__``, or a router whose
+        ``n_skills`` differs from ``n_skills``.
+    """
+    if isinstance(n_skills, bool) or not isinstance(n_skills, (int, np.integer)) or n_skills < 1:
+        raise ValueError(f"n_skills must be an integer >= 1, got {n_skills!r}")
+    if skill_router is None:
+        if n_skills == 1:
+            skill_router = "single"
+        elif n_skills == 2:
+            skill_router = "field_half"
+        else:
+            raise ValueError(
+                f"n_skills={n_skills} needs an explicit skill_router (the defaults cover 1 skill: 'single' and "
+                "2 skills: 'field_half')"
+            )
+    if isinstance(skill_router, str):
+        if skill_router not in ROUTERS:
+            raise ValueError(f"Unknown skill_router {skill_router!r}; known routers: {sorted(ROUTERS)}")
+        router: Any = ROUTERS[skill_router]()
+    else:
+        router = skill_router
+    if not callable(router):
+        raise ValueError(f"skill_router must be callable (obs -> skill indices), got {type(router).__name__}")
+    router_skills = getattr(router, "n_skills", None)
+    if router_skills is None:
+        raise ValueError(
+            f"skill_router {router!r} has no 'n_skills' attribute (subclass sb3_hfo.SkillRouter)"
+        )
+    if int(router_skills) != int(n_skills):
+        raise ValueError(
+            f"skill_router {router!r} routes to {router_skills} skill(s) but the policy has n_skills={n_skills}"
+        )
+    return router
+
+
+def validate_skills(skills: Any, batch_size: int, n_skills: int, router: object) -> th.Tensor:
+    """Check a router's output once and return it as a ``torch.long`` tensor of shape ``(batch_size,)``.
+
+    :raises ValueError: wrong type, shape, non-integer values or values outside ``[0, n_skills)``; the message
+        names the router and what it returned.
+    """
+    if isinstance(skills, np.ndarray):
+        skills = th.as_tensor(skills)
+    if not isinstance(skills, th.Tensor):
+        raise ValueError(
+            f"skill_router {router!r} must return an array/tensor of skill indices, got {type(skills).__name__}"
+        )
+    if tuple(skills.shape) != (batch_size,):
+        raise ValueError(
+            f"skill_router {router!r} returned shape {tuple(skills.shape)} for a batch of {batch_size} "
+            f"observations; expected ({batch_size},)"
+        )
+    if skills.dtype.is_floating_point or skills.dtype.is_complex or skills.dtype == th.bool:
+        raise ValueError(
+            f"skill_router {router!r} must return integer skill indices, got dtype {skills.dtype}"
+        )
+    if batch_size > 0:
+        low, high = int(skills.min()), int(skills.max())
+        if low < 0 or high >= n_skills:
+            raise ValueError(
+                f"skill_router {router!r} returned skill indices in [{low}, {high}]; they must lie in "
+                f"[0, {n_skills}) because n_skills={n_skills}"
+            )
+    return skills.long()

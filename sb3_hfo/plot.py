@@ -1,0 +1,191 @@
+"""Training curves in the style of the seed paper's Figures 3 and 4, from TensorBoard event files.
+
+``python -m sb3_hfo.plot runs/tb/HFO-EmptyGoal-v0/SkillDDPG_1 runs/tb/HFO-EmptyGoal-v0/SkillDDPG_2
+--labels "no skills" "skills" --smooth 10 --out figure3.png``
+
+Four panels against training episodes: average critic loss (``train/critic_loss``), maximum Q-value
+(``train/max_q``), accumulated reward per episode (``rollout/ep_rew_mean``, SB3's mean over the last 100
+episodes) and goal rate (``rollout/goal_rate``, logged by ``sb3_hfo.zoo.HFOEpisodeStatsCallback``). Each LOGDIR
+is searched recursively; every folder holding ``events.out.tfevents.*`` files is one run (one curve).
+
+The x axis is episodes: ``rollout/episodes`` (or ``time/episodes``) when logged; otherwise episodes are estimated
+from the step counter as sum(delta steps / ep_len_mean), and failing that the axis is environment steps.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+#: (tag, panel title) of the four panels, in the paper's order plus the goal rate.
+PANELS: tuple[tuple[str, str], ...] = (
+    ("train/critic_loss", "Average loss"),
+    ("train/max_q", "Max Q-value"),
+    ("rollout/ep_rew_mean", "Accumulated reward"),
+    ("rollout/goal_rate", "Goal rate"),
+)
+
+#: Tags that count finished episodes, by preference.
+EPISODE_TAGS: tuple[str, ...] = ("rollout/episodes", "time/episodes")
+
+
+class PlotError(Exception):
+    """A user error (no event files, label count mismatch): reported as one line, exit code 2."""
+
+
+@dataclass
+class Run:
+    """Scalars of one training run: tag -> (steps, values), both 1-D arrays sorted by step."""
+
+    label: str
+    scalars: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+
+    def episodes_at(self, steps: np.ndarray) -> tuple[np.ndarray, str]:
+        """Map environment steps onto finished episodes; returns (x values, x-axis name)."""
+        for tag in EPISODE_TAGS:
+            if tag in self.scalars:
+                episode_steps, episode_counts = self.scalars[tag]
+                return np.interp(steps, episode_steps, episode_counts), "episodes"
+        if "rollout/ep_len_mean" in self.scalars:
+            length_steps, lengths = self.scalars["rollout/ep_len_mean"]
+            # Episodes finished between two log points ~= steps between them / mean episode length.
+            increments = np.diff(length_steps, prepend=0.0) / np.maximum(lengths, 1.0)
+            return np.interp(steps, length_steps, np.cumsum(increments)), "episodes (estimated)"
+        return steps.astype(float), "environment steps"
+
+
+def find_run_dirs(logdir: Path) -> list[Path]:
+    """Folders under (or equal to) ``logdir`` that hold TensorBoard event files, sorted."""
+    if logdir.is_file():
+        return [logdir.parent] if logdir.name.startswith("events.out.tfevents") else []
+    return sorted({event_file.parent for event_file in logdir.rglob("events.out.tfevents.*")})
+
+
+def load_run(run_dir: Path, label: str) -> Run:
+    """Read every scalar of the event files in ``run_dir`` (not recursive; all points kept)."""
+    from tensorboard.backend.event_processing.event_accumulator import EventAccumulator
+
+    merged: dict[str, dict[int, float]] = {}
+    for event_file in sorted(run_dir.glob("events.out.tfevents.*")):
+        accumulator = EventAccumulator(str(event_file), size_guidance={"scalars": 0})
+        accumulator.Reload()
+        for tag in accumulator.Tags().get("scalars", []):
+            # A resumed run writes a second file; later files win on equal steps.
+            merged.setdefault(tag, {}).update({event.step: event.value for event in accumulator.Scalars(tag)})
+    run = Run(label)
+    for tag, points in merged.items():
+        steps = np.array(sorted(points), dtype=float)
+        run.scalars[tag] = (steps, np.array([points[int(s)] for s in steps], dtype=float))
+    return run
+
+
+def moving_average(values: np.ndarray, window: int) -> np.ndarray:
+    """Trailing moving average over ``window`` points (shorter at the start); ``window <= 1`` is a no-op."""
+    if window <= 1 or values.size == 0:
+        return values
+    cumulative = np.cumsum(np.insert(values, 0, 0.0))
+    counts = np.minimum(np.arange(1, values.size + 1), window)
+    starts = np.arange(1, values.size + 1) - counts
+    return (cumulative[1:] - cumulative[starts]) / counts
+
+
+def collect_runs(logdirs: Sequence[str], labels: Sequence[str] | None) -> list[Run]:
+    """Load all runs under ``logdirs``; ``labels`` (one per LOGDIR) name them, numbered if a LOGDIR has several."""
+    if labels and len(labels) != len(logdirs):
+        raise PlotError(f"got {len(labels)} labels for {len(logdirs)} log folders")
+    runs: list[Run] = []
+    for index, logdir in enumerate(logdirs):
+        path = Path(logdir)
+        if not path.exists():
+            raise PlotError(f"log folder not found: {logdir}")
+        run_dirs = find_run_dirs(path)
+        if not run_dirs:
+            raise PlotError(f"no TensorBoard event files under {logdir}")
+        for number, run_dir in enumerate(run_dirs, start=1):
+            if labels:
+                label = labels[index] if len(run_dirs) == 1 else f"{labels[index]} ({number})"
+            else:
+                label = str(run_dir)
+            runs.append(load_run(run_dir, label))
+    return runs
+
+
+def plot_runs(runs: Sequence[Run], out: Path, smooth: int = 1, title: str | None = None) -> None:
+    """Draw the four panels for ``runs`` (overlaid, labelled) into a PNG at ``out``."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    figure, axes = plt.subplots(2, 2, figsize=(11, 7.5))
+    x_names: set[str] = set()
+    for axis, (tag, panel_title) in zip(axes.flat, PANELS, strict=True):
+        drawn = False
+        for run in runs:
+            if tag not in run.scalars:
+                continue
+            steps, values = run.scalars[tag]
+            x, x_name = run.episodes_at(steps)
+            x_names.add(x_name)
+            # Markers keep short runs (a single log point) visible.
+            marker = "o" if len(x) < 20 else None
+            axis.plot(
+                x, moving_average(values, smooth), label=run.label, linewidth=1.2, marker=marker, markersize=3
+            )
+            drawn = True
+        axis.set_title(panel_title)
+        axis.grid(alpha=0.3)
+        if drawn:
+            axis.legend(fontsize="small")
+        else:
+            axis.text(0.5, 0.5, f"{tag}\nnot logged", ha="center", va="center", transform=axis.transAxes)
+    x_label = " / ".join(sorted(x_names)) or "episodes"
+    for axis in axes[1]:
+        axis.set_xlabel(x_label)
+    if title:
+        figure.suptitle(title)
+    figure.tight_layout()
+    out.parent.mkdir(parents=True, exist_ok=True)
+    figure.savefig(out, dpi=120)
+    plt.close(figure)
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="python -m sb3_hfo.plot",
+        description="Plot loss, max Q, accumulated reward and goal rate against episodes (paper Figures 3/4).",
+    )
+    parser.add_argument(
+        "logdirs", nargs="+", metavar="LOGDIR", help="TensorBoard log folder(s), searched recursively"
+    )
+    parser.add_argument(
+        "--out", default="training_curves.png", help="output PNG (default training_curves.png)"
+    )
+    parser.add_argument("--labels", nargs="+", default=None, help="one legend label per LOGDIR")
+    parser.add_argument(
+        "--smooth", type=int, default=1, help="moving-average window in log points (default 1: none)"
+    )
+    parser.add_argument("--title", default=None, help="figure title")
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """CLI entry point; returns the exit code (0 ok, 2 user error)."""
+    args = build_parser().parse_args(argv)
+    try:
+        runs = collect_runs(args.logdirs, args.labels)
+    except PlotError as error:
+        print(f"error: {error}", file=sys.stderr)
+        return 2
+    plot_runs(runs, Path(args.out), smooth=args.smooth, title=args.title)
+    print(f"wrote {args.out} ({len(runs)} run(s))")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,450 @@
+"""Actor, critic and policy of SkillDDPG: the seed paper's architecture (its "Method" section, Figure 1).
+
+Paper, line by line, and where it lives here:
+
+* "The state inputs are processed by 3 fully connected layers consisting of 400-300-200 units" -> default
+  ``net_arch = dict(pi=[400, 300, 200], qf=[400, 300, 200])``.
+* "Each fully connected layer is followed by a LeakyReLU activation with negative slope of 10^-2 except the last
+  layers in both networks" -> ``nn.LeakyReLU(0.01)`` after every hidden layer, none after the output layers.
+* "The final layer in the actor network is connected to a sigmoid activation giving a vector of 8 values" -> SB3
+  stores actions rescaled to [-1, 1] in its replay buffer, so the actor ends in ``tanh`` (its raw output lives in
+  the buffer's scale) and SB3 maps it onto the environment's ``Box(0, 1, (8,))`` by ``(a + 1) / 2``.
+  ``(tanh(z) + 1) / 2 == sigmoid(2 z)``: the environment receives exactly a sigmoid of (twice) the final linear
+  layer's output, i.e. the paper's sigmoid up to a factor 2 absorbed by the last layer's weights.
+* "The final layer of the critic is not followed by an activation" -> linear Q output.
+* "Weights are initialized with a truncated normal distribution with a standard deviation 10^-2" ->
+  ``trunc_normal_(std=1e-2, a=-2e-2, b=2e-2)`` (TensorFlow's ``truncated_normal`` convention: re-draw beyond two
+  standard deviations). Biases are not mentioned: they start at 0 (TensorFlow's default bias initialiser).
+* "the critic network also takes as input the output of the action layer" and Figure 1: "The state and action are
+  concatenated at the second layer of the critic network" -> ``HFOCritic``: state -> 400 (LeakyReLU), concatenate
+  the action, -> 300 -> 200 (LeakyReLU each) -> 1.
+* "We used the ADAM optimizer for both actor and critic" with learning rates 1e-4 / 1e-3 -> one Adam for the
+  critic (``policy.critic_optimizer``) and, "In the skills architecture the actor has 2 parallel output layers,
+  each having it's own ADAM optimizer", one Adam per skill (``policy.actor_skill_{k}_optimizer``).
+
+Skills and the shared trunk (our reading, documented because the paper leaves it open): the paper's actor is a
+TensorFlow graph in which each skill's optimiser minimises that skill's loss over the variables it depends on,
+i.e. the shared trunk *and* its own output layer. So skill ``k``'s Adam owns ``trunk + head k`` and the trunk
+receives one Adam step per skill that had samples in the minibatch, each with that skill's own moment estimates.
+A skill that no sample chose takes no step at all (its head and its Adam state stay untouched).
+
+Inverting gradients (Hausknecht & Stone 2016, the paper's Figure 2 alternative): with ``inverting_gradients=True``
+the actor's output layer is linear (no ``tanh``); the algorithm rescales dQ/da to keep actions inside [-1, 1] and
+acting clips actions to [-1, 1]. Figure 2's 1024-512-256-128 network is ``net_arch=[1024, 512, 256, 128]``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import torch as th
+from gymnasium import spaces
+from stable_baselines3.common.policies import BasePolicy
+from stable_baselines3.common.preprocessing import get_action_dim, get_flattened_obs_dim
+from stable_baselines3.common.torch_layers import BaseFeaturesExtractor, FlattenExtractor
+from stable_baselines3.common.type_aliases import PyTorchObs, Schedule
+from torch import nn
+from torch.nn import functional as F
+
+from sb3_hfo.common.routers import SkillRouter, make_router, validate_skills
+
+__all__ = ["DEFAULT_NET_ARCH", "HFOActor", "HFOCritic", "HFOPolicy", "parse_net_arch"]
+
+#: The seed paper's hidden layers (Method: "3 fully connected layers consisting of 400-300-200 units").
+DEFAULT_NET_ARCH: dict[str, list[int]] = {"pi": [400, 300, 200], "qf": [400, 300, 200]}
+#: "LeakyReLU activation with negative slope of 10^-2" (seed paper, Method).
+LEAKY_RELU_SLOPE = 1e-2
+#: "Weights are initialized with a truncated normal distribution with a standard deviation 10^-2".
+WEIGHT_INIT_STD = 1e-2
+
+
+def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[list[int], list[int]]:
+    """Split ``net_arch`` into (actor hidden sizes, critic hidden sizes).
+
+    ``None`` -> the paper's 400-300-200 for both; a list -> the same sizes for both; a dict needs the keys
+    ``"pi"`` and ``"qf"``. Each list must hold at least one positive int.
+
+    :raises ValueError: anything else (the message names the offending value).
+    """
+    if net_arch is None:
+        return list(DEFAULT_NET_ARCH["pi"]), list(DEFAULT_NET_ARCH["qf"])
+    if isinstance(net_arch, dict):
+        unknown = set(net_arch) - {"pi", "qf"}
+        if unknown or not {"pi", "qf"} <= set(net_arch):
+            raise ValueError(f"net_arch dict needs exactly the keys 'pi' and 'qf', got {sorted(net_arch)}")
+        actor_arch, critic_arch = net_arch["pi"], net_arch["qf"]
+    elif isinstance(net_arch, (list, tuple)):
+        actor_arch = critic_arch = net_arch
+    else:
+        raise ValueError(
+            f"net_arch must be a list of layer sizes or dict(pi=[...], qf=[...]), got {net_arch!r}"
+        )
+    for name, arch in (("pi", actor_arch), ("qf", critic_arch)):
+        if (
+            not isinstance(arch, (list, tuple))
+            or len(arch) == 0
+            or not all(isinstance(n, (int, np.integer)) and not isinstance(n, bool) and n > 0 for n in arch)
+        ):
+            raise ValueError(f"net_arch[{name!r}] must be a non-empty list of positive ints, got {arch!r}")
+    return [int(n) for n in actor_arch], [int(n) for n in critic_arch]
+
+
+def _make_activation(activation_fn: type[nn.Module]) -> nn.Module:
+    """Instantiate ``activation_fn``; LeakyReLU gets the paper's negative slope 0.01 explicitly."""
+    if activation_fn is nn.LeakyReLU:
+        return nn.LeakyReLU(negative_slope=LEAKY_RELU_SLOPE)
+    return activation_fn()
+
+
+def _init_linear(layer: nn.Linear, std: float) -> None:
+    """Paper initialisation: weights ~ truncated normal (std ``std``, cut at 2 std), biases 0."""
+    nn.init.trunc_normal_(layer.weight, mean=0.0, std=std, a=-2.0 * std, b=2.0 * std)
+    nn.init.zeros_(layer.bias)
+
+
+class HFOActor(nn.Module):
+    """Deterministic actor: shared trunk + ``n_skills`` parallel output layers ("skills").
+
+    ``obs (B, obs_dim)`` -> trunk (Linear + activation per entry of ``net_arch``) -> ``(B, hidden[-1])`` -> head of
+    each row's skill, ``Linear(hidden[-1], action_dim)`` -> ``tanh`` (or identity with ``squash=False``) ->
+    ``(B, action_dim)`` in the replay buffer's action scale [-1, 1].
+
+    :param obs_dim: number of (flattened) observation features.
+    :param action_dim: number of action dimensions (8 for HFO's flat action).
+    :param net_arch: hidden layer sizes of the trunk, e.g. ``[400, 300, 200]``.
+    :param n_skills: number of output heads.
+    :param activation_fn: activation class after each hidden layer.
+    :param squash: ``tanh`` on the output (True) or a linear output (False, inverting gradients).
+    :param weight_init_std: standard deviation of the truncated-normal weight initialisation.
+    """
+
+    def __init__(
+        self,
+        obs_dim: int,
+        action_dim: int,
+        net_arch: list[int],
+        n_skills: int = 1,
+        activation_fn: type[nn.Module] = nn.LeakyReLU,
+        squash: bool = True,
+        weight_init_std: float = WEIGHT_INIT_STD,
+    ) -> None:
+        super().__init__()
+        layers: list[nn.Module] = []
+        in_features = obs_dim
+        for width in net_arch:
+            layers += [nn.Linear(in_features, width), _make_activation(activation_fn)]
+            in_features = width
+        self.trunk = nn.Sequential(*layers)
+        self.heads = nn.ModuleList([nn.Linear(in_features, action_dim) for _ in range(n_skills)])
+        self.squash = squash
+        self.n_skills = n_skills
+        self.action_dim = action_dim
+        for module in self.modules():
+            if isinstance(module, nn.Linear):
+                _init_linear(module, weight_init_std)
+
+    def all_skills(self, obs: th.Tensor) -> th.Tensor:
+        """Every head's action for every row: ``(B, obs_dim)`` -> ``(B, n_skills, action_dim)``."""
+        features = self.trunk(obs)
+        out = th.stack([head(features) for head in self.heads], dim=1)
+        return th.tanh(out) if self.squash else out
+
+    def forward_tracked(
+        self, obs: th.Tensor, skills: th.Tensor
+    ) -> tuple[th.Tensor, list[th.Tensor], list[th.Tensor]]:
+        """:meth:`forward` that also returns what per-skill weight gradients need.
+
+        :param obs: ``(B, obs_dim)``.
+        :param skills: ``(B,)`` head index per row.
+        :return: ``(action (B, action_dim), layer_inputs, layer_outputs)``: for every Linear of the trunk and then
+            for the (gathered) output layer, its input ``(B, in)`` and its pre-activation output ``(B, out)``.
+            The gradient of a Linear's weight over a set of rows is ``d_out[rows].T @ input[rows]``.
+        """
+        inputs: list[th.Tensor] = []
+        outputs: list[th.Tensor] = []
+        hidden = obs
+        for module in self.trunk:
+            if isinstance(module, nn.Linear):
+                inputs.append(hidden)
+                hidden = module(hidden)
+                outputs.append(hidden)
+            else:
+                hidden = module(hidden)
+        per_skill = th.stack([head(hidden) for head in self.heads], dim=1)
+        out = per_skill.gather(1, skills.view(-1, 1, 1).expand(-1, 1, self.action_dim)).squeeze(1)
+        inputs.append(hidden)
+        outputs.append(out)
+        return (th.tanh(out) if self.squash else out), inputs, outputs
+
+    def forward(self, obs: th.Tensor, skills: th.Tensor | None = None) -> th.Tensor:
+        """Action of each row's skill.
+
+        :param obs: ``(B, obs_dim)`` float tensor.
+        :param skills: ``(B,)`` long tensor of head indices; ``None`` means head 0 (only valid with one skill).
+        :return: ``(B, action_dim)``; in [-1, 1] when ``squash`` is set.
+        """
+        features = self.trunk(obs)
+        if skills is None or self.n_skills == 1:
+            out = self.heads[0](features)
+        else:
+            per_skill = th.stack([head(features) for head in self.heads], dim=1)
+            index = skills.view(-1, 1, 1).expand(-1, 1, self.action_dim)
+            out = per_skill.gather(1, index).squeeze(1)
+        return th.tanh(out) if self.squash else out
+
+
+class HFOCritic(nn.Module):
+    """Q(s, a) with the action entering at the second layer (seed paper, Figure 1).
+
+    ``obs (B, obs_dim)`` -> ``obs_net``: Linear(obs_dim, qf[0]) + activation -> concatenate ``action (B, action_dim)``
+    -> ``joint_net``: Linear(qf[0] + action_dim, qf[1]) + activation -> ... -> Linear(qf[-1], 1) -> ``(B, 1)``.
+    With ``qf = [400]`` the action enters the (linear) output layer.
+
+    :param obs_dim: number of (flattened) observation features.
+    :param action_dim: number of action dimensions.
+    :param net_arch: hidden layer sizes, e.g. ``[400, 300, 200]``.
+    :param activation_fn: activation class after each hidden layer.
+    :param weight_init_std: standard deviation of the truncated-normal weight initialisation.
+    """
+
+    def __init__(
+        self,
+        obs_dim: int,
+        action_dim: int,
+        net_arch: list[int],
+        activation_fn: type[nn.Module] = nn.LeakyReLU,
+        weight_init_std: float = WEIGHT_INIT_STD,
+    ) -> None:
+        super().__init__()
+        self.obs_net = nn.Sequential(nn.Linear(obs_dim, net_arch[0]), _make_activation(activation_fn))
+        layers: list[nn.Module] = []
+        in_features = net_arch[0] + action_dim
+        for width in net_arch[1:]:
+            layers += [nn.Linear(in_features, width), _make_activation(activation_fn)]
+            in_features = width
+        layers.append(nn.Linear(in_features, 1))
+        self.joint_net = nn.Sequential(*layers)
+        for module in self.modules():
+            if isinstance(module, nn.Linear):
+                _init_linear(module, weight_init_std)
+
+    @property
+    def action_layer(self) -> nn.Linear:
+        """The layer that receives ``[obs features, action]`` (the critic's second layer)."""
+        first = self.joint_net[0]
+        assert isinstance(first, nn.Linear)
+        return first
+
+    def forward(self, obs: th.Tensor, action: th.Tensor) -> th.Tensor:
+        """``obs (B, obs_dim)``, ``action (B, action_dim)`` in the buffer scale -> ``Q (B, 1)``."""
+        return self.joint_net(th.cat((self.obs_net(obs), action), dim=1))
+
+    def q_with_frozen_weights(self, obs: th.Tensor, action: th.Tensor) -> th.Tensor:
+        """The same ``Q (B, 1)`` as :meth:`forward`, differentiable with respect to ``action`` only.
+
+        For the actor update, which needs dQ/da and nothing else: the state path runs without autograd, the
+        weights are detached, and the second layer is split as ``W_s h + W_a a + b`` so that back-propagation
+        computes the ``(B, action_dim)`` gradient instead of the ``(B, hidden + action_dim)`` one of the
+        concatenated input. Mathematically identical to :meth:`forward` (float rounding aside).
+        """
+        with th.no_grad():
+            features = self.obs_net(obs)
+        first = self.action_layer
+        weight = first.weight.detach()
+        n_features = features.shape[1]
+        hidden = F.linear(features, weight[:, :n_features], first.bias.detach()) + F.linear(
+            action, weight[:, n_features:]
+        )
+        for module in list(self.joint_net)[1:]:
+            if isinstance(module, nn.Linear):
+                hidden = F.linear(hidden, module.weight.detach(), module.bias.detach())
+            else:
+                hidden = module(hidden)
+        return hidden
+
+
+class HFOPolicy(BasePolicy):
+    """SkillDDPG's policy: actor (with skills), critic, their target copies and their optimisers.
+
+    :param observation_space: a ``Box`` (flattened; HFO: 58 or 66 features in [-1, 1]).
+    :param action_space: a bounded ``Box`` (HFO flat action: ``Box(0, 1, (8,))``).
+    :param lr_schedule: learning-rate schedule used to create the optimisers (SkillDDPG resets the actor's and the
+        critic's learning rates from its own two schedules before every update).
+    :param net_arch: hidden sizes, ``[400, 300, 200]`` or ``dict(pi=[...], qf=[...])``; default the paper's.
+    :param activation_fn: hidden activation (default LeakyReLU with slope 0.01).
+    :param n_skills: number of actor output layers (1 = the paper's plain agent).
+    :param skill_router: a :class:`~sb3_hfo.common.routers.SkillRouter`, a router name (``"single"``,
+        ``"field_half"``) or ``None`` (``"single"`` for 1 skill, ``"field_half"`` for 2).
+    :param inverting_gradients: linear actor output + Hausknecht & Stone's inverting gradients (see module doc).
+    :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
+    :param optimizer_class: optimiser class for the critic and each skill (default Adam).
+    :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
+        ``fused=True`` is used (same maths, one kernel per step instead of ~10 per parameter).
+    :param features_extractor_class: kept for SB3 compatibility; only ``FlattenExtractor`` is supported.
+    :param features_extractor_kwargs: kept for SB3 compatibility.
+    :param normalize_images: kept for SB3 compatibility (observations are feature vectors).
+    """
+
+    actor: HFOActor
+    actor_target: HFOActor
+    critic: HFOCritic
+    critic_target: HFOCritic
+    critic_optimizer: th.optim.Optimizer
+
+    def __init__(
+        self,
+        observation_space: spaces.Space,
+        action_space: spaces.Space,
+        lr_schedule: Schedule,
+        net_arch: list[int] | dict[str, list[int]] | None = None,
+        activation_fn: type[nn.Module] = nn.LeakyReLU,
+        n_skills: int = 1,
+        skill_router: SkillRouter | str | None = None,
+        inverting_gradients: bool = False,
+        weight_init_std: float = WEIGHT_INIT_STD,
+        optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
+        optimizer_kwargs: dict[str, Any] | None = None,
+        features_extractor_class: type[BaseFeaturesExtractor] = FlattenExtractor,
+        features_extractor_kwargs: dict[str, Any] | None = None,
+        normalize_images: bool = True,
+    ) -> None:
+        if not isinstance(action_space, spaces.Box):
+            raise ValueError(
+                f"HFOPolicy needs a Box action space (HFO: action_format='flat'), got {type(action_space).__name__}"
+            )
+        if not (np.all(np.isfinite(action_space.low)) and np.all(np.isfinite(action_space.high))):
+            raise ValueError("HFOPolicy needs a bounded Box action space (finite low and high)")
+        if not isinstance(observation_space, spaces.Box):
+            raise ValueError(
+                f"HFOPolicy needs a Box observation space, got {type(observation_space).__name__}"
+            )
+        if features_extractor_class is not FlattenExtractor:
+            raise ValueError("HFOPolicy only supports FlattenExtractor (feature-vector observations)")
+        if weight_init_std <= 0:
+            raise ValueError(f"weight_init_std must be > 0, got {weight_init_std}")
+        super().__init__(
+            observation_space,
+            action_space,
+            features_extractor_class,
+            features_extractor_kwargs,
+            optimizer_class=optimizer_class,
+            optimizer_kwargs=optimizer_kwargs,
+            squash_output=True,
+            normalize_images=normalize_images,
+        )
+        self.net_arch = net_arch
+        self.actor_arch, self.critic_arch = parse_net_arch(net_arch)
+        self.activation_fn = activation_fn
+        self.skill_router = make_router(skill_router, n_skills)
+        self.n_skills = int(n_skills)
+        self.inverting_gradients = bool(inverting_gradients)
+        self.weight_init_std = float(weight_init_std)
+        self.obs_dim = get_flattened_obs_dim(observation_space)
+        self.action_dim = get_action_dim(action_space)
+        self._router_checked = False
+        self._build(lr_schedule)
+
+    def _optimizer_kwargs(self) -> dict[str, Any]:
+        kwargs = dict(self.optimizer_kwargs)
+        if self.optimizer_class is th.optim.Adam and "fused" not in kwargs and "foreach" not in kwargs:
+            kwargs["fused"] = True
+        return kwargs
+
+    def _build(self, lr_schedule: Schedule) -> None:
+        actor_kwargs = dict(
+            obs_dim=self.obs_dim,
+            action_dim=self.action_dim,
+            net_arch=self.actor_arch,
+            n_skills=self.n_skills,
+            activation_fn=self.activation_fn,
+            squash=not self.inverting_gradients,
+            weight_init_std=self.weight_init_std,
+        )
+        critic_kwargs = dict(
+            obs_dim=self.obs_dim,
+            action_dim=self.action_dim,
+            net_arch=self.critic_arch,
+            activation_fn=self.activation_fn,
+            weight_init_std=self.weight_init_std,
+        )
+        self.actor = HFOActor(**actor_kwargs)  # type: ignore[arg-type]
+        self.actor_target = HFOActor(**actor_kwargs)  # type: ignore[arg-type]
+        self.actor_target.load_state_dict(self.actor.state_dict())
+        self.critic = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
+        self.critic_target = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
+        self.critic_target.load_state_dict(self.critic.state_dict())
+        for target in (self.actor_target, self.critic_target):
+            target.requires_grad_(False)
+            target.train(False)
+
+        lr = lr_schedule(1)
+        kwargs = self._optimizer_kwargs()
+        self.critic_optimizer = self.optimizer_class(self.critic.parameters(), lr=lr, **kwargs)  # type: ignore[call-arg]
+        trunk = list(self.actor.trunk.parameters())
+        for k, head in enumerate(self.actor.heads):
+            optimizer = self.optimizer_class(trunk + list(head.parameters()), lr=lr, **kwargs)  # type: ignore[call-arg]
+            # One named attribute per skill so that SkillDDPG.save / load can address each state dict.
+            setattr(self, f"actor_skill_{k}_optimizer", optimizer)
+
+    @property
+    def actor_optimizers(self) -> list[th.optim.Optimizer]:
+        """Skill ``k``'s optimiser (over trunk + head ``k``) at index ``k``."""
+        return [getattr(self, f"actor_skill_{k}_optimizer") for k in range(self.n_skills)]
+
+    def skill_parameters(self, skill: int) -> list[nn.Parameter]:
+        """Parameters skill ``skill`` trains: the shared trunk followed by its own output layer."""
+        return list(self.actor.trunk.parameters()) + list(self.actor.heads[skill].parameters())
+
+    def route(self, obs: th.Tensor) -> th.Tensor | None:
+        """Skill index per row of ``obs (B, obs_dim)`` as a long tensor ``(B,)``; ``None`` when ``n_skills == 1``.
+
+        The router's output is validated (type, shape, range) on the first call.
+        """
+        if self.n_skills == 1:
+            return None
+        skills = self.skill_router(obs)
+        if not self._router_checked:
+            skills = validate_skills(skills, obs.shape[0], self.n_skills, self.skill_router)
+            self._router_checked = True
+        elif not isinstance(skills, th.Tensor):
+            skills = th.as_tensor(skills, device=obs.device)
+        return skills if skills.dtype == th.long else skills.long()
+
+    def _get_constructor_parameters(self) -> dict[str, Any]:
+        data = super()._get_constructor_parameters()
+        data.update(
+            dict(
+                net_arch=self.net_arch,
+                activation_fn=self.activation_fn,
+                n_skills=self.n_skills,
+                skill_router=self.skill_router,
+                inverting_gradients=self.inverting_gradients,
+                weight_init_std=self.weight_init_std,
+                lr_schedule=self._dummy_schedule,
+                optimizer_class=self.optimizer_class,
+                optimizer_kwargs=self.optimizer_kwargs,
+                features_extractor_class=self.features_extractor_class,
+                features_extractor_kwargs=self.features_extractor_kwargs,
+            )
+        )
+        return data
+
+    def _flatten_obs(self, observation: PyTorchObs) -> th.Tensor:
+        assert isinstance(observation, th.Tensor)
+        obs = observation.float()
+        return obs.flatten(1) if obs.dim() > 2 else obs
+
+    def forward(self, observation: PyTorchObs, deterministic: bool = False) -> th.Tensor:
+        return self._predict(observation, deterministic=deterministic)
+
+    def _predict(self, observation: PyTorchObs, deterministic: bool = False) -> th.Tensor:
+        """Greedy action in [-1, 1] for ``observation (B, obs_dim)`` (DDPG's actor is deterministic)."""
+        obs = self._flatten_obs(observation)
+        action = self.actor(obs, self.route(obs))
+        return action.clamp(-1.0, 1.0) if self.inverting_gradients else action
+
+    def set_training_mode(self, mode: bool) -> None:
+        self.actor.train(mode)
+        self.critic.train(mode)
+        self.training = mode

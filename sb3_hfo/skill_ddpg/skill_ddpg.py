@@ -1,0 +1,539 @@
+"""SkillDDPG: DDPG with hand-routed skills (seed paper, "Method"), as a Stable-Baselines3 off-policy algorithm.
+
+One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``batch_size``):
+
+1. Critic: ``y = r + gamma * (1 - done) * Q'(s', mu'_{skill(s')}(s'))`` with the target networks (paper eq. 6),
+   ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``).
+2. Actor (eq. 7), with the critic just updated: every row's action comes from the head its skill router picks;
+   ``g = dQ/da`` at ``a = mu_{skill(s)}(s)`` for the whole minibatch in one critic pass. Skill ``k``'s loss is
+   ``-mean over the rows routed to k of Q(s, a)``; its gradient over (trunk + head k) is the vector-Jacobian product
+   of the actor with ``-g / n_k`` on those rows (computed for all skills in one backward pass, each skill's weight
+   gradients summed over its own rows only). All skills' gradients are evaluated at the same parameters, then
+   each skill that had rows takes one step of its own Adam (``policy.actor_skill_{k}_optimizer``). A skill without
+   rows takes no step (parameters and Adam state unchanged). With one skill this is exactly DDPG's actor update.
+   With ``inverting_gradients`` ``g`` is first rescaled per dimension (Hausknecht & Stone 2016, bounds [-1, 1]):
+   ``g * (1 - a) / 2`` where ``g > 0`` (the update would increase ``a``) and ``g * (a + 1) / 2`` elsewhere.
+3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
+
+Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py): fused Adam, the actor's gradient
+obtained with ``torch.autograd.grad`` through a weight-frozen critic pass so that neither the critic's weight
+gradients nor its hidden-state input gradients are computed in the actor step, per-skill gradients from a single
+backward pass, one vectorised target update, no per-update ``.item()``: losses and Q statistics are summed in a tensor and
+converted when the logger dumps.
+
+Exploration (``_sample_action``): SB3's random warm-up (``learning_starts``) and ``action_noise`` as usual, then
+epsilon-greedy over the discrete actions of a parameterised flat action (HFO: the first 3 of 8 entries are the
+DASH / TURN / KICK preferences; Hausknecht & Stone anneal epsilon 1 -> 0.1): with probability epsilon the whole
+action is redrawn uniformly and one of the ``n_discrete_actions`` preferences, chosen uniformly, is set to the
+maximum (1 in the buffer scale) so that the environment's argmax picks it. Epsilon anneals linearly from
+``exploration_initial_eps`` to ``exploration_final_eps`` over the first ``exploration_fraction`` of the
+``learn()`` call (SB3's DQN convention). ``n_discrete_actions=None`` means 3 for 8-dimensional actions (HFO's
+flat layout) and 0 (no epsilon-greedy) otherwise, e.g. Pendulum.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from collections.abc import Sequence
+from typing import Any, ClassVar, TypeVar
+
+import numpy as np
+import torch as th
+from gymnasium import spaces
+from stable_baselines3.common.buffers import ReplayBuffer
+from stable_baselines3.common.noise import ActionNoise
+from stable_baselines3.common.off_policy_algorithm import OffPolicyAlgorithm
+from stable_baselines3.common.policies import BasePolicy
+from stable_baselines3.common.type_aliases import GymEnv, MaybeCallback, ReplayBufferSamples, Schedule
+from stable_baselines3.common.utils import (
+    ConstantSchedule,
+    FloatSchedule,
+    LinearSchedule,
+    update_learning_rate,
+)
+from torch.nn import functional as F
+
+from sb3_hfo.skill_ddpg.policies import HFOPolicy
+
+__all__ = ["HFO_FLAT_ACTION_DIM", "HFO_N_DISCRETE_ACTIONS", "SkillDDPG", "adam_step"]
+
+SelfSkillDDPG = TypeVar("SelfSkillDDPG", bound="SkillDDPG")
+
+#: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
+HFO_FLAT_ACTION_DIM = 8
+#: DASH, TURN, KICK: the discrete actions whose preferences open HFO's flat action.
+HFO_N_DISCRETE_ACTIONS = 3
+
+# Layout of the running sums of training statistics (one row of a tensor, summed over updates).
+_STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3
+_N_GLOBAL_STATS = 4
+
+# torch's fused Adam kernel (an ATen op, present since torch 2.0); used directly by adam_step.
+_HAS_FUSED_ADAM = hasattr(th, "_fused_adam_")
+
+
+def adam_step(optimizer: th.optim.Optimizer, params: list[th.Tensor], grads: Sequence[th.Tensor]) -> None:
+    """One step of ``optimizer`` on ``params`` with gradients ``grads`` (same order as the optimizer's params).
+
+    For a fused ``torch.optim.Adam`` with one parameter group, no hooks and plain settings, whose state exists (after
+    its first step), this calls the fused kernel directly: exactly what ``Adam.step`` would run, without its ~0.15 ms
+    of Python bookkeeping per call. The optimizer's state tensors are updated in place, so ``state_dict`` / save /
+    load are unaffected. Any other case goes through ``optimizer.step()``.
+    """
+    groups = optimizer.param_groups
+    group = groups[0]
+    fast = (
+        _HAS_FUSED_ADAM
+        and type(optimizer) is th.optim.Adam
+        and len(groups) == 1
+        and group.get("fused")
+        and not (group["amsgrad"] or group["maximize"] or group.get("decoupled_weight_decay"))
+        and not (optimizer._optimizer_step_pre_hooks or optimizer._optimizer_step_post_hooks)
+    )
+    states = optimizer.state
+    if fast and all(param in states for param in params):
+        param_states = [states[param] for param in params]
+        steps = [state["step"] for state in param_states]
+        beta1, beta2 = group["betas"]
+        th._foreach_add_(steps, 1)
+        th._fused_adam_(
+            params,
+            list(grads),
+            [state["exp_avg"] for state in param_states],
+            [state["exp_avg_sq"] for state in param_states],
+            [],
+            steps,
+            amsgrad=False,
+            lr=group["lr"],
+            beta1=beta1,
+            beta2=beta2,
+            weight_decay=group["weight_decay"],
+            eps=group["eps"],
+            maximize=False,
+        )
+        return
+    for param, grad in zip(params, grads, strict=True):
+        param.grad = grad
+    optimizer.step()
+    for param in params:
+        param.grad = None
+
+
+class SkillDDPG(OffPolicyAlgorithm):
+    """DDPG with skills (seed paper) for Box-action environments, HFO's flat 8-dimensional action in particular.
+
+    :param policy: ``"HFOPolicy"`` / ``"MlpPolicy"`` (the same class) or an :class:`HFOPolicy` subclass.
+    :param env: environment or its registered id (``"HFO/EmptyGoal-v0"``).
+    :param learning_rate_actor: Adam learning rate of every skill (paper: 1e-4); a float or an SB3 schedule of
+        ``progress_remaining`` (1 -> 0).
+    :param learning_rate_critic: Adam learning rate of the critic (paper: 1e-3, "decaying through out the training
+        process": pass a schedule, e.g. ``lambda p: 1e-3 * p``).
+    :param buffer_size: replay buffer capacity (transitions).
+    :param learning_starts: environment steps of uniformly random actions before the first update.
+    :param batch_size: minibatch size (paper: 32).
+    :param tau: target-network tracking rate (paper: 1e-4).
+    :param gamma: discount factor (not given by the paper; 0.99).
+    :param train_freq: update every ``train_freq`` steps (paper: every frame).
+    :param gradient_steps: updates per ``train_freq`` (paper: 1).
+    :param action_noise: optional SB3 action noise, added in the buffer scale [-1, 1].
+    :param exploration_initial_eps: epsilon-greedy probability at the start of ``learn``.
+    :param exploration_final_eps: epsilon after annealing.
+    :param exploration_fraction: fraction of ``total_timesteps`` over which epsilon anneals linearly (0: the final
+        value from the start).
+    :param n_discrete_actions: number of leading action entries that are discrete-action preferences; ``None``:
+        3 if the action has 8 entries (HFO), else 0. 0 disables epsilon-greedy.
+    :param replay_buffer_class: SB3 replay buffer class (default ``ReplayBuffer``).
+    :param replay_buffer_kwargs: its keyword arguments.
+    :param optimize_memory_usage: SB3's memory-efficient replay buffer variant.
+    :param n_steps: n-step returns (SB3's ``NStepReplayBuffer``) when > 1.
+    :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
+    :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
+    :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
+        ``inverting_gradients``, ...).
+    :param verbose: 0 silent, 1 info, 2 debug.
+    :param seed: seed of every random generator (Python, numpy, torch, action space, env).
+    :param device: torch device (``"auto"``: CUDA when available).
+    :param _init_setup_model: build networks and buffer now (``False`` is used by ``load``).
+    """
+
+    policy_aliases: ClassVar[dict[str, type[BasePolicy]]] = {"HFOPolicy": HFOPolicy, "MlpPolicy": HFOPolicy}
+    policy: HFOPolicy
+
+    def __init__(
+        self,
+        policy: str | type[HFOPolicy],
+        env: GymEnv | str,
+        learning_rate_actor: float | Schedule = 1e-4,
+        learning_rate_critic: float | Schedule = 1e-3,
+        buffer_size: int = 1_000_000,
+        learning_starts: int = 100,
+        batch_size: int = 32,
+        tau: float = 1e-4,
+        gamma: float = 0.99,
+        train_freq: int | tuple[int, str] = 1,
+        gradient_steps: int = 1,
+        action_noise: ActionNoise | None = None,
+        exploration_initial_eps: float = 1.0,
+        exploration_final_eps: float = 0.1,
+        exploration_fraction: float = 0.1,
+        n_discrete_actions: int | None = None,
+        replay_buffer_class: type[ReplayBuffer] | None = None,
+        replay_buffer_kwargs: dict[str, Any] | None = None,
+        optimize_memory_usage: bool = False,
+        n_steps: int = 1,
+        stats_window_size: int = 100,
+        tensorboard_log: str | None = None,
+        policy_kwargs: dict[str, Any] | None = None,
+        verbose: int = 0,
+        seed: int | None = None,
+        device: th.device | str = "auto",
+        _init_setup_model: bool = True,
+    ) -> None:
+        super().__init__(
+            policy,
+            env,
+            learning_rate_actor,
+            buffer_size,
+            learning_starts,
+            batch_size,
+            tau,
+            gamma,
+            train_freq,
+            gradient_steps,
+            action_noise=action_noise,
+            replay_buffer_class=replay_buffer_class,
+            replay_buffer_kwargs=replay_buffer_kwargs,
+            optimize_memory_usage=optimize_memory_usage,
+            n_steps=n_steps,
+            policy_kwargs=policy_kwargs,
+            stats_window_size=stats_window_size,
+            tensorboard_log=tensorboard_log,
+            verbose=verbose,
+            device=device,
+            seed=seed,
+            sde_support=False,
+            supported_action_spaces=(spaces.Box,),
+            support_multi_env=True,
+        )
+        self.learning_rate_actor = learning_rate_actor
+        self.learning_rate_critic = learning_rate_critic
+        self.exploration_initial_eps = exploration_initial_eps
+        self.exploration_final_eps = exploration_final_eps
+        self.exploration_fraction = exploration_fraction
+        self.n_discrete_actions = n_discrete_actions
+        self.exploration_rate = exploration_initial_eps
+        if _init_setup_model:
+            self._setup_model()
+
+    # ------------------------------------------------------------------------------------------------------
+    # Set-up
+
+    def _check_arguments(self) -> None:
+        """Reject inconsistent arguments with a message naming the argument."""
+        for name in ("exploration_initial_eps", "exploration_final_eps", "exploration_fraction"):
+            value = getattr(self, name)
+            if not 0.0 <= float(value) <= 1.0:
+                raise ValueError(f"{name} must lie in [0, 1], got {value}")
+        if not 0.0 <= self.tau <= 1.0:
+            raise ValueError(f"tau must lie in [0, 1], got {self.tau}")
+        if self.batch_size < 1:
+            raise ValueError(f"batch_size must be >= 1, got {self.batch_size}")
+        for name in ("learning_rate_actor", "learning_rate_critic"):
+            value = getattr(self, name)
+            if not callable(value) and (not isinstance(value, (int, float)) or value < 0):
+                raise ValueError(f"{name} must be a float >= 0 or a schedule (callable), got {value!r}")
+
+    def _resolve_n_discrete_actions(self) -> int:
+        action_dim = int(np.prod(self.action_space.shape))
+        if self.n_discrete_actions is None:
+            return HFO_N_DISCRETE_ACTIONS if action_dim == HFO_FLAT_ACTION_DIM else 0
+        n_discrete = self.n_discrete_actions
+        if isinstance(n_discrete, bool) or not isinstance(n_discrete, (int, np.integer)):
+            raise ValueError(f"n_discrete_actions must be None or an int, got {n_discrete!r}")
+        if not 0 <= n_discrete <= action_dim:
+            raise ValueError(
+                f"n_discrete_actions must lie in [0, action dim = {action_dim}], got {n_discrete}"
+            )
+        return int(n_discrete)
+
+    def _setup_lr_schedule(self) -> None:
+        # ``self.learning_rate`` is the actor's rate (what BaseAlgorithm received); the critic has its own.
+        self.lr_schedule = FloatSchedule(self.learning_rate_actor)
+        self.lr_schedule_critic = FloatSchedule(self.learning_rate_critic)
+
+    def _setup_model(self) -> None:
+        self._check_arguments()
+        super()._setup_model()
+        if not isinstance(self.policy, HFOPolicy):
+            raise ValueError(f"SkillDDPG needs an HFOPolicy (or subclass), got {type(self.policy).__name__}")
+        update_learning_rate(self.policy.critic_optimizer, self.lr_schedule_critic(1.0))
+        self._n_discrete = self._resolve_n_discrete_actions()
+        if self.exploration_fraction > 0:
+            self.exploration_schedule: Schedule = LinearSchedule(
+                self.exploration_initial_eps, self.exploration_final_eps, self.exploration_fraction
+            )
+        else:
+            self.exploration_schedule = ConstantSchedule(self.exploration_final_eps)
+        self._create_aliases()
+        self._reset_stats()
+
+    def _create_aliases(self) -> None:
+        self.actor = self.policy.actor
+        self.actor_target = self.policy.actor_target
+        self.critic = self.policy.critic
+        self.critic_target = self.policy.critic_target
+        # Fixed parameter lists: module.to(device) and load_state_dict keep the same Parameter objects.
+        self._online_params = [*self.actor.parameters(), *self.critic.parameters()]
+        self._target_params = [*self.actor_target.parameters(), *self.critic_target.parameters()]
+        self._skill_params = [self.policy.skill_parameters(k) for k in range(self.policy.n_skills)]
+        self._critic_params = list(self.critic.parameters())
+
+    def _reset_stats(self) -> None:
+        """Clear the training and rollout statistics gathered since the last log dump."""
+        n_skills = self.policy.n_skills
+        self._stat_sums = th.zeros(_N_GLOBAL_STATS + n_skills, device=self.device)
+        self._stat_updates = 0
+        self._skill_updates = [0] * n_skills
+        self._skill_steps = np.zeros(n_skills, dtype=np.int64)
+        if not hasattr(self, "_goal_buffer"):
+            self._goal_buffer: deque[bool] = deque(maxlen=self._stats_window_size)
+
+    # ------------------------------------------------------------------------------------------------------
+    # Training
+
+    def train(self, gradient_steps: int, batch_size: int = 32) -> None:
+        """Do ``gradient_steps`` updates on minibatches of ``batch_size`` sampled from the replay buffer."""
+        self.policy.set_training_mode(True)
+        lr_actor = self.lr_schedule(self._current_progress_remaining)
+        lr_critic = self.lr_schedule_critic(self._current_progress_remaining)
+        for optimizer in self.policy.actor_optimizers:
+            update_learning_rate(optimizer, lr_actor)
+        update_learning_rate(self.policy.critic_optimizer, lr_critic)
+        self.logger.record("train/learning_rate_actor", lr_actor)
+        self.logger.record("train/learning_rate_critic", lr_critic)
+        assert self.replay_buffer is not None
+        for _ in range(gradient_steps):
+            self._n_updates += 1
+            self._update(self.replay_buffer.sample(batch_size, env=self._vec_normalize_env))
+        self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
+
+    def _update(self, batch: ReplayBufferSamples) -> None:
+        """One critic, actor and target update on ``batch`` (observations ``(B, obs_dim)``, actions ``(B, A)``
+        in [-1, 1], rewards / dones ``(B, 1)``)."""
+        policy = self.policy
+        obs, actions = batch.observations, batch.actions
+        discounts = batch.discounts if batch.discounts is not None else self.gamma
+
+        # 1. Critic (eq. 5, 6).
+        with th.no_grad():
+            next_obs = batch.next_observations
+            next_actions = self.actor_target(next_obs, policy.route(next_obs))
+            if policy.inverting_gradients:
+                next_actions = next_actions.clamp(-1.0, 1.0)
+            next_q = self.critic_target(next_obs, next_actions)
+            target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
+        current_q = self.critic(obs, actions)
+        critic_loss = F.mse_loss(current_q, target_q)
+        adam_step(
+            policy.critic_optimizer, self._critic_params, th.autograd.grad(critic_loss, self._critic_params)
+        )
+
+        # 2. Actor (eq. 7) against the updated critic.
+        batch_size = obs.shape[0]
+        stats = self._stat_sums
+        skills = policy.route(obs)
+        if skills is None:
+            actor_actions = self.actor(obs)
+            q_actor = self.critic.q_with_frozen_weights(obs, actor_actions)
+            dq_da = self._action_gradient(q_actor, actor_actions)
+            grads = th.autograd.grad(
+                actor_actions, self._skill_params[0], grad_outputs=dq_da * (-1.0 / batch_size)
+            )
+            self._apply_skill_step(0, grads)
+            self._skill_updates[0] += 1
+            q_detached = q_actor.detach()
+            stats[_N_GLOBAL_STATS] -= q_detached.mean()
+        else:
+            q_detached = self._update_skills(obs, skills)
+
+        # 3. Targets.
+        with th.no_grad():
+            th._foreach_lerp_(self._target_params, self._online_params, self.tau)
+            current = current_q.detach()
+            stats[_STAT_CRITIC_LOSS] += critic_loss.detach()
+            stats[_STAT_ACTOR_LOSS] -= q_detached.mean()
+            stats[_STAT_MAX_Q] += current.max()
+            stats[_STAT_MEAN_Q] += current.mean()
+        self._stat_updates += 1
+
+    def _action_gradient(self, q_actor: th.Tensor, actor_actions: th.Tensor) -> th.Tensor:
+        """dQ/da ``(B, A)`` at the actor's actions, inverted when ``inverting_gradients`` is on."""
+        (dq_da,) = th.autograd.grad(q_actor.sum(), actor_actions)
+        if self.policy.inverting_gradients:
+            dq_da = self._invert_gradients(dq_da, actor_actions.detach())
+        return dq_da
+
+    def _update_skills(self, obs: th.Tensor, skills: th.Tensor) -> th.Tensor:
+        """Actor update with ``n_skills > 1``; returns the detached ``Q (B, 1)`` of the actor's actions (rows sorted
+        by skill).
+
+        Rows are sorted by skill so that each skill's rows form one slice. One backward pass gives the gradient of
+        every Linear's output (rows never mix in an MLP, so row ``i``'s gradient only involves its own skill's
+        loss); each skill's weight gradients are then ``d_out[rows].T @ input[rows]`` over its own rows: the same
+        numbers as one backward pass per skill, for the FLOPs of one.
+        """
+        policy = self.policy
+        n_skills = policy.n_skills
+        order = th.argsort(skills, stable=True)
+        obs, skills = obs[order], skills[order]
+        counts_tensor = th.bincount(skills, minlength=n_skills)
+        counts = counts_tensor.tolist()
+        actor_actions, layer_inputs, layer_outputs = self.actor.forward_tracked(obs, skills)
+        q_actor = self.critic.q_with_frozen_weights(obs, actor_actions)
+        dq_da = self._action_gradient(q_actor, actor_actions)
+        # Skill k's loss is -mean over its n_k rows of Q: row weight -1 / n_k (clamp: absent skills have no rows).
+        row_weight = (-1.0 / counts_tensor.clamp(min=1).to(dq_da.dtype))[skills].unsqueeze(1)
+        output_grads = th.autograd.grad(actor_actions, layer_outputs, grad_outputs=dq_da * row_weight)
+        q_detached = q_actor.detach()
+        stats = self._stat_sums
+        start = 0
+        for k, n_rows in enumerate(counts):
+            if n_rows == 0:
+                continue
+            rows = slice(start, start + n_rows)
+            start += n_rows
+            grads: list[th.Tensor] = []
+            for layer_input, output_grad in zip(layer_inputs, output_grads, strict=True):
+                grad_rows = output_grad[rows]
+                grads += [grad_rows.t().mm(layer_input[rows].detach()), grad_rows.sum(0)]
+            self._apply_skill_step(k, tuple(grads))
+            self._skill_updates[k] += 1
+            stats[_N_GLOBAL_STATS + k] -= q_detached[rows].mean()
+        return q_detached
+
+    def _apply_skill_step(self, skill: int, grads: Sequence[th.Tensor]) -> None:
+        adam_step(self.policy.actor_optimizers[skill], self._skill_params[skill], grads)
+
+    @staticmethod
+    def _invert_gradients(dq_da: th.Tensor, actions: th.Tensor) -> th.Tensor:
+        """Hausknecht & Stone's inverting gradients for parameters bounded in [p_min, p_max] = [-1, 1].
+
+        ``dq_da, actions``: ``(B, A)``. Where the gradient asks to increase ``a`` (``dq_da > 0``) it is scaled by
+        ``(p_max - a) / (p_max - p_min)``, otherwise by ``(a - p_min) / (p_max - p_min)``; outside the bounds the
+        factor turns negative and pushes the action back.
+        """
+        scale = th.where(dq_da > 0, (1.0 - actions) * 0.5, (actions + 1.0) * 0.5)
+        return dq_da * scale
+
+    # ------------------------------------------------------------------------------------------------------
+    # Acting
+
+    def _sample_action(
+        self, learning_starts: int, action_noise: ActionNoise | None = None, n_envs: int = 1
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """SB3's warm-up / policy action with optional noise, then epsilon-greedy over the discrete actions.
+
+        :return: (action for ``env.step`` in the env's bounds, action in [-1, 1] for the buffer), each ``(n_envs, A)``.
+        """
+        if self.policy.n_skills > 1 and self._last_obs is not None:
+            obs = th.as_tensor(np.asarray(self._last_obs, dtype=np.float32).reshape(n_envs, -1))
+            skills = self.policy.route(obs)
+            assert skills is not None
+            self._skill_steps += np.bincount(skills.cpu().numpy(), minlength=self.policy.n_skills)
+        else:
+            self._skill_steps[0] += n_envs
+        action, buffer_action = super()._sample_action(learning_starts, action_noise, n_envs)
+        if self._n_discrete == 0 or self.num_timesteps < learning_starts or self.exploration_rate <= 0.0:
+            return action, buffer_action
+        explore = np.random.random_sample(n_envs) < self.exploration_rate
+        if not explore.any():
+            return action, buffer_action
+        n_explore = int(explore.sum())
+        random_actions = np.random.uniform(-1.0, 1.0, size=(n_explore, *buffer_action.shape[1:]))
+        flat = random_actions.reshape(n_explore, -1)
+        flat[np.arange(n_explore), np.random.randint(self._n_discrete, size=n_explore)] = 1.0
+        buffer_action = np.array(buffer_action, dtype=np.float32, copy=True)
+        buffer_action[explore] = random_actions
+        return self.policy.unscale_action(buffer_action), buffer_action
+
+    def _on_step(self) -> None:
+        self.exploration_rate = self.exploration_schedule(self._current_progress_remaining)
+
+    # ------------------------------------------------------------------------------------------------------
+    # Logging
+
+    def _update_info_buffer(self, infos: list[dict[str, Any]], dones: np.ndarray | None = None) -> None:
+        super()._update_info_buffer(infos, dones)
+        if dones is None:
+            return
+        for info, done in zip(infos, dones, strict=True):
+            if done and "status" in info:
+                self._goal_buffer.append(info["status"] == "GOAL")
+
+    def dump_logs(self) -> None:
+        """Record the statistics gathered since the last dump (training means, rollout fractions), then dump."""
+        self._record_stats()
+        super().dump_logs()
+
+    def _record_stats(self) -> None:
+        n_skills = self.policy.n_skills
+        if self._stat_updates > 0:
+            sums = self._stat_sums.cpu().tolist()
+            n = self._stat_updates
+            self.logger.record("train/critic_loss", sums[_STAT_CRITIC_LOSS] / n)
+            self.logger.record("train/actor_loss", sums[_STAT_ACTOR_LOSS] / n)
+            self.logger.record("train/max_q", sums[_STAT_MAX_Q] / n)
+            self.logger.record("train/mean_q", sums[_STAT_MEAN_Q] / n)
+            for k in range(n_skills):
+                if self._skill_updates[k] > 0:
+                    self.logger.record(
+                        f"train/actor_loss_skill_{k}", sums[_N_GLOBAL_STATS + k] / self._skill_updates[k]
+                    )
+        total_steps = int(self._skill_steps.sum())
+        if total_steps > 0:
+            for k in range(n_skills):
+                self.logger.record(f"rollout/skill_{k}_fraction", float(self._skill_steps[k]) / total_steps)
+        if len(self._goal_buffer) > 0:
+            self.logger.record("rollout/goal_rate", float(np.mean(self._goal_buffer)))
+        self.logger.record("rollout/epsilon", self.exploration_rate if self._n_discrete > 0 else 0.0)
+        self._reset_stats()
+
+    # ------------------------------------------------------------------------------------------------------
+    # SB3 plumbing
+
+    def learn(
+        self: SelfSkillDDPG,
+        total_timesteps: int,
+        callback: MaybeCallback = None,
+        log_interval: int = 4,
+        tb_log_name: str = "SkillDDPG",
+        reset_num_timesteps: bool = True,
+        progress_bar: bool = False,
+    ) -> SelfSkillDDPG:
+        return super().learn(
+            total_timesteps=total_timesteps,
+            callback=callback,
+            log_interval=log_interval,
+            tb_log_name=tb_log_name,
+            reset_num_timesteps=reset_num_timesteps,
+            progress_bar=progress_bar,
+        )
+
+    def _excluded_save_params(self) -> list[str]:
+        return [
+            *super()._excluded_save_params(),
+            "actor",
+            "critic",
+            "actor_target",
+            "critic_target",
+            "_online_params",
+            "_target_params",
+            "_skill_params",
+            "_critic_params",
+            "_stat_sums",
+        ]
+
+    def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
+        # Every optimiser is saved: the critic's and one per skill (named attributes of the policy).
+        skill_optimizers = [f"policy.actor_skill_{k}_optimizer" for k in range(self.policy.n_skills)]
+        return ["policy", "policy.critic_optimizer", *skill_optimizers], []

@@ -1,0 +1,224 @@
+"""Glue between sb3_hfo and rl-zoo3 (the experiment runner).
+
+rl-zoo3 keeps its algorithms and Optuna samplers in module-level tables (``rl_zoo3.utils.ALGOS``,
+``rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER`` / ``HYPERPARAMS_CONVERTER``) and builds the ``--algo`` choices
+from ``ALGOS`` *before* it imports ``--gym-packages``. So ``python -m sb3_hfo.train`` (and ``enjoy``,
+``record_video``) call :func:`register_with_rl_zoo` first and then hand over to rl-zoo3's own entry points.
+
+Two rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimentManager`:
+
+* rl-zoo3 turns ``"lin_<x>"`` strings into linear schedules only for the key ``learning_rate``; SkillDDPG has
+  two learning rates (``learning_rate_actor``, ``learning_rate_critic``), so the same conversion is applied to
+  those keys (the paper decays the critic's learning rate during training).
+* During ``-optimize`` rl-zoo3 replaces the config's ``policy_kwargs`` wholesale by the sampled one, which would
+  drop the experiment-defining keys (``n_skills``, ``skill_router``, ``inverting_gradients``); the sampled
+  ``policy_kwargs`` are merged on top of the config's instead.
+
+:class:`HFOEpisodeStatsCallback` logs ``rollout/episodes`` (SB3 excludes ``time/episodes`` from TensorBoard, and
+the paper's figures are plotted against episodes) and ``rollout/goal_rate`` (which SkillDDPG logs itself too,
+with the same definition; the callback makes it available for any SB3 algorithm, e.g. a TD3 baseline).
+"""
+
+from __future__ import annotations
+
+import sys
+from collections import deque
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+from stable_baselines3.common.callbacks import BaseCallback
+
+#: Name under which SkillDDPG appears in rl-zoo3 (``--algo skill_ddpg``, log folder ``logs/skill_ddpg/``).
+ALGO_NAME = "skill_ddpg"
+
+#: Hyperparameters holding a learning rate that rl-zoo3 style strings (``"lin_1e-3"``) or floats may describe.
+SCHEDULE_KEYS: tuple[str, ...] = ("learning_rate", "learning_rate_actor", "learning_rate_critic")
+
+#: Episode end status that counts as a goal (HFO's ``GOAL`` status string, as put in ``info["status"]``).
+GOAL_STATUS = "GOAL"
+
+
+def hfo_env_ids() -> list[str]:
+    """Registered Gymnasium ids of the HFO tasks (imports :mod:`hfo2d`, which registers them)."""
+    import gymnasium as gym
+
+    import hfo2d  # noqa: F401  (registers HFO/* ids)
+
+    return sorted(env_id for env_id in gym.registry if env_id.startswith("HFO/"))
+
+
+def skill_ddpg_class() -> type:
+    """The SkillDDPG class (imported lazily so that ``--help`` stays fast)."""
+    from sb3_hfo.skill_ddpg import SkillDDPG
+
+    return SkillDDPG
+
+
+def parse_schedule(value: Any) -> Any:
+    """Convert an rl-zoo3 style learning-rate value into what SB3 algorithms accept.
+
+    ``"lin_<x>"`` -> linear decay from ``x`` (start of training) to 0 (end of ``n_timesteps``), as rl-zoo3 does
+    for ``learning_rate``; a number or ``"<x>"`` -> constant ``x`` (as a float); a callable is returned unchanged.
+    """
+    from rl_zoo3.utils import SimpleLinearSchedule
+
+    if callable(value):
+        return value
+    if isinstance(value, str):
+        kind, _, number = value.partition("_")
+        if kind == "lin" and number:
+            return SimpleLinearSchedule(float(number))
+        if not number:
+            return float(kind)
+        raise ValueError(f"unknown schedule {value!r}: expected 'lin_<value>' or a number")
+    if isinstance(value, (int, float)):
+        return float(value)
+    raise ValueError(f"invalid learning rate {value!r}")
+
+
+def _experiment_manager_class() -> type:
+    """Build :class:`HFOExperimentManager` lazily (rl_zoo3.exp_manager imports optuna, torch, ...)."""
+    from rl_zoo3.exp_manager import ExperimentManager
+    from rl_zoo3.hyperparams_opt import HYPERPARAMS_SAMPLER
+
+    class HFOExperimentManager(ExperimentManager):
+        """rl-zoo3's ExperimentManager with SkillDDPG's two learning rates and policy_kwargs merging."""
+
+        @staticmethod
+        def _preprocess_schedules(hyperparams: dict[str, Any]) -> dict[str, Any]:
+            for key in SCHEDULE_KEYS:
+                if key in hyperparams:
+                    hyperparams[key] = parse_schedule(hyperparams[key])
+            return hyperparams
+
+        def hyperparameters_optimization(self) -> None:
+            original_sampler = HYPERPARAMS_SAMPLER[self.algo]
+            base_policy_kwargs = dict(self._hyperparams.get("policy_kwargs") or {})
+            HYPERPARAMS_SAMPLER[self.algo] = merge_policy_kwargs(original_sampler, base_policy_kwargs)
+            try:
+                super().hyperparameters_optimization()
+            finally:
+                HYPERPARAMS_SAMPLER[self.algo] = original_sampler
+
+    return HFOExperimentManager
+
+
+def merge_policy_kwargs(
+    sampler: Callable[..., dict[str, Any]], base: dict[str, Any]
+) -> Callable[..., dict[str, Any]]:
+    """Wrap an Optuna sampler so its ``policy_kwargs`` extend ``base`` (the config's) instead of replacing it."""
+
+    def merged_sampler(*args: Any, **kwargs: Any) -> dict[str, Any]:
+        sampled = sampler(*args, **kwargs)
+        sampled["policy_kwargs"] = {**base, **sampled.get("policy_kwargs", {})}
+        return sampled
+
+    return merged_sampler
+
+
+def _playback_class(algo_class: type) -> type:
+    """A subclass whose ``load`` defaults to a 1-transition replay buffer.
+
+    rl-zoo3's enjoy/record_video shrink the replay buffer only for algorithms in a hard-coded local list of
+    off-policy names, which cannot be extended; watching a trained agent needs no buffer.
+    """
+
+    class PlaybackModel(algo_class):  # type: ignore[valid-type, misc]
+        @classmethod
+        def load(cls, path: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
+            kwargs.setdefault("buffer_size", 1)
+            return algo_class.load(path, *args, **kwargs)
+
+    PlaybackModel.__name__ = algo_class.__name__
+    PlaybackModel.__qualname__ = algo_class.__qualname__
+    return PlaybackModel
+
+
+def register_with_rl_zoo(playback: bool = False) -> None:
+    """Make rl-zoo3 know SkillDDPG and the HFO environments. Idempotent.
+
+    :param playback: register a variant whose ``load`` uses a 1-transition replay buffer (enjoy, record_video).
+    """
+    import rl_zoo3.exp_manager
+    import rl_zoo3.hyperparams_opt
+    import rl_zoo3.train
+    import rl_zoo3.utils
+
+    import hfo2d  # noqa: F401  (registers the HFO/* Gymnasium ids)
+    from sb3_hfo.hyperparams_opt import convert_skill_ddpg_params, sample_skill_ddpg_params
+
+    algo_class = skill_ddpg_class()
+    # rl_zoo3.ALGOS, rl_zoo3.utils.ALGOS and the names imported by train/enjoy/record_video are one dict object.
+    rl_zoo3.utils.ALGOS[ALGO_NAME] = _playback_class(algo_class) if playback else algo_class
+    rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER[ALGO_NAME] = sample_skill_ddpg_params
+    rl_zoo3.hyperparams_opt.HYPERPARAMS_CONVERTER[ALGO_NAME] = convert_skill_ddpg_params
+    # train() looks ExperimentManager up in its module namespace at call time.
+    rl_zoo3.train.ExperimentManager = _experiment_manager_class()  # type: ignore[misc]
+
+
+def _has_option(argv: Sequence[str], *names: str) -> bool:
+    return any(arg in names or arg.split("=", 1)[0] in names for arg in argv)
+
+
+def default_algo_argv(argv: Sequence[str], single_thread: bool = False) -> list[str]:
+    """Command-line arguments with ``--algo skill_ddpg`` (and ``--num-threads 1``) added unless given.
+
+    :param single_thread: add ``--num-threads 1`` (train.py and enjoy.py have the option). SkillDDPG's networks
+        are small: one torch thread is fastest, and torch's default (one thread per core) slowed a training run
+        more than tenfold on a 2-core machine shared with other processes (290 -> 20 steps/s).
+    """
+    argv = list(argv)
+    if not _has_option(argv, "--algo"):
+        argv = ["--algo", ALGO_NAME, *argv]
+    if single_thread and not _has_option(argv, "--num-threads"):
+        argv = [*argv, "--num-threads", "1"]
+    return argv
+
+
+def run_rl_zoo_entry_point(
+    entry_point: Callable[[], None], argv: Sequence[str], playback: bool, single_thread: bool = False
+) -> None:
+    """Register SkillDDPG, default ``--algo`` to it (see :func:`default_algo_argv`) and run an rl-zoo3 entry
+    point with ``argv``."""
+    register_with_rl_zoo(playback=playback)
+    sys.argv = [sys.argv[0], *default_algo_argv(argv, single_thread=single_thread)]
+    entry_point()
+
+
+class HFOEpisodeStatsCallback(BaseCallback):
+    """Log per-episode HFO outcomes during training.
+
+    Records, whenever an episode ends (values are written at SB3's next log dump):
+
+    * ``rollout/goal_rate``: fraction of the last ``window`` episodes whose final ``info["status"]`` is ``GOAL``
+      (by default the model's ``stats_window_size``, the window of SB3's ``rollout/ep_rew_mean``: 100 episodes);
+    * ``rollout/episodes``: episodes finished so far (SB3 logs ``time/episodes`` to stdout only, and the
+      paper's Figures 3 and 4 use episodes on the x axis).
+
+    :param window: number of most recent episodes the goal rate averages over (None: the model's
+        ``stats_window_size``, else 100).
+    """
+
+    def __init__(self, window: int | None = None, verbose: int = 0) -> None:
+        super().__init__(verbose)
+        self.window = window
+        self.recent_goals: deque[float] = deque(maxlen=window or 100)
+        self.episodes = 0
+
+    def _init_callback(self) -> None:
+        if self.window is None:
+            self.recent_goals = deque(maxlen=int(getattr(self.model, "_stats_window_size", 100)))
+
+    def _on_step(self) -> bool:
+        dones = np.asarray(self.locals.get("dones", []), dtype=bool)
+        infos: Sequence[dict[str, Any]] = self.locals.get("infos", [])
+        for done, info in zip(dones, infos, strict=False):
+            if not done:
+                continue
+            self.episodes += 1
+            self.recent_goals.append(float(info.get("status") == GOAL_STATUS))
+        if self.recent_goals and dones.any():
+            self.logger.record("rollout/goal_rate", float(np.mean(self.recent_goals)))
+            self.logger.record("rollout/episodes", self.episodes)
+        return True

@@ -1,0 +1,357 @@
+"""HFOPolicy / HFOActor / HFOCritic and the skill routers: architecture, initialisation, scales, routing, errors."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+
+import gymnasium as gym
+import numpy as np
+import pytest
+import torch as th
+from gymnasium import spaces
+from torch import nn
+
+from sb3_hfo import (
+    ROUTERS,
+    FieldHalfRouter,
+    HFOPolicy,
+    SingleSkillRouter,
+    SkillDDPG,
+    SkillRouter,
+    make_router,
+)
+from sb3_hfo.common.routers import validate_skills
+from sb3_hfo.common.toy_env import HybridTargetEnv
+
+OBS_SPACE = spaces.Box(-1.0, 1.0, (58,), np.float32)
+ACTION_SPACE = spaces.Box(0.0, 1.0, (8,), np.float32)
+
+
+@pytest.fixture(autouse=True)
+def one_torch_thread() -> Iterator[None]:
+    """Batch-32 networks run fastest (and reproducibly) on one thread, especially on a shared 2-core machine."""
+    previous = th.get_num_threads()
+    th.set_num_threads(1)
+    yield
+    th.set_num_threads(previous)
+
+
+def make_policy(**kwargs: object) -> HFOPolicy:
+    th.manual_seed(0)
+    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **kwargs)  # type: ignore[arg-type]
+
+
+def linear_sizes(module: nn.Module) -> list[tuple[int, int]]:
+    return [(m.in_features, m.out_features) for m in module.modules() if isinstance(m, nn.Linear)]
+
+
+def batch_obs(n: int = 32, seed: int = 0) -> th.Tensor:
+    return th.as_tensor(np.random.default_rng(seed).uniform(-1, 1, (n, 58)), dtype=th.float32)
+
+
+# ----------------------------------------------------------------------------------------------------------
+# Architecture (seed paper, Method / Figure 1)
+
+
+def test_actor_layers_are_400_300_200_then_8_with_leaky_relu_and_tanh() -> None:
+    policy = make_policy()
+    actor = policy.actor
+    assert linear_sizes(actor.trunk) == [(58, 400), (400, 300), (300, 200)]
+    assert [linear_sizes(head) for head in actor.heads] == [[(200, 8)]]
+    activations = [m for m in actor.trunk if not isinstance(m, nn.Linear)]
+    assert len(activations) == 3
+    assert all(isinstance(m, nn.LeakyReLU) and m.negative_slope == 0.01 for m in activations)
+    # Each Linear of the trunk is followed by its activation; the output layer by tanh only.
+    assert [type(m) for m in actor.trunk] == [nn.Linear, nn.LeakyReLU] * 3
+    assert actor.squash
+    with th.no_grad():
+        out = actor(batch_obs())
+    assert out.shape == (32, 8)
+    assert float(out.abs().max()) < 1.0
+
+
+def test_critic_injects_the_action_at_its_second_layer() -> None:
+    policy = make_policy()
+    critic = policy.critic
+    assert linear_sizes(critic.obs_net) == [(58, 400)]
+    assert linear_sizes(critic.joint_net) == [(408, 300), (300, 200), (200, 1)]
+    assert [type(m) for m in critic.joint_net] == [
+        nn.Linear,
+        nn.LeakyReLU,
+        nn.Linear,
+        nn.LeakyReLU,
+        nn.Linear,
+    ]
+    leaky = [m for m in critic.modules() if isinstance(m, nn.LeakyReLU)]
+    assert len(leaky) == 3 and all(m.negative_slope == 0.01 for m in leaky)
+    assert isinstance(critic.joint_net[-1], nn.Linear)  # no activation after Q
+
+    seen: dict[str, th.Tensor] = {}
+    handles = [
+        critic.obs_net[0].register_forward_hook(lambda m, inp, out: seen.__setitem__("first", inp[0])),
+        critic.action_layer.register_forward_hook(lambda m, inp, out: seen.__setitem__("second", inp[0])),
+    ]
+    obs, action = batch_obs(), th.rand(32, 8) * 2 - 1
+    with th.no_grad():
+        q = critic(obs, action)
+    for handle in handles:
+        handle.remove()
+    assert q.shape == (32, 1)
+    assert seen["first"].shape == (32, 58) and th.equal(seen["first"], obs)  # state only at layer one
+    assert seen["second"].shape == (32, 408)
+    assert th.equal(seen["second"][:, 400:], action)  # the action enters at layer two
+    assert float(seen["second"][:, :400].min()) >= -0.01 * float(seen["second"][:, :400].abs().max())
+
+
+def test_net_arch_list_dict_and_hausknecht_stone_sizes() -> None:
+    policy = make_policy(net_arch=dict(pi=[64, 32], qf=[48, 24, 12]))
+    assert linear_sizes(policy.actor) == [(58, 64), (64, 32), (32, 8)]
+    assert linear_sizes(policy.critic) == [(58, 48), (56, 24), (24, 12), (12, 1)]
+    hs = make_policy(net_arch=[1024, 512, 256, 128], inverting_gradients=True)
+    assert linear_sizes(hs.actor.trunk) == [(58, 1024), (1024, 512), (512, 256), (256, 128)]
+    assert linear_sizes(hs.critic.joint_net)[0] == (1032, 512)
+    for bad in ([], [0, 4], dict(pi=[4]), "400-300", [4.5]):
+        with pytest.raises(ValueError, match="net_arch"):
+            make_policy(net_arch=bad)
+
+
+def test_weights_truncated_normal_std_1e_2_and_zero_biases() -> None:
+    policy = make_policy()
+    weights = th.cat(
+        [m.weight.detach().flatten() for m in policy.critic.modules() if isinstance(m, nn.Linear)]
+    )
+    assert float(weights.abs().max()) <= 0.02  # truncated at two standard deviations
+    # Std of N(0, 0.01) truncated at +-2 sigma is 0.0088.
+    assert 0.0083 < float(weights.std()) < 0.0093
+    assert all(
+        float(m.bias.detach().abs().max()) == 0.0 for m in policy.modules() if isinstance(m, nn.Linear)
+    )
+    # Targets start as exact copies.
+    for online, target in zip(policy.actor.parameters(), policy.actor_target.parameters(), strict=True):
+        assert th.equal(online, target) and not target.requires_grad
+
+
+def test_env_action_is_sigmoid_of_twice_the_last_linear_layer() -> None:
+    policy = make_policy(net_arch=[64, 64])
+    for (
+        layer
+    ) in policy.actor.modules():  # larger outputs than the paper's init, so the sigmoid is not just 0.5
+        if isinstance(layer, nn.Linear):
+            nn.init.normal_(layer.weight, std=1.0)
+    obs = batch_obs(8)
+    with th.no_grad():
+        z = policy.actor.heads[0](policy.actor.trunk(obs))
+    env_action, _ = policy.predict(obs.numpy(), deterministic=True)
+    np.testing.assert_allclose(env_action, th.sigmoid(2 * z).numpy(), atol=1e-6)
+    assert env_action.min() < 0.05 and env_action.max() > 0.95
+
+
+def test_critic_sees_one_scale_from_buffer_and_actor() -> None:
+    """Actions stored by acting (buffer) and actions produced by the actor in an update are the same numbers."""
+    env = HybridTargetEnv()
+    model = SkillDDPG(
+        "HFOPolicy",
+        env,
+        learning_starts=0,
+        gradient_steps=0,  # act with the policy, never update: the actor stays fixed
+        exploration_initial_eps=0.0,
+        exploration_final_eps=0.0,
+        seed=0,
+        policy_kwargs=dict(net_arch=[32, 32]),
+    )
+    for layer in model.policy.actor.modules():
+        if isinstance(layer, nn.Linear):
+            nn.init.normal_(layer.weight, std=1.0)
+    model.learn(200)
+    buffer = model.replay_buffer
+    assert buffer is not None
+    stored_obs = th.as_tensor(buffer.observations[: buffer.pos, 0])
+    stored_actions = th.as_tensor(buffer.actions[: buffer.pos, 0])
+    with th.no_grad():
+        actor_actions = model.policy.actor(stored_obs)
+    # Identical up to float32 rounding of SB3's unscale (to [0, 1]) / rescale (back to [-1, 1]) round trip.
+    th.testing.assert_close(stored_actions, actor_actions, atol=1e-5, rtol=0)
+    for actions in (stored_actions, actor_actions):
+        assert float(actions.min()) >= -1.0 and float(actions.max()) <= 1.0
+        assert float(actions.min()) < -0.9 and float(actions.max()) > 0.9  # both reach the ends of [-1, 1]
+    # Random warm-up actions (uniform in the env's Box [0, 1]) are stored in the same [-1, 1] scale.
+    warm = SkillDDPG("HFOPolicy", env, learning_starts=300, seed=0, policy_kwargs=dict(net_arch=[8]))
+    warm.learn(300)
+    assert warm.replay_buffer is not None
+    random_actions = warm.replay_buffer.actions[:300, 0]
+    assert random_actions.min() < -0.95 and random_actions.max() > 0.95
+    assert random_actions.min() >= -1.0 and random_actions.max() <= 1.0
+
+
+def test_inverting_gradients_actor_is_linear_and_acting_clips() -> None:
+    policy = make_policy(net_arch=[16], inverting_gradients=True)
+    assert not policy.actor.squash
+    with th.no_grad():
+        policy.actor.heads[0].weight.fill_(0.0)
+        policy.actor.heads[0].bias.copy_(th.tensor([3.0, -3.0, 0.5, 0, 0, 0, 0, 0]))
+    obs = batch_obs(4)
+    with th.no_grad():
+        raw = policy.actor(obs)
+    assert float(raw.max()) == pytest.approx(3.0) and float(raw.min()) == pytest.approx(-3.0)
+    env_action, _ = policy.predict(obs.numpy(), deterministic=True)
+    np.testing.assert_allclose(env_action[0, :3], [1.0, 0.0, 0.75], atol=1e-6)
+
+
+# ----------------------------------------------------------------------------------------------------------
+# Skills
+
+
+def test_each_row_uses_its_own_skill_head() -> None:
+    policy = make_policy(net_arch=[16, 16], n_skills=2)
+    for layer in policy.actor.modules():
+        if isinstance(layer, nn.Linear):
+            nn.init.normal_(layer.weight, std=0.5)
+    obs = batch_obs(64)
+    skills = policy.route(obs)
+    assert skills is not None
+    expected_skills = (obs[:, 46] <= 0).long()
+    assert th.equal(skills, expected_skills) and 0 < int(skills.sum()) < 64
+    with th.no_grad():
+        chosen = policy.actor(obs, skills)
+        every = policy.actor.all_skills(obs)
+    th.testing.assert_close(chosen, every[th.arange(64), skills])
+    assert not th.allclose(every[:, 0], every[:, 1])
+    # The policy's greedy action uses the routed head too.
+    th.testing.assert_close(policy._predict(obs), chosen)
+
+
+def test_optimizers_one_per_skill_over_trunk_and_own_head() -> None:
+    policy = make_policy(net_arch=[16, 8], n_skills=3, skill_router=FieldHalfRouter3())
+    trunk = {id(p) for p in policy.actor.trunk.parameters()}
+    for k, optimizer in enumerate(policy.actor_optimizers):
+        assert optimizer is getattr(policy, f"actor_skill_{k}_optimizer")
+        owned = {id(p) for group in optimizer.param_groups for p in group["params"]}
+        assert owned == trunk | {id(p) for p in policy.actor.heads[k].parameters()}
+        assert isinstance(optimizer, th.optim.Adam) and optimizer.defaults["fused"]
+    critic_owned = {id(p) for group in policy.critic_optimizer.param_groups for p in group["params"]}
+    assert critic_owned == {id(p) for p in policy.critic.parameters()}
+
+
+class FieldHalfRouter3(SkillRouter):
+    """Three bands of the x feature (for tests)."""
+
+    n_skills = 3
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        x = obs[..., 46]
+        if isinstance(x, th.Tensor):
+            return (x < 0.3).long() + (x < -0.3).long()
+        return (x < 0.3).astype(np.int64) + (x < -0.3).astype(np.int64)
+
+
+# ----------------------------------------------------------------------------------------------------------
+# Routers
+
+
+def test_field_half_router_splits_at_x_feature_zero() -> None:
+    router = FieldHalfRouter()
+    obs = np.zeros((4, 58), np.float32)
+    obs[:, 46] = [0.9, 1e-6, 0.0, -0.5]  # obs[46] > 0  <=>  agent x < 26.25 m  <=>  skill 0
+    np.testing.assert_array_equal(router(obs), [0, 0, 1, 1])
+    assert router(obs).dtype == np.int64
+    as_tensor = router(th.as_tensor(obs))
+    assert isinstance(as_tensor, th.Tensor) and as_tensor.dtype == th.long
+    assert as_tensor.tolist() == [0, 0, 1, 1]
+    np.testing.assert_array_equal(router.numpy_route(obs), [0, 0, 1, 1])
+    np.testing.assert_array_equal(SingleSkillRouter()(obs), [0, 0, 0, 0])
+    with pytest.raises(ValueError, match="only 10 features"):
+        router(np.zeros((2, 10), np.float32))
+
+
+def test_field_half_router_matches_hfo_observation() -> None:
+    import hfo2d  # noqa: F401
+
+    env = gym.make("HFO/EmptyGoal-v0")
+    router = FieldHalfRouter()
+    for x, skill in ((10.0, 0), (26.0, 0), (27.0, 1), (45.0, 1)):
+        obs, _ = env.reset(seed=0, options={"player": (x, 0.0, 0.0), "ball": (x + 2.0, 0.0)})
+        assert int(router.numpy_route(obs[None])[0]) == skill, x
+    env.close()
+
+
+def test_router_names_and_consistency_errors() -> None:
+    assert set(ROUTERS) == {"single", "field_half"}
+    assert isinstance(make_router("field_half", 2), FieldHalfRouter)
+    assert isinstance(make_router(None, 1), SingleSkillRouter)
+    assert isinstance(make_router(None, 2), FieldHalfRouter)
+    with pytest.raises(ValueError, match=r"Unknown skill_router 'halves'.*\['field_half', 'single'\]"):
+        make_router("halves", 2)
+    with pytest.raises(ValueError, match="routes to 2 skill.*n_skills=1"):
+        make_router("field_half", 1)
+    with pytest.raises(ValueError, match="routes to 1 skill.*n_skills=2"):
+        make_router("single", 2)
+    with pytest.raises(ValueError, match="n_skills=3 needs an explicit skill_router"):
+        make_router(None, 3)
+    for bad in (0, -1, 1.5, True):
+        with pytest.raises(ValueError, match="n_skills must be an integer >= 1"):
+            make_router(None, bad)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="callable"):
+        make_router(object(), 1)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="n_skills"):
+        make_router(lambda obs: obs[:, 0], 2)  # type: ignore[arg-type]
+    # The same checks surface from the policy.
+    with pytest.raises(ValueError, match="Unknown skill_router"):
+        make_policy(n_skills=2, skill_router="nope")
+
+
+class BadRouter(SkillRouter):
+    n_skills = 2
+
+    def __init__(self, mode: str) -> None:
+        self.mode = mode
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        n = obs.shape[0]
+        if self.mode == "range":
+            return th.full((n,), 2, dtype=th.long)
+        if self.mode == "negative":
+            return th.full((n,), -1, dtype=th.long)
+        if self.mode == "shape":
+            return th.zeros((n, 1), dtype=th.long)
+        return th.zeros(n)  # float
+
+
+@pytest.mark.parametrize(
+    ("mode", "message"),
+    [
+        ("range", r"skill indices in \[2, 2\].*\[0, 2\)"),
+        ("negative", r"skill indices in \[-1, -1\]"),
+        ("shape", r"returned shape \(5, 1\).*expected \(5,\)"),
+        ("float", "integer skill indices"),
+    ],
+)
+def test_router_output_is_validated_at_first_call(mode: str, message: str) -> None:
+    policy = make_policy(net_arch=[8], n_skills=2, skill_router=BadRouter(mode))
+    with pytest.raises(ValueError, match=message):
+        policy.predict(np.zeros((5, 58), np.float32))
+    with pytest.raises(ValueError, match="must return an array"):
+        validate_skills([0, 1], 2, 2, "router")
+
+
+def test_router_objects_compare_and_pickle() -> None:
+    import pickle
+
+    router = FieldHalfRouter(feature_index=3, threshold=0.25)
+    clone = pickle.loads(pickle.dumps(router))
+    assert clone == router and clone != FieldHalfRouter() and hash(clone) == hash(router)
+    assert "feature_index=3" in repr(router)
+
+
+# ----------------------------------------------------------------------------------------------------------
+# Bad spaces
+
+
+def test_policy_rejects_unsupported_spaces() -> None:
+    with pytest.raises(ValueError, match="Box action space"):
+        HFOPolicy(OBS_SPACE, spaces.Discrete(3), lambda _: 1e-3)
+    with pytest.raises(ValueError, match="bounded Box"):
+        HFOPolicy(OBS_SPACE, spaces.Box(-np.inf, np.inf, (2,)), lambda _: 1e-3)
+    with pytest.raises(ValueError, match="Box observation space"):
+        HFOPolicy(spaces.Discrete(4), ACTION_SPACE, lambda _: 1e-3)
+    with pytest.raises(ValueError, match="weight_init_std"):
+        make_policy(weight_init_std=0.0)

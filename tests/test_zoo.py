@@ -1,0 +1,434 @@
+"""rl-zoo3 integration: configs, train / evaluate / plot / record_video command lines, error messages.
+
+The expensive part is one subprocess (``trained_runs``) that trains every config in ``zoo_configs/`` in turn for
+a few hundred steps with tiny networks, through the same ``sb3_hfo.train`` code path as the documented
+commands; per-config tests then read its report. Everything else runs in-process or in short subprocesses.
+Under pytest-xdist use ``--dist loadgroup`` so that the training runs once (the tests share an xdist group).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+import numpy as np
+import pytest
+import yaml
+
+pytestmark = pytest.mark.xdist_group("zoo")
+
+REPO = Path(__file__).resolve().parents[1]
+CONFIG_DIR = REPO / "zoo_configs"
+CONFIGS = sorted(CONFIG_DIR.glob("*.yml"))
+CONFIG_NAMES = [path.stem for path in CONFIGS]
+EXPERIMENTS = ("e1", "e2", "e3", "e4", "e5", "e6")
+
+#: Smoke-run settings: a few hundred steps, tiny networks, a small buffer, log every episode.
+SMOKE_STEPS = 250
+SMOKE_NET_ARCH = [16, 16]
+
+
+def _load_config(path: Path) -> tuple[str, dict[str, Any]]:
+    with open(path) as f:
+        content = yaml.safe_load(f)
+    assert isinstance(content, dict) and len(content) == 1, f"{path.name}: expected exactly one env id entry"
+    ((env_id, hyperparams),) = content.items()
+    return env_id, hyperparams
+
+
+def _env_dir(env_id: str) -> str:
+    # rl-zoo3 (huggingface_sb3.EnvironmentName) replaces "/" by "-" in folder names.
+    return env_id.replace("/", "-")
+
+
+def _smoke_argv(config: Path, root: Path) -> list[str]:
+    env_id, hyperparams = _load_config(config)
+    # --hyperparams replaces whole values, so the config's policy_kwargs are kept and only net_arch shrinks.
+    policy_kwargs = {**(hyperparams.get("policy_kwargs") or {}), "net_arch": SMOKE_NET_ARCH}
+    argv = [
+        "--algo",
+        "skill_ddpg",
+        "--env",
+        env_id,
+        "--conf-file",
+        str(config),
+        "--seed",
+        "0",
+        "-n",
+        str(SMOKE_STEPS),
+        "--log-interval",
+        "1",
+        "--tensorboard-log",
+        str(root / "tb" / config.stem),
+        "-f",
+        str(root / "logs" / config.stem),
+        "--num-threads",
+        "1",
+        "--hyperparams",
+        "learning_starts:100",
+        "buffer_size:2000",
+        f"policy_kwargs:{policy_kwargs!r}",
+    ]
+    # One run exercises rl-zoo3's periodic evaluation callback too.
+    argv += (
+        ["--eval-freq", "200", "--eval-episodes", "1"]
+        if config.stem == "e1_empty_goal_fast"
+        else ["--eval-freq", "-1"]
+    )
+    return argv
+
+
+# Trains every config in one interpreter (imports of torch / SB3 / rl-zoo3 dominate a single run's cost) and
+# records, per config, either "ok" or the traceback, so one broken config fails only its own test.
+DRIVER = """
+import json, sys, traceback
+from sb3_hfo.train import main
+argvs, report_path = json.loads(sys.argv[1]), sys.argv[2]  # main() replaces sys.argv
+report = {}
+for name, argv in argvs.items():
+    try:
+        main(argv)
+        report[name] = "ok"
+    except BaseException:
+        report[name] = traceback.format_exc()
+with open(report_path, "w") as f:
+    json.dump(report, f)
+"""
+
+
+def _run(args: list[str], cwd: Path, timeout: float = 120) -> subprocess.CompletedProcess[str]:
+    env = {**os.environ, "SDL_VIDEODRIVER": "dummy", "MPLBACKEND": "Agg", "OMP_NUM_THREADS": "1"}
+    return subprocess.run(
+        [sys.executable, *args],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+    )
+
+
+@pytest.fixture(scope="module")
+def trained_runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict[str, str], str]:
+    """Train every config briefly; returns (root folder, per-config report, combined output)."""
+    root = tmp_path_factory.mktemp("zoo")
+    argvs = {config.stem: _smoke_argv(config, root) for config in CONFIGS}
+    report_file = root / "report.json"
+    result = _run(["-c", DRIVER, json.dumps(argvs), str(report_file)], cwd=root, timeout=300)
+    assert report_file.is_file(), (
+        f"training driver crashed:\n{result.stdout[-3000:]}\n{result.stderr[-3000:]}"
+    )
+    return root, json.loads(report_file.read_text()), result.stdout + result.stderr
+
+
+def _model_path(root: Path, config_name: str) -> Path:
+    env_id, _ = _load_config(CONFIG_DIR / f"{config_name}.yml")
+    return root / "logs" / config_name / "skill_ddpg" / f"{_env_dir(env_id)}_1" / f"{_env_dir(env_id)}.zip"
+
+
+# ------------------------------------------------------------------------------------------------------------------
+# Configs (no training)
+
+
+def test_every_experiment_has_a_paper_and_a_fast_config() -> None:
+    for experiment in EXPERIMENTS:
+        names = [name for name in CONFIG_NAMES if name.startswith(experiment + "_")]
+        assert len([n for n in names if n.endswith("_fast")]) == 1, f"{experiment}: {names}"
+        assert len([n for n in names if not n.endswith("_fast")]) == 1, f"{experiment}: {names}"
+
+
+@pytest.mark.parametrize("config", CONFIGS, ids=CONFIG_NAMES)
+def test_config_is_valid_and_documents_its_command(config: Path) -> None:
+    import hfo2d
+
+    env_id, hyperparams = _load_config(config)
+    assert env_id in hfo2d.ENV_IDS
+    for key in ("learning_rate_actor", "tau", "gamma", "batch_size", "buffer_size", "n_timesteps"):
+        # PyYAML reads "1e-4" (no dot) as a string; every number must really be a number.
+        assert isinstance(hyperparams[key], (int, float)), f"{key} = {hyperparams[key]!r}"
+    assert re.fullmatch(r"lin_[0-9.]+|[0-9.]+", str(hyperparams["learning_rate_critic"]))
+    text = config.read_text()
+    command = f"python -m sb3_hfo.train --algo skill_ddpg --env {env_id} --conf-file zoo_configs/{config.name} --seed 0"
+    assert command in text, f"{config.name} must document its own command line"
+    skills = 2 if "skills" in config.stem else 1
+    assert hyperparams["policy_kwargs"]["n_skills"] == skills
+    assert hyperparams["policy_kwargs"]["inverting_gradients"] is ("inverting" in config.stem)
+
+
+@pytest.mark.parametrize("config", [c for c in CONFIGS if not c.stem.endswith("_fast")], ids=lambda c: c.stem)
+def test_paper_configs_use_the_paper_settings(config: Path) -> None:
+    _, hyperparams = _load_config(config)
+    assert hyperparams["batch_size"] == 32
+    assert hyperparams["learning_rate_actor"] == pytest.approx(1e-4)
+    assert hyperparams["learning_rate_critic"] == "lin_0.001"
+    assert hyperparams["tau"] == pytest.approx(1e-4)
+    assert hyperparams["train_freq"] == 1 and hyperparams["gradient_steps"] == 1
+    assert hyperparams["n_timesteps"] == 50_000 * 500
+    expected_arch = [1024, 512, 256, 128] if "inverting" in config.stem else [400, 300, 200]
+    assert hyperparams["policy_kwargs"]["net_arch"] == expected_arch
+    assert {
+        "stable_baselines3.common.callbacks.StopTrainingOnMaxEpisodes": {"max_episodes": 50_000}
+    } in hyperparams["callback"]
+
+
+# ------------------------------------------------------------------------------------------------------------------
+# Pure helpers
+
+
+def test_wilson_interval_matches_reference_values() -> None:
+    from sb3_hfo.evaluate import wilson_interval
+
+    assert wilson_interval(0, 10) == pytest.approx((0.0, 0.2775), abs=1e-4)
+    assert wilson_interval(5, 10) == pytest.approx((0.2366, 0.7634), abs=1e-4)
+    assert wilson_interval(10, 10) == pytest.approx((0.7225, 1.0), abs=1e-4)
+    assert wilson_interval(0, 0) == (0.0, 1.0)
+
+
+def test_summarize_counts_goals_kicks_and_skills() -> None:
+    from sb3_hfo.evaluate import EpisodeRecord, summarize
+
+    records = [
+        EpisodeRecord("GOAL", 80, 6.0, 3, [100.0, 50.0, 30.0], 10, [60, 20]),
+        EpisodeRecord("GOAL", 120, 5.0, 1, [90.0], 0, [100, 20]),
+        EpisodeRecord("OUT_OF_BOUNDS", 50, -1.0, 2, [10.0, 20.0], 5, [50, 0]),
+    ]
+    result = summarize(
+        records, model="m.zip", env_id="HFO/EmptyGoal-v0", seed=0, deterministic=True, n_skills=2
+    )
+    assert result.goals == 2 and result.scoring_rate == pytest.approx(2 / 3)
+    assert result.mean_steps_to_goal == pytest.approx(100.0)  # scoring episodes only
+    assert result.kicks_per_goal == pytest.approx(2.0)  # (3 + 1) kicks / 2 goals
+    assert result.mean_kick_power == pytest.approx(50.0)  # over all 6 executed kicks
+    assert result.dribble_fraction == pytest.approx(15 / 250)
+    assert result.skill_fractions == pytest.approx([210 / 250, 40 / 250])
+    assert result.status_counts == {"GOAL": 2, "OUT_OF_BOUNDS": 1}
+
+
+def test_evaluation_loop_counts_goals_and_kicks_of_a_scoring_policy() -> None:
+    import gymnasium as gym
+
+    import hfo2d
+    from sb3_hfo.evaluate import run_episodes, summarize
+
+    env = gym.make("HFO/EmptyGoal-v0")
+
+    class ScriptedStriker:  # the model interface run_episodes needs: predict(obs) -> (action, state)
+        def predict(self, obs: np.ndarray, deterministic: bool = False) -> tuple[np.ndarray, None]:
+            return hfo2d.heuristic(env, obs), None
+
+    records = run_episodes(ScriptedStriker(), env, episodes=5, seed=0, deterministic=True, n_skills=1)
+    result = summarize(
+        records, model="heuristic", env_id="HFO/EmptyGoal-v0", seed=0, deterministic=True, n_skills=1
+    )
+    assert result.episodes == 5 and sum(result.status_counts.values()) == 5
+    assert result.goals >= 3  # the scripted striker scores nearly always against an empty goal
+    assert (
+        result.kicks_per_goal is not None and result.kicks_per_goal >= 1.0
+    )  # a goal needs at least one kick
+    assert result.mean_kick_power is not None and 0.0 < result.mean_kick_power <= 100.0
+    assert result.mean_steps_to_goal is not None and 0 < result.mean_steps_to_goal < 500
+    assert 0.0 < result.dribble_fraction < 1.0  # it runs onto the ball before kicking
+
+
+def test_parse_schedule_handles_rl_zoo_strings() -> None:
+    from sb3_hfo.zoo import parse_schedule
+
+    schedule = parse_schedule("lin_0.001")
+    assert schedule(1.0) == pytest.approx(1e-3) and schedule(0.5) == pytest.approx(5e-4)
+    assert parse_schedule(0.0003) == pytest.approx(3e-4)
+    assert parse_schedule("0.0003") == pytest.approx(3e-4)
+    with pytest.raises(ValueError, match="unknown schedule"):
+        parse_schedule("exp_0.1")
+
+
+def test_optuna_sampler_returns_constructor_arguments() -> None:
+    import optuna
+
+    from sb3_hfo.hyperparams_opt import NET_ARCHS, convert_skill_ddpg_params, sample_skill_ddpg_params
+
+    study = optuna.create_study(sampler=optuna.samplers.RandomSampler(seed=0))
+    trial = study.ask()
+    sampled = sample_skill_ddpg_params(trial, n_actions=8, n_envs=1, additional_args={})
+    assert 0.95 <= sampled["gamma"] < 1.0
+    assert sampled["gradient_steps"] == sampled["train_freq"]
+    assert sampled["policy_kwargs"]["net_arch"] in NET_ARCHS.values()
+    assert callable(sampled["learning_rate_critic"]) or isinstance(sampled["learning_rate_critic"], float)
+    assert "noise_type" not in sampled and "action_noise" in sampled
+    # --trial-id path: raw Optuna values -> config-file values.
+    converted = convert_skill_ddpg_params(trial.params)
+    assert converted["batch_size"] == 2 ** trial.params["batch_size_pow"]
+
+
+def test_wrapper_defaults_algo_and_threads_but_keeps_explicit_values() -> None:
+    from sb3_hfo.zoo import default_algo_argv
+
+    assert default_algo_argv(["--env", "X"], single_thread=True) == [
+        "--algo",
+        "skill_ddpg",
+        "--env",
+        "X",
+        "--num-threads",
+        "1",
+    ]
+    assert default_algo_argv(["--algo=td3", "--num-threads", "4"], single_thread=True) == [
+        "--algo=td3",
+        "--num-threads",
+        "4",
+    ]
+
+
+def test_train_reports_unknown_env_and_missing_config_in_one_line() -> None:
+    from sb3_hfo.train import main
+
+    with pytest.raises(
+        SystemExit, match=r"unknown env id 'HFO/NoSuchTask-v0'; registered HFO ids: .*HFO/Keeper-v0"
+    ):
+        main(["--env", "HFO/NoSuchTask-v0", "--conf-file", "zoo_configs/e1_empty_goal_fast.yml"])
+    with pytest.raises(SystemExit, match="--conf-file is required"):
+        main(["--env", "HFO/EmptyGoal-v0"])
+
+
+def test_merge_policy_kwargs_keeps_the_experiment_keys() -> None:
+    from sb3_hfo.zoo import merge_policy_kwargs
+
+    def sampler(*_: Any) -> dict[str, Any]:
+        return {"policy_kwargs": {"net_arch": [8]}}
+
+    merged = merge_policy_kwargs(sampler, {"n_skills": 2, "net_arch": [400]})()
+    assert merged["policy_kwargs"] == {"n_skills": 2, "net_arch": [8]}
+
+
+def test_moving_average_and_episode_estimate() -> None:
+    from sb3_hfo.plot import Run, moving_average
+
+    assert moving_average(np.array([1.0, 3.0, 5.0, 7.0]), 2) == pytest.approx([1.0, 2.0, 4.0, 6.0])
+    run = Run("r", {"rollout/ep_len_mean": (np.array([100.0, 300.0]), np.array([100.0, 50.0]))})
+    episodes, name = run.episodes_at(np.array([100.0, 300.0]))
+    assert name == "episodes (estimated)" and episodes == pytest.approx([1.0, 5.0])
+
+
+def test_episode_stats_callback_logs_goal_rate() -> None:
+    from sb3_hfo.zoo import HFOEpisodeStatsCallback
+
+    class Recorder:
+        def __init__(self) -> None:
+            self.values: dict[str, float] = {}
+
+        def record(self, key: str, value: float) -> None:
+            self.values[key] = value
+
+    callback = HFOEpisodeStatsCallback(window=2)
+    recorder = Recorder()
+    callback.model = SimpleNamespace(logger=recorder)  # type: ignore[assignment]  (BaseCallback.logger reads it)
+    for status in ("GOAL", "OUT_OF_BOUNDS", "GOAL"):
+        callback.locals = {"dones": np.array([True]), "infos": [{"status": status}]}
+        callback._on_step()
+    assert recorder.values == {"rollout/goal_rate": 0.5, "rollout/episodes": 3}
+
+
+# ------------------------------------------------------------------------------------------------------------------
+# End to end (one training subprocess for all configs)
+
+
+@pytest.mark.parametrize("config_name", CONFIG_NAMES)
+def test_config_trains_and_saves_a_model(
+    trained_runs: tuple[Path, dict[str, str], str], config_name: str
+) -> None:
+    root, report, output = trained_runs
+    assert report.get(config_name) == "ok", report.get(config_name, output[-3000:])
+    assert _model_path(root, config_name).is_file()
+
+
+def test_evaluate_reports_json_for_an_rl_zoo_run_folder(
+    trained_runs: tuple[Path, dict[str, str], str],
+) -> None:
+    root, _, _ = trained_runs
+    run_folder = _model_path(root, "e2_empty_goal_skills_fast").parent
+    out = root / "eval.json"
+    result = _run(
+        ["-m", "sb3_hfo.evaluate", str(run_folder), "--episodes", "3", "--seed", "1", "--json", str(out)],
+        cwd=root,
+    )
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert "scoring rate" in result.stdout
+    report = json.loads(out.read_text())
+    assert report["env_id"] == "HFO/EmptyGoal-v0"  # read from the run folder's args.yml
+    assert report["episodes"] == 3 and sum(report["status_counts"].values()) == 3
+    assert report["n_skills"] == 2 and len(report["skill_fractions"]) == 2
+    assert sum(report["skill_fractions"]) == pytest.approx(1.0)
+    for key in (
+        "scoring_rate",
+        "scoring_rate_ci95",
+        "mean_steps_to_goal",
+        "kicks_per_goal",
+        "mean_kick_power",
+    ):
+        assert key in report
+    assert report["dribble_fraction"] >= 0.0
+
+
+def test_evaluate_unknown_env_id_lists_hfo_ids(trained_runs: tuple[Path, dict[str, str], str]) -> None:
+    root, _, _ = trained_runs
+    model = _model_path(root, "e1_empty_goal_fast")
+    result = _run(
+        ["-m", "sb3_hfo.evaluate", str(model), "--env", "HFO/NoSuchTask-v0", "--episodes", "1"], cwd=root
+    )
+    assert result.returncode == 2
+    assert "unknown env id 'HFO/NoSuchTask-v0'" in result.stderr
+    assert "HFO/EmptyGoal-v0" in result.stderr and "HFO/Keeper-v0" in result.stderr
+    assert "Traceback" not in result.stderr
+
+
+def test_evaluate_missing_model_is_a_clear_error(tmp_path: Path) -> None:
+    result = _run(
+        ["-m", "sb3_hfo.evaluate", str(tmp_path / "nope.zip"), "--env", "HFO/EmptyGoal-v0"], cwd=tmp_path
+    )
+    assert result.returncode == 2
+    assert "model file not found" in result.stderr and "Traceback" not in result.stderr
+
+
+def test_plot_writes_a_png_with_the_runs(trained_runs: tuple[Path, dict[str, str], str]) -> None:
+    from sb3_hfo.plot import collect_runs
+
+    root, _, _ = trained_runs
+    logdirs = [str(root / "tb" / "e1_empty_goal_fast"), str(root / "tb" / "e2_empty_goal_skills_fast")]
+    runs = collect_runs(logdirs, ["no skills", "skills"])
+    assert [run.label for run in runs] == ["no skills", "skills"]
+    for run in runs:
+        for tag in ("train/critic_loss", "rollout/ep_rew_mean", "rollout/goal_rate", "rollout/episodes"):
+            assert tag in run.scalars, f"{run.label}: {tag} not logged ({sorted(run.scalars)})"
+    out = root / "figure.png"
+    result = _run(
+        ["-m", "sb3_hfo.plot", *logdirs, "--labels", "no skills", "skills", "--out", str(out)], cwd=root
+    )
+    assert result.returncode == 0, result.stderr[-3000:]
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 10_000
+
+
+def test_record_video_writes_an_mp4_headless(trained_runs: tuple[Path, dict[str, str], str]) -> None:
+    root, _, _ = trained_runs
+    folder = root / "logs" / "e1_empty_goal_fast"
+    videos = root / "videos"
+    args = [
+        "-m",
+        "sb3_hfo.record_video",
+        "--env",
+        "HFO/EmptyGoal-v0",
+        "-f",
+        str(folder),
+        "-n",
+        "20",
+        "-o",
+        str(videos),
+    ]
+    result = _run(args, cwd=root)
+    assert result.returncode == 0, result.stderr[-3000:]
+    mp4s = list(videos.glob("*.mp4"))
+    assert len(mp4s) == 1 and mp4s[0].stat().st_size > 1000
