@@ -13,12 +13,13 @@ os.environ.setdefault("SDL_VIDEODRIVER", "dummy")  # the render check opens a "h
 os.environ.setdefault("SDL_AUDIODRIVER", "dummy")
 
 import gymnasium as gym
-import hfo2d
 import numpy as np
 import pytest
 from gymnasium.utils.env_checker import check_env as gym_check_env
-from hfo2d.hfo_env import OFFENSE_OFFSETS, HFOEnv
 from stable_baselines3.common.env_checker import check_env as sb3_check_env
+
+import hfo2d
+from hfo2d.hfo_env import OFFENSE_OFFSETS, HFOEnv
 
 ENV_IDS = ("HFO/EmptyGoal-v0", "HFO/StaticKeeper-v0", "HFO/Keeper-v0")
 TURN_NONE = np.array([0, 1, 0, 0, 0.5, 0.5, 0, 0.5], dtype=np.float32)

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+
 from hfo2d import features as F
 from hfo2d.features import feature_names, low_level_feature_list, low_level_features, num_features
 from hfo2d.hfo_env import HFOEnv

@@ -7,6 +7,7 @@ import math
 
 import numpy as np
 import pytest
+
 from hfo2d.physics import (
     GOAL_POSTS,
     BallState,

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+
 from hfo2d import features as F
 from hfo2d.hfo_env import HFOEnv
 from hfo2d.reward import ShapedReward, SparseReward, ball_to_goal_distance, make_reward
