@@ -88,6 +88,7 @@ def test_info_keys_every_step() -> None:
     _, _, _, _, info = env.step(env.action_space.sample())
     assert set(info) == {
         "status",
+        "is_success",
         "player",
         "ball",
         "keeper",
