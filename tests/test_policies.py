@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
-
 import gymnasium as gym
 import numpy as np
 import pytest
@@ -25,15 +23,6 @@ from sb3_hfo.common.toy_env import HybridTargetEnv
 
 OBS_SPACE = spaces.Box(-1.0, 1.0, (58,), np.float32)
 ACTION_SPACE = spaces.Box(0.0, 1.0, (8,), np.float32)
-
-
-@pytest.fixture(autouse=True)
-def one_torch_thread() -> Iterator[None]:
-    """Batch-32 networks run fastest (and reproducibly) on one thread, especially on a shared 2-core machine."""
-    previous = th.get_num_threads()
-    th.set_num_threads(1)
-    yield
-    th.set_num_threads(previous)
 
 
 def make_policy(**kwargs: object) -> HFOPolicy:

@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import copy
 import csv
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -21,15 +20,6 @@ from sb3_hfo import FieldHalfRouter, HFOPolicy, SkillDDPG, SkillRouter
 from sb3_hfo.common.toy_env import HybridTargetEnv
 
 TINY = dict(net_arch=[16, 16])
-
-
-@pytest.fixture(autouse=True)
-def one_torch_thread() -> Iterator[None]:
-    """Batch-32 networks run fastest (and reproducibly) on one thread, especially on a shared 2-core machine."""
-    previous = th.get_num_threads()
-    th.set_num_threads(1)
-    yield
-    th.set_num_threads(previous)
 
 
 def make_batch(n: int = 32, seed: int = 0, far_fraction: float = 0.5) -> ReplayBufferSamples:
