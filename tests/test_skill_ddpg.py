@@ -436,3 +436,22 @@ def test_learns_hybrid_toy_task_with_two_skills() -> None:
     after = evaluate_goal_rate(model)
     assert before < 0.2
     assert after >= 0.85, after
+
+
+def test_same_seed_same_training() -> None:
+    """Two seeded runs (epsilon-greedy, warm-up, two skills, replay sampling) end with identical parameters."""
+
+    def train_once() -> th.Tensor:
+        model = SkillDDPG(
+            "HFOPolicy",
+            "HFO/EmptyGoal-v0",
+            seed=3,
+            learning_starts=100,
+            tau=0.005,
+            policy_kwargs=dict(net_arch=[16, 16], n_skills=2, skill_router="field_half"),
+        )
+        model.learn(400)
+        return th.cat([p.detach().flatten() for p in model.policy.parameters()])
+
+    first, second = train_once(), train_once()
+    assert th.equal(first, second)
