@@ -10,6 +10,10 @@ is searched recursively; every folder holding ``events.out.tfevents.*`` files is
 
 The x axis is episodes: ``rollout/episodes`` (or ``time/episodes``) when logged; otherwise episodes are estimated
 from the step counter as sum(delta steps / ep_len_mean), and failing that the axis is environment steps.
+
+With ``--summary`` a table is printed too: for each run, the last greedy evaluation (``eval/success_rate``, written
+by rl-zoo3's evaluation callback, ``--eval-freq``/``--eval-episodes``), the best one, and the environment step and
+wall-clock (seconds since the run's first logged event) at which it first reached each ``--targets`` rate.
 """
 
 from __future__ import annotations
@@ -19,6 +23,7 @@ import sys
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -44,6 +49,8 @@ class Run:
 
     label: str
     scalars: dict[str, tuple[np.ndarray, np.ndarray]] = field(default_factory=dict)
+    #: tag -> wall-clock seconds since the run's first event, aligned with ``scalars[tag]``'s steps.
+    wall_clock: dict[str, np.ndarray] = field(default_factory=dict)
 
     def episodes_at(self, steps: np.ndarray) -> tuple[np.ndarray, str]:
         """Map environment steps onto finished episodes; returns (x values, x-axis name)."""
@@ -70,18 +77,62 @@ def load_run(run_dir: Path, label: str) -> Run:
     """Read every scalar of the event files in ``run_dir`` (not recursive; all points kept)."""
     from tensorboard.backend.event_processing.event_accumulator import EventAccumulator
 
-    merged: dict[str, dict[int, float]] = {}
+    merged: dict[str, dict[int, tuple[float, float]]] = {}
     for event_file in sorted(run_dir.glob("events.out.tfevents.*")):
         accumulator = EventAccumulator(str(event_file), size_guidance={"scalars": 0})
         accumulator.Reload()
         for tag in accumulator.Tags().get("scalars", []):
             # A resumed run writes a second file; later files win on equal steps.
-            merged.setdefault(tag, {}).update({event.step: event.value for event in accumulator.Scalars(tag)})
+            merged.setdefault(tag, {}).update(
+                {event.step: (event.value, event.wall_time) for event in accumulator.Scalars(tag)}
+            )
     run = Run(label)
+    start = min((wall for points in merged.values() for _, wall in points.values()), default=0.0)
     for tag, points in merged.items():
         steps = np.array(sorted(points), dtype=float)
-        run.scalars[tag] = (steps, np.array([points[int(s)] for s in steps], dtype=float))
+        run.scalars[tag] = (steps, np.array([points[int(s)][0] for s in steps], dtype=float))
+        run.wall_clock[tag] = np.array([points[int(s)][1] - start for s in steps], dtype=float)
     return run
+
+
+#: The greedy-evaluation tag that ``--summary`` reads (rl-zoo3's EvalCallback; HFOEnv sets ``is_success``).
+EVAL_SUCCESS_TAG = "eval/success_rate"
+
+
+def time_to_targets(run: Run, targets: Sequence[float]) -> dict[str, Any]:
+    """Last and best ``eval/success_rate`` of ``run`` and, per target rate, the first (step, wall-clock seconds)
+    at which an evaluation reached it (``None`` if none did, or if the run has no evaluations)."""
+    summary: dict[str, Any] = {"label": run.label, "last": None, "best": None, "last_step": None}
+    if EVAL_SUCCESS_TAG not in run.scalars:
+        summary.update({f"first_{target:g}": None for target in targets})
+        return summary
+    steps, rates = run.scalars[EVAL_SUCCESS_TAG]
+    seconds = run.wall_clock[EVAL_SUCCESS_TAG]
+    summary.update(last=float(rates[-1]), best=float(rates.max()), last_step=int(steps[-1]))
+    for target in targets:
+        reached = np.flatnonzero(rates >= target - 1e-9)
+        first = int(reached[0]) if reached.size else None
+        summary[f"first_{target:g}"] = None if first is None else (int(steps[first]), float(seconds[first]))
+    return summary
+
+
+def print_summary(runs: Sequence[Run], targets: Sequence[float]) -> None:
+    """One table row per run: last / best greedy success rate and the time to each target."""
+    header = ["run", "last eval", "best eval", "at step", *(f"first >= {target:.0%}" for target in targets)]
+    rows = []
+    for run in runs:
+        summary = time_to_targets(run, targets)
+        cells = [run.label]
+        for key in ("last", "best"):
+            cells.append("-" if summary[key] is None else f"{summary[key]:.1%}")
+        cells.append("-" if summary["last_step"] is None else str(summary["last_step"]))
+        for target in targets:
+            hit = summary[f"first_{target:g}"]
+            cells.append("not reached" if hit is None else f"step {hit[0]}, {hit[1] / 60:.1f} min")
+        rows.append(cells)
+    widths = [max(len(row[i]) for row in [header, *rows]) for i in range(len(header))]
+    for row in [header, *rows]:
+        print("  ".join(cell.ljust(width) for cell, width in zip(row, widths, strict=True)))
 
 
 def moving_average(values: np.ndarray, window: int) -> np.ndarray:
@@ -171,6 +222,18 @@ def build_parser() -> argparse.ArgumentParser:
         "--smooth", type=int, default=1, help="moving-average window in log points (default 1: none)"
     )
     parser.add_argument("--title", default=None, help="figure title")
+    parser.add_argument(
+        "--summary",
+        action="store_true",
+        help="also print each run's greedy evaluation rate (eval/success_rate) and time to --targets",
+    )
+    parser.add_argument(
+        "--targets",
+        type=float,
+        nargs="+",
+        default=[0.95, 0.98],
+        help="success rates for --summary (default 0.95 0.98)",
+    )
     return parser
 
 
@@ -182,8 +245,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     except PlotError as error:
         print(f"error: {error}", file=sys.stderr)
         return 2
+    if any(not 0.0 < target <= 1.0 for target in args.targets):
+        print(f"error: --targets must lie in (0, 1], got {args.targets}", file=sys.stderr)
+        return 2
     plot_runs(runs, Path(args.out), smooth=args.smooth, title=args.title)
     print(f"wrote {args.out} ({len(runs)} run(s))")
+    if args.summary:
+        print_summary(runs, args.targets)
     return 0
 
 

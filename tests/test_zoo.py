@@ -314,6 +314,20 @@ def test_moving_average_and_episode_estimate() -> None:
     assert name == "episodes (estimated)" and episodes == pytest.approx([1.0, 5.0])
 
 
+def test_time_to_targets_reads_the_first_evaluation_at_each_rate() -> None:
+    from sb3_hfo.plot import EVAL_SUCCESS_TAG, Run, time_to_targets
+
+    steps = np.array([10_000.0, 20_000.0, 30_000.0, 40_000.0])
+    run = Run("r", {EVAL_SUCCESS_TAG: (steps, np.array([0.5, 0.96, 0.9, 0.99]))})
+    run.wall_clock[EVAL_SUCCESS_TAG] = np.array([60.0, 120.0, 180.0, 240.0])
+    summary = time_to_targets(run, [0.95, 0.98, 1.0])
+    assert summary["first_0.95"] == (20_000, 120.0)
+    assert summary["first_0.98"] == (40_000, 240.0)
+    assert summary["first_1"] is None
+    assert summary["last"] == pytest.approx(0.99) and summary["best"] == pytest.approx(0.99)
+    assert time_to_targets(Run("no eval"), [0.95])["first_0.95"] is None
+
+
 def test_episode_stats_callback_logs_goal_rate() -> None:
     from sb3_hfo.zoo import HFOEpisodeStatsCallback
 
