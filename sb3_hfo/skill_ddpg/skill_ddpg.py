@@ -53,6 +53,7 @@ from stable_baselines3.common.utils import (
 )
 from torch.nn import functional as F
 
+from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
 from sb3_hfo.skill_ddpg.policies import HFOPolicy
 
 __all__ = ["HFO_FLAT_ACTION_DIM", "HFO_N_DISCRETE_ACTIONS", "SkillDDPG", "adam_step"]
@@ -146,6 +147,10 @@ class SkillDDPG(OffPolicyAlgorithm):
     :param replay_buffer_kwargs: its keyword arguments.
     :param optimize_memory_usage: SB3's memory-efficient replay buffer variant.
     :param n_steps: n-step returns (SB3's ``NStepReplayBuffer``) when > 1.
+    :param mc_mixing: ``beta`` of the mixed critic target ``beta * G + (1 - beta) * y_TD`` (Hausknecht & Stone 2016,
+        "On-Policy vs. Off-Policy Updates"; they used 0.2 on HFO), where ``G`` is the episode's actual discounted
+        return from the sampled state (:class:`~sb3_hfo.common.buffers.MonteCarloReplayBuffer`, selected
+        automatically). 0 (default) is the paper's pure TD target. Not combinable with ``n_steps > 1``.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
     :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
@@ -181,6 +186,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         replay_buffer_kwargs: dict[str, Any] | None = None,
         optimize_memory_usage: bool = False,
         n_steps: int = 1,
+        mc_mixing: float = 0.0,
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -222,6 +228,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.exploration_fraction = exploration_fraction
         self.n_discrete_actions = n_discrete_actions
         self.exploration_rate = exploration_initial_eps
+        self.mc_mixing = mc_mixing
         if _init_setup_model:
             self._setup_model()
 
@@ -242,6 +249,21 @@ class SkillDDPG(OffPolicyAlgorithm):
             value = getattr(self, name)
             if not callable(value) and (not isinstance(value, (int, float)) or value < 0):
                 raise ValueError(f"{name} must be a float >= 0 or a schedule (callable), got {value!r}")
+        if not 0.0 <= self.mc_mixing <= 1.0:
+            raise ValueError(f"mc_mixing must lie in [0, 1], got {self.mc_mixing}")
+        if self.mc_mixing > 0:
+            if self.n_steps > 1:
+                raise ValueError(
+                    "mc_mixing > 0 cannot be combined with n_steps > 1: choose one kind of return"
+                )
+            if self.replay_buffer_class is None:
+                self.replay_buffer_class = MonteCarloReplayBuffer
+                self.replay_buffer_kwargs = {"gamma": self.gamma, **self.replay_buffer_kwargs}
+            elif not issubclass(self.replay_buffer_class, MonteCarloReplayBuffer):
+                raise ValueError(
+                    f"mc_mixing > 0 needs a MonteCarloReplayBuffer, got replay_buffer_class="
+                    f"{self.replay_buffer_class.__name__}"
+                )
 
     def _resolve_n_discrete_actions(self) -> int:
         action_dim = int(np.prod(self.action_space.shape))
@@ -322,16 +344,9 @@ class SkillDDPG(OffPolicyAlgorithm):
         in [-1, 1], rewards / dones ``(B, 1)``)."""
         policy = self.policy
         obs, actions = batch.observations, batch.actions
-        discounts = batch.discounts if batch.discounts is not None else self.gamma
 
         # 1. Critic (eq. 5, 6).
-        with th.no_grad():
-            next_obs = batch.next_observations
-            next_actions = self.actor_target(next_obs, policy.route(next_obs))
-            if policy.inverting_gradients:
-                next_actions = next_actions.clamp(-1.0, 1.0)
-            next_q = self.critic_target(next_obs, next_actions)
-            target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
+        target_q = self._critic_target(batch)
         current_q = self.critic(obs, actions)
         critic_loss = F.mse_loss(current_q, target_q)
         adam_step(
@@ -365,6 +380,24 @@ class SkillDDPG(OffPolicyAlgorithm):
             stats[_STAT_MAX_Q] += current.max()
             stats[_STAT_MEAN_Q] += current.mean()
         self._stat_updates += 1
+
+    @th.no_grad()
+    def _critic_target(self, batch: ReplayBufferSamples) -> th.Tensor:
+        """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``gamma^n`` from ``batch.discounts``
+        with n-step returns), mixed with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose
+        return is known when ``mc_mixing = beta > 0``."""
+        policy = self.policy
+        next_obs = batch.next_observations
+        next_actions = self.actor_target(next_obs, policy.route(next_obs))
+        if policy.inverting_gradients:
+            next_actions = next_actions.clamp(-1.0, 1.0)
+        next_q = self.critic_target(next_obs, next_actions)
+        discounts = batch.discounts if batch.discounts is not None else self.gamma
+        target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
+        if self.mc_mixing > 0:
+            mixed: MonteCarloReplayBufferSamples = batch  # type: ignore[assignment]
+            target_q += self.mc_mixing * mixed.mc_valid * (mixed.mc_returns - target_q)
+        return target_q
 
     def _action_gradient(self, q_actor: th.Tensor, actor_actions: th.Tensor) -> th.Tensor:
         """dQ/da ``(B, A)`` at the actor's actions, inverted when ``inverting_gradients`` is on."""
