@@ -210,6 +210,27 @@ def test_epsilon_greedy_forces_one_discrete_preference() -> None:
     assert not (plain.replay_buffer.actions[:50, 0, :3] == 1.0).any()
 
 
+def test_epsilon_greedy_can_keep_the_policys_parameters() -> None:
+    model = make_model(
+        1,
+        learning_starts=0,
+        gradient_steps=0,
+        exploration_initial_eps=1.0,
+        exploration_final_eps=1.0,
+        exploration_keep_parameters=True,
+    )
+    model.learn(200)
+    assert model.replay_buffer is not None
+    actions = model.replay_buffer.actions[:200, 0]
+    preferences = np.sort(actions[:, :3], axis=1)
+    assert (preferences == [-1.0, -1.0, 1.0]).all()  # one discrete action picked, the others pushed down
+    assert (np.bincount(actions[:, :3].argmax(axis=1), minlength=3) > 40).all()
+    observations = th.as_tensor(model.replay_buffer.observations[:200, 0])
+    with th.no_grad():
+        policy_parameters = model.actor(observations)[:, 3:].numpy()
+    assert np.allclose(actions[:, 3:], policy_parameters, atol=1e-5)  # no noise configured: the actor's own
+
+
 def test_epsilon_anneals_linearly_and_n_discrete_auto() -> None:
     model = make_model(1, learning_starts=0, gradient_steps=0, exploration_fraction=0.5)
     assert model._n_discrete == 3

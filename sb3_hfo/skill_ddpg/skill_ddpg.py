@@ -28,7 +28,9 @@ action is redrawn uniformly and one of the ``n_discrete_actions`` preferences, c
 maximum (1 in the buffer scale) so that the environment's argmax picks it. Epsilon anneals linearly from
 ``exploration_initial_eps`` to ``exploration_final_eps`` over the first ``exploration_fraction`` of the
 ``learn()`` call (SB3's DQN convention). ``n_discrete_actions=None`` means 3 for 8-dimensional actions (HFO's
-flat layout) and 0 (no epsilon-greedy) otherwise, e.g. Pendulum.
+flat layout) and 0 (no epsilon-greedy) otherwise, e.g. Pendulum. With ``exploration_keep_parameters=True`` an
+exploring step only re-picks the discrete action (its preference set to 1, the others to -1) and keeps the policy's
+(noisy) continuous parameters, so that a randomly chosen KICK is taken with the kick the actor would make.
 """
 
 from __future__ import annotations
@@ -141,6 +143,8 @@ class SkillDDPG(OffPolicyAlgorithm):
     :param exploration_final_eps: epsilon after annealing.
     :param exploration_fraction: fraction of ``total_timesteps`` over which epsilon anneals linearly (0: the final
         value from the start).
+    :param exploration_keep_parameters: epsilon-greedy re-picks only the discrete action and keeps the policy's
+        continuous parameters (``False``: the whole action is redrawn uniformly, as Hausknecht & Stone did).
     :param n_discrete_actions: number of leading action entries that are discrete-action preferences; ``None``:
         3 if the action has 8 entries (HFO), else 0. 0 disables epsilon-greedy.
     :param replay_buffer_class: SB3 replay buffer class (default ``ReplayBuffer``).
@@ -181,6 +185,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         exploration_initial_eps: float = 1.0,
         exploration_final_eps: float = 0.1,
         exploration_fraction: float = 0.1,
+        exploration_keep_parameters: bool = False,
         n_discrete_actions: int | None = None,
         replay_buffer_class: type[ReplayBuffer] | None = None,
         replay_buffer_kwargs: dict[str, Any] | None = None,
@@ -226,6 +231,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.exploration_initial_eps = exploration_initial_eps
         self.exploration_final_eps = exploration_final_eps
         self.exploration_fraction = exploration_fraction
+        self.exploration_keep_parameters = exploration_keep_parameters
         self.n_discrete_actions = n_discrete_actions
         self.exploration_rate = exploration_initial_eps
         self.mc_mixing = mc_mixing
@@ -482,10 +488,14 @@ class SkillDDPG(OffPolicyAlgorithm):
         if not explore.any():
             return action, buffer_action
         n_explore = int(explore.sum())
-        random_actions = np.random.uniform(-1.0, 1.0, size=(n_explore, *buffer_action.shape[1:]))
+        buffer_action = np.array(buffer_action, dtype=np.float32, copy=True)
+        if self.exploration_keep_parameters:
+            random_actions = buffer_action[explore]
+            random_actions.reshape(n_explore, -1)[:, : self._n_discrete] = -1.0
+        else:
+            random_actions = np.random.uniform(-1.0, 1.0, size=(n_explore, *buffer_action.shape[1:]))
         flat = random_actions.reshape(n_explore, -1)
         flat[np.arange(n_explore), np.random.randint(self._n_discrete, size=n_explore)] = 1.0
-        buffer_action = np.array(buffer_action, dtype=np.float32, copy=True)
         buffer_action[explore] = random_actions
         return self.policy.unscale_action(buffer_action), buffer_action
 
