@@ -476,3 +476,28 @@ def test_same_seed_same_training() -> None:
 
     first, second = train_once(), train_once()
     assert th.equal(first, second)
+
+
+@pytest.mark.parametrize("n_skills", [1, 2])
+def test_preactivation_penalty_adds_its_gradient_to_each_skills_loss(n_skills: int) -> None:
+    penalty = 0.3
+    model = make_model(n_skills, learning_starts=10, preactivation_penalty=penalty)
+    model.learn(50)
+    assert model.replay_buffer is not None
+    batch = model.replay_buffer.sample(32)
+    obs = batch.observations
+    skills = model.policy.route(obs)
+    rows = th.ones(32, dtype=th.bool) if skills is None else skills == 0
+    actions, _, outputs = model.actor.forward_tracked(
+        obs, th.zeros(32, dtype=th.long) if skills is None else skills
+    )
+    loss = -model.critic(obs, actions)[rows].mean() + penalty * (outputs[-1][rows] ** 2).sum(1).mean()
+    expected = th.autograd.grad(loss, model._skill_params[0])
+    captured: dict[int, tuple[th.Tensor, ...]] = {}
+    model._apply_skill_step = lambda skill, grads: captured.setdefault(skill, tuple(grads))  # type: ignore[method-assign]
+    model.policy.critic_optimizer.param_groups[0]["lr"] = 0.0  # the actor step must see the same critic
+    model._update(batch)
+    for got, want in zip(captured[0], expected, strict=True):
+        assert th.allclose(got, want, atol=1e-6)
+    with pytest.raises(ValueError, match="preactivation_penalty"):
+        make_model(1, preactivation_penalty=-1.0)

@@ -155,6 +155,10 @@ class SkillDDPG(OffPolicyAlgorithm):
         "On-Policy vs. Off-Policy Updates"; they used 0.2 on HFO), where ``G`` is the episode's actual discounted
         return from the sampled state (:class:`~sb3_hfo.common.buffers.MonteCarloReplayBuffer`, selected
         automatically). 0 (default) is the paper's pure TD target. Not combinable with ``n_steps > 1``.
+    :param preactivation_penalty: ``lambda`` of an extra actor loss ``lambda * mean over rows of ||z||^2`` on the
+        output layer's pre-``tanh`` values ``z`` (per skill, over its own rows). The critic's gradient can push ``z`` without bound
+        towards an action bound, where ``tanh`` saturates and passes back no gradient (Hausknecht & Stone 2016's
+        motivation for inverting gradients); the penalty holds ``z`` where ``tanh`` still responds. 0: the paper.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
     :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
@@ -192,6 +196,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         optimize_memory_usage: bool = False,
         n_steps: int = 1,
         mc_mixing: float = 0.0,
+        preactivation_penalty: float = 0.0,
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -235,6 +240,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.n_discrete_actions = n_discrete_actions
         self.exploration_rate = exploration_initial_eps
         self.mc_mixing = mc_mixing
+        self.preactivation_penalty = preactivation_penalty
         if _init_setup_model:
             self._setup_model()
 
@@ -255,6 +261,8 @@ class SkillDDPG(OffPolicyAlgorithm):
             value = getattr(self, name)
             if not callable(value) and (not isinstance(value, (int, float)) or value < 0):
                 raise ValueError(f"{name} must be a float >= 0 or a schedule (callable), got {value!r}")
+        if self.preactivation_penalty < 0:
+            raise ValueError(f"preactivation_penalty must be >= 0, got {self.preactivation_penalty}")
         if not 0.0 <= self.mc_mixing <= 1.0:
             raise ValueError(f"mc_mixing must lie in [0, 1], got {self.mc_mixing}")
         if self.mc_mixing > 0:
@@ -364,12 +372,24 @@ class SkillDDPG(OffPolicyAlgorithm):
         stats = self._stat_sums
         skills = policy.route(obs)
         if skills is None:
-            actor_actions = self.actor(obs)
+            if self.preactivation_penalty > 0:
+                actor_actions, _, layer_outputs = self.actor.forward_tracked(
+                    obs, th.zeros_like(obs[:, 0]).long()
+                )
+                outputs, output_grads = self._with_preactivation_penalty(
+                    actor_actions, layer_outputs[-1], -1.0 / batch_size
+                )
+            else:
+                actor_actions = self.actor(obs)
             q_actor = self.critic.q_with_frozen_weights(obs, actor_actions)
             dq_da = self._action_gradient(q_actor, actor_actions)
-            grads = th.autograd.grad(
-                actor_actions, self._skill_params[0], grad_outputs=dq_da * (-1.0 / batch_size)
-            )
+            if self.preactivation_penalty > 0:
+                output_grads[0] = dq_da * (-1.0 / batch_size)
+                grads = th.autograd.grad(outputs, self._skill_params[0], grad_outputs=output_grads)
+            else:
+                grads = th.autograd.grad(
+                    actor_actions, self._skill_params[0], grad_outputs=dq_da * (-1.0 / batch_size)
+                )
             self._apply_skill_step(0, grads)
             self._skill_updates[0] += 1
             q_detached = q_actor.detach()
@@ -432,7 +452,9 @@ class SkillDDPG(OffPolicyAlgorithm):
         dq_da = self._action_gradient(q_actor, actor_actions)
         # Skill k's loss is -mean over its n_k rows of Q: row weight -1 / n_k (clamp: absent skills have no rows).
         row_weight = (-1.0 / counts_tensor.clamp(min=1).to(dq_da.dtype))[skills].unsqueeze(1)
-        output_grads = th.autograd.grad(actor_actions, layer_outputs, grad_outputs=dq_da * row_weight)
+        outputs, grad_outputs = self._with_preactivation_penalty(actor_actions, layer_outputs[-1], row_weight)
+        grad_outputs[0] = dq_da * row_weight
+        output_grads = th.autograd.grad(outputs, layer_outputs, grad_outputs=grad_outputs)
         q_detached = q_actor.detach()
         stats = self._stat_sums
         start = 0
@@ -449,6 +471,19 @@ class SkillDDPG(OffPolicyAlgorithm):
             self._skill_updates[k] += 1
             stats[_N_GLOBAL_STATS + k] -= q_detached[rows].mean()
         return q_detached
+
+    def _with_preactivation_penalty(
+        self, actions: th.Tensor, preactivations: th.Tensor, row_weight: th.Tensor | float
+    ) -> tuple[list[th.Tensor], list[th.Tensor | None]]:
+        """Outputs and (partial) output gradients for the actor's backward pass: ``[actions]`` and a placeholder
+        for dL/da, plus ``z`` with the penalty's gradient ``2 * lambda * z / n_k`` when ``preactivation_penalty > 0``.
+
+        ``row_weight`` is ``-1 / n_k`` per row (or one float), so ``-2 * lambda * z * row_weight`` is that gradient.
+        """
+        if self.preactivation_penalty <= 0:
+            return [actions], [None]
+        penalty_grad = (-2.0 * self.preactivation_penalty) * preactivations.detach() * row_weight
+        return [actions, preactivations], [None, penalty_grad]
 
     def _apply_skill_step(self, skill: int, grads: Sequence[th.Tensor]) -> None:
         adam_step(self.policy.actor_optimizers[skill], self._skill_params[skill], grads)
