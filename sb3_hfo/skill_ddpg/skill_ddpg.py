@@ -51,9 +51,8 @@ from stable_baselines3.common.utils import (
     LinearSchedule,
     update_learning_rate,
 )
-from torch.nn import functional as F
 
-from sb3_hfo.skill_ddpg.policies import HFOPolicy
+from sb3_hfo.skill_ddpg.policies import HFOPolicy, Segment
 
 __all__ = ["HFO_FLAT_ACTION_DIM", "HFO_N_DISCRETE_ACTIONS", "SkillDDPG", "adam_step"]
 
@@ -287,6 +286,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._target_params = [*self.actor_target.parameters(), *self.critic_target.parameters()]
         self._skill_params = [self.policy.skill_parameters(k) for k in range(self.policy.n_skills)]
         self._critic_params = list(self.critic.parameters())
+        self._skill_optimizers = self.policy.actor_optimizers
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
@@ -317,102 +317,70 @@ class SkillDDPG(OffPolicyAlgorithm):
             self._update(self.replay_buffer.sample(batch_size, env=self._vec_normalize_env))
         self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
 
+    @th.no_grad()
     def _update(self, batch: ReplayBufferSamples) -> None:
         """One critic, actor and target update on ``batch`` (observations ``(B, obs_dim)``, actions ``(B, A)``
-        in [-1, 1], rewards / dones ``(B, 1)``)."""
+        in [-1, 1], rewards / dones ``(B, 1)``), back-propagated explicitly (no autograd graph)."""
         policy = self.policy
-        obs, actions = batch.observations, batch.actions
+        actor, critic = self.actor, self.critic
+        obs = batch.observations
+        batch_size = obs.shape[0]
         discounts = batch.discounts if batch.discounts is not None else self.gamma
 
-        # 1. Critic (eq. 5, 6).
-        with th.no_grad():
-            next_obs = batch.next_observations
-            next_actions = self.actor_target(next_obs, policy.route(next_obs))
-            if policy.inverting_gradients:
-                next_actions = next_actions.clamp(-1.0, 1.0)
-            next_q = self.critic_target(next_obs, next_actions)
-            target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
-        current_q = self.critic(obs, actions)
-        critic_loss = F.mse_loss(current_q, target_q)
-        adam_step(
-            policy.critic_optimizer, self._critic_params, th.autograd.grad(critic_loss, self._critic_params)
-        )
+        # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B.
+        next_obs = batch.next_observations
+        next_actions = self.actor_target.forward(next_obs, policy.route(next_obs))
+        if policy.inverting_gradients:
+            next_actions = next_actions.clamp(-1.0, 1.0)
+        next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
+        target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
+        current_q, critic_inputs = critic.forward_for_backward(obs, batch.actions)
+        error = current_q - target_q
+        critic_grads = critic.weight_gradients(critic_inputs, error * (2.0 / error.numel()))
+        adam_step(policy.critic_optimizer, self._critic_params, critic_grads)
 
-        # 2. Actor (eq. 7) against the updated critic.
-        batch_size = obs.shape[0]
-        stats = self._stat_sums
+        # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
         skills = policy.route(obs)
         if skills is None:
-            actor_actions = self.actor(obs)
-            q_actor = self.critic.q_with_frozen_weights(obs, actor_actions)
-            dq_da = self._action_gradient(q_actor, actor_actions)
-            grads = th.autograd.grad(
-                actor_actions, self._skill_params[0], grad_outputs=dq_da * (-1.0 / batch_size)
-            )
-            self._apply_skill_step(0, grads)
-            self._skill_updates[0] += 1
-            q_detached = q_actor.detach()
-            stats[_N_GLOBAL_STATS] -= q_detached.mean()
+            segments: list[Segment] = [(0, 0, batch_size)]
+            row_weight: th.Tensor | float = -1.0 / batch_size
         else:
-            q_detached = self._update_skills(obs, skills)
+            # Rows sorted by skill, so that each skill's rows are one slice.
+            order = th.argsort(skills, stable=True)
+            obs, skills = obs[order], skills[order]
+            counts = th.bincount(skills, minlength=policy.n_skills)
+            segments = []
+            start = 0
+            for k, n_rows in enumerate(counts.tolist()):
+                if n_rows > 0:
+                    segments.append((k, start, start + n_rows))
+                    start += n_rows
+            row_weight = (-1.0 / counts.clamp(min=1).to(obs.dtype))[skills].unsqueeze(1)
+        actor_actions, actor_inputs = actor.forward_for_backward(obs, segments)
+        actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions)
+        dq_da = critic.action_gradient(q_inputs)
+        if policy.inverting_gradients:
+            dq_da = self._invert_gradients(dq_da, actor_actions)
+        skill_grads = actor.skill_gradients(actor_inputs, actor_actions, dq_da * row_weight, segments)
+        # All skills' gradients were taken at the same parameters; now each skill with rows takes its Adam step.
+        for (k, _, _), grads in zip(segments, skill_grads, strict=True):
+            adam_step(self._skill_optimizers[k], self._skill_params[k], grads)
+            self._skill_updates[k] += 1
 
         # 3. Targets.
-        with th.no_grad():
-            th._foreach_lerp_(self._target_params, self._online_params, self.tau)
-            current = current_q.detach()
-            stats[_STAT_CRITIC_LOSS] += critic_loss.detach()
-            stats[_STAT_ACTOR_LOSS] -= q_detached.mean()
-            stats[_STAT_MAX_Q] += current.max()
-            stats[_STAT_MEAN_Q] += current.mean()
-        self._stat_updates += 1
+        th._foreach_lerp_(self._target_params, self._online_params, self.tau)
 
-    def _action_gradient(self, q_actor: th.Tensor, actor_actions: th.Tensor) -> th.Tensor:
-        """dQ/da ``(B, A)`` at the actor's actions, inverted when ``inverting_gradients`` is on."""
-        (dq_da,) = th.autograd.grad(q_actor.sum(), actor_actions)
-        if self.policy.inverting_gradients:
-            dq_da = self._invert_gradients(dq_da, actor_actions.detach())
-        return dq_da
-
-    def _update_skills(self, obs: th.Tensor, skills: th.Tensor) -> th.Tensor:
-        """Actor update with ``n_skills > 1``; returns the detached ``Q (B, 1)`` of the actor's actions (rows sorted
-        by skill).
-
-        Rows are sorted by skill so that each skill's rows form one slice. One backward pass gives the gradient of
-        every Linear's output (rows never mix in an MLP, so row ``i``'s gradient only involves its own skill's
-        loss); each skill's weight gradients are then ``d_out[rows].T @ input[rows]`` over its own rows: the same
-        numbers as one backward pass per skill, for the FLOPs of one.
-        """
-        policy = self.policy
-        n_skills = policy.n_skills
-        order = th.argsort(skills, stable=True)
-        obs, skills = obs[order], skills[order]
-        counts_tensor = th.bincount(skills, minlength=n_skills)
-        counts = counts_tensor.tolist()
-        actor_actions, layer_inputs, layer_outputs = self.actor.forward_tracked(obs, skills)
-        q_actor = self.critic.q_with_frozen_weights(obs, actor_actions)
-        dq_da = self._action_gradient(q_actor, actor_actions)
-        # Skill k's loss is -mean over its n_k rows of Q: row weight -1 / n_k (clamp: absent skills have no rows).
-        row_weight = (-1.0 / counts_tensor.clamp(min=1).to(dq_da.dtype))[skills].unsqueeze(1)
-        output_grads = th.autograd.grad(actor_actions, layer_outputs, grad_outputs=dq_da * row_weight)
-        q_detached = q_actor.detach()
+        # Statistics, summed as tensors (no synchronisation); -mean_k Q is the sum of row_weight * Q over skill k.
+        actor_loss = -actor_q.mean()
         stats = self._stat_sums
-        start = 0
-        for k, n_rows in enumerate(counts):
-            if n_rows == 0:
-                continue
-            rows = slice(start, start + n_rows)
-            start += n_rows
-            grads: list[th.Tensor] = []
-            for layer_input, output_grad in zip(layer_inputs, output_grads, strict=True):
-                grad_rows = output_grad[rows]
-                grads += [grad_rows.t().mm(layer_input[rows].detach()), grad_rows.sum(0)]
-            self._apply_skill_step(k, tuple(grads))
-            self._skill_updates[k] += 1
-            stats[_N_GLOBAL_STATS + k] -= q_detached[rows].mean()
-        return q_detached
-
-    def _apply_skill_step(self, skill: int, grads: Sequence[th.Tensor]) -> None:
-        adam_step(self.policy.actor_optimizers[skill], self._skill_params[skill], grads)
+        stats[:_N_GLOBAL_STATS].add_(
+            th.stack((error.square().mean(), actor_loss, current_q.max(), current_q.mean()))
+        )
+        if skills is None:
+            stats[_N_GLOBAL_STATS].add_(actor_loss)
+        else:
+            stats[_N_GLOBAL_STATS:].index_add_(0, skills, (actor_q * row_weight).squeeze(1))
+        self._stat_updates += 1
 
     @staticmethod
     def _invert_gradients(dq_da: th.Tensor, actions: th.Tensor) -> th.Tensor:
@@ -530,6 +498,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_target_params",
             "_skill_params",
             "_critic_params",
+            "_skill_optimizers",
             "_stat_sums",
         ]
 
