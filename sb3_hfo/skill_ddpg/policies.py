@@ -418,7 +418,8 @@ class HFOPolicy(BasePolicy):
     :param lr_schedule: learning-rate schedule used to create the optimisers (SkillDDPG resets the actor's and the
         critic's learning rates from its own two schedules before every update).
     :param net_arch: hidden sizes, ``[400, 300, 200]`` or ``dict(pi=[...], qf=[...])``; default the paper's.
-    :param activation_fn: hidden activation (default LeakyReLU with slope 0.01).
+    :param activation_fn: hidden activation (default LeakyReLU with slope 0.01); ``nn.LeakyReLU``, ``nn.ReLU`` or
+        ``nn.Tanh``, whose derivatives the explicit backward pass of SkillDDPG knows (:class:`HiddenActivation`).
     :param n_skills: number of actor output layers (1 = the paper's plain agent).
     :param skill_router: a :class:`~sb3_hfo.common.routers.SkillRouter`, a router name (``"single"``,
         ``"field_half"``) or ``None`` (``"single"`` for 1 skill, ``"field_half"`` for 2).
