@@ -119,7 +119,8 @@ _tanh_backward = th.ops.aten.tanh_backward.default
 class HiddenActivation:
     """A hidden-layer activation with its derivative, for the explicit forward / backward passes of the update.
 
-    ``forward(z)`` maps a pre-activation ``(B, n)`` to ``y``; ``backward(grad_y, y)`` returns ``dL/dz`` from
+    ``forward(z)`` maps a pre-activation ``(B, n)`` to ``y`` in place (``z`` is a fresh layer output that nothing
+    else keeps); ``backward(grad_y, y)`` returns ``dL/dz`` from
     ``dL/dy`` and the *output* ``y`` (no pre-activation needs to be kept). Supported: ``nn.LeakyReLU`` with a
     positive slope (its sign is that of ``z``), ``nn.ReLU`` and ``nn.Tanh``.
 
@@ -130,13 +131,13 @@ class HiddenActivation:
         self.name = type(module).__name__
         if isinstance(module, nn.LeakyReLU) and module.negative_slope > 0:
             slope = float(module.negative_slope)
-            self.forward = lambda z: F.leaky_relu(z, slope)
+            self.forward = lambda z: F.leaky_relu_(z, slope)
             self.backward = lambda grad, y: _leaky_relu_backward(grad, y, slope, True)
         elif isinstance(module, nn.ReLU):
-            self.forward = F.relu
+            self.forward = th.relu_
             self.backward = lambda grad, y: _threshold_backward(grad, y, 0.0)
         elif isinstance(module, nn.Tanh):
-            self.forward = th.tanh
+            self.forward = th.tanh_
             self.backward = _tanh_backward
         else:
             raise ValueError(
@@ -207,14 +208,14 @@ class HFOActor(nn.Module):
     def all_skills(self, obs: th.Tensor) -> th.Tensor:
         """Every head's action for every row: ``(B, obs_dim)`` -> ``(B, n_skills, action_dim)``."""
         features = self.features(obs)
-        out = th.stack([th.addmm(bias, features, weight.t()) for weight, bias in self.head_layers], dim=1)
+        out = th.stack([F.linear(features, weight, bias) for weight, bias in self.head_layers], dim=1)
         return th.tanh(out) if self.squash else out
 
     def features(self, obs: th.Tensor) -> th.Tensor:
         """The shared trunk: ``(B, obs_dim)`` -> ``(B, hidden[-1])``."""
         hidden = obs
         for weight, bias in self.trunk_layers:
-            hidden = self.activation.forward(th.addmm(bias, hidden, weight.t()))
+            hidden = self.activation.forward(F.linear(hidden, weight, bias))
         return hidden
 
     def forward(self, obs: th.Tensor, skills: th.Tensor | None = None) -> th.Tensor:
@@ -227,9 +228,9 @@ class HFOActor(nn.Module):
         features = self.features(obs)
         if skills is None or self.n_skills == 1:
             weight, bias = self.head_layers[0]
-            out = th.addmm(bias, features, weight.t())
+            out = F.linear(features, weight, bias)
         else:
-            per_skill = th.stack([th.addmm(b, features, w.t()) for w, b in self.head_layers], dim=1)
+            per_skill = th.stack([F.linear(features, w, b) for w, b in self.head_layers], dim=1)
             index = skills.view(-1, 1, 1).expand(-1, 1, self.action_dim)
             out = per_skill.gather(1, index).squeeze(1)
         return th.tanh(out) if self.squash else out
@@ -246,15 +247,15 @@ class HFOActor(nn.Module):
         """
         inputs = [obs]
         for weight, bias in self.trunk_layers:
-            inputs.append(self.activation.forward(th.addmm(bias, inputs[-1], weight.t())))
+            inputs.append(self.activation.forward(F.linear(inputs[-1], weight, bias)))
         features = inputs[-1]
         if len(segments) == 1:
             weight, bias = self.head_layers[segments[0][0]]
-            out = th.addmm(bias, features, weight.t())
+            out = F.linear(features, weight, bias)
         else:
             out = th.cat(
                 [
-                    th.addmm(self.head_layers[k][1], features[start:stop], self.head_layers[k][0].t())
+                    F.linear(features[start:stop], self.head_layers[k][0], self.head_layers[k][1])
                     for k, start, stop in segments
                 ]
             )
@@ -361,12 +362,12 @@ class HFOCritic(nn.Module):
         """
         layers = self.layers
         weight, bias = layers[0]
-        features = self.activation.forward(th.addmm(bias, obs, weight.t()))
+        features = self.activation.forward(F.linear(obs, weight, bias))
         inputs = [obs, th.cat((features, action), dim=1)]
         for weight, bias in layers[1:-1]:
-            inputs.append(self.activation.forward(th.addmm(bias, inputs[-1], weight.t())))
+            inputs.append(self.activation.forward(F.linear(inputs[-1], weight, bias)))
         weight, bias = layers[-1]
-        return th.addmm(bias, inputs[-1], weight.t()), inputs
+        return F.linear(inputs[-1], weight, bias), inputs
 
     def weight_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
         """Explicit backward pass of ``grad_q = dLoss/dQ (B, 1)``: gradients of all parameters, in the order of

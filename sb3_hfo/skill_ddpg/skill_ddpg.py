@@ -18,7 +18,7 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
 Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py: 1.9-2.1x SB3's ``DDPG`` updates per
 second with 1 skill, 1.6-1.7x with 2, on one CPU thread): the update is back-propagated by hand under
 ``torch.no_grad()`` instead of through autograd (``HFOActor.forward_for_backward`` / ``skill_gradients``,
-``HFOCritic.forward_for_backward`` / ``weight_gradients`` / ``action_gradient``: ``addmm`` forward passes that keep
+``HFOCritic.forward_for_backward`` / ``weight_gradients`` / ``action_gradient``: ``F.linear`` forward passes that keep
 each layer's input, then ``dZ.T @ input`` weight gradients, ``dZ.sum(0)`` bias gradients and ``dZ @ W`` input
 gradients, activation derivatives from the kept outputs). That removes the graph building, the autograd engine and
 ``nn.Module.__call__`` from the hot path, and computes only what is needed: no input gradient for the first layer,
