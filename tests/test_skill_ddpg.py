@@ -123,16 +123,26 @@ def reference_update(
 
 
 @pytest.mark.parametrize(
-    ("n_skills", "inverting_gradients", "n_step_discounts"),
-    [(1, False, False), (2, False, False), (1, True, False), (2, True, True), (3, False, True)],
+    ("n_skills", "inverting_gradients", "n_step_discounts", "activation_fn"),
+    [
+        (1, False, False, th.nn.LeakyReLU),
+        (2, False, False, th.nn.LeakyReLU),
+        (1, True, False, th.nn.LeakyReLU),
+        (2, True, True, th.nn.LeakyReLU),
+        (3, False, True, th.nn.LeakyReLU),
+        (1, False, False, th.nn.ReLU),
+        (2, False, False, th.nn.Tanh),
+    ],
 )
 def test_update_equals_straightforward_reference(
-    n_skills: int, inverting_gradients: bool, n_step_discounts: bool
+    n_skills: int, inverting_gradients: bool, n_step_discounts: bool, activation_fn: type[th.nn.Module]
 ) -> None:
     """Four updates (the first builds Adam's state, the next use the direct fused-kernel path) of the explicit
     forward / backward update against an autograd reference; skills interleaved in the batch, one of them absent
     from the last batch."""
-    policy_kwargs: dict[str, object] = dict(inverting_gradients=inverting_gradients)
+    policy_kwargs: dict[str, object] = dict(
+        inverting_gradients=inverting_gradients, activation_fn=activation_fn
+    )
     if n_skills == 3:
         policy_kwargs["skill_router"] = ThreeBandRouter()
     model = make_model(

@@ -120,30 +120,40 @@ class HiddenActivation:
     """A hidden-layer activation with its derivative, for the explicit forward / backward passes of the update.
 
     ``forward(z)`` maps a pre-activation ``(B, n)`` to ``y`` in place (``z`` is a fresh layer output that nothing
-    else keeps); ``backward(grad_y, y)`` returns ``dL/dz`` from
-    ``dL/dy`` and the *output* ``y`` (no pre-activation needs to be kept). Supported: ``nn.LeakyReLU`` with a
-    positive slope (its sign is that of ``z``), ``nn.ReLU`` and ``nn.Tanh``.
+    else keeps); ``backward(grad_y, y)`` returns ``dL/dz`` from ``dL/dy`` and the *output* ``y`` (no pre-activation
+    needs to be kept). Supported: ``nn.LeakyReLU`` with a positive slope (then ``y`` has the sign of ``z``),
+    ``nn.ReLU`` and ``nn.Tanh``. Plain attributes only, so that networks holding one stay picklable.
 
     :raises ValueError: for any other activation (the message names it).
     """
 
     def __init__(self, module: nn.Module) -> None:
         self.name = type(module).__name__
+        self.slope = 0.0
         if isinstance(module, nn.LeakyReLU) and module.negative_slope > 0:
-            slope = float(module.negative_slope)
-            self.forward = lambda z: F.leaky_relu_(z, slope)
-            self.backward = lambda grad, y: _leaky_relu_backward(grad, y, slope, True)
+            self.kind = "leaky_relu"
+            self.slope = float(module.negative_slope)
         elif isinstance(module, nn.ReLU):
-            self.forward = th.relu_
-            self.backward = lambda grad, y: _threshold_backward(grad, y, 0.0)
+            self.kind = "relu"
         elif isinstance(module, nn.Tanh):
-            self.forward = th.tanh_
-            self.backward = _tanh_backward
+            self.kind = "tanh"
         else:
             raise ValueError(
                 f"activation_fn must be nn.LeakyReLU (slope > 0), nn.ReLU or nn.Tanh, got {self.name}: "
                 "SkillDDPG back-propagates explicitly and needs its derivative"
             )
+
+    def forward(self, z: th.Tensor) -> th.Tensor:
+        """``y = f(z)``, written into ``z``."""
+        if self.kind == "leaky_relu":
+            return F.leaky_relu_(z, self.slope)
+        return th.relu_(z) if self.kind == "relu" else th.tanh_(z)
+
+    def backward(self, grad: th.Tensor, y: th.Tensor) -> th.Tensor:
+        """``dL/dz = dL/dy * f'(z)``, with ``f'`` written from the output ``y``."""
+        if self.kind == "leaky_relu":
+            return _leaky_relu_backward(grad, y, self.slope, True)
+        return _threshold_backward(grad, y, 0.0) if self.kind == "relu" else _tanh_backward(grad, y)
 
 
 def _linear_params(modules: Iterable[nn.Module]) -> list[tuple[nn.Parameter, nn.Parameter]]:
