@@ -15,8 +15,8 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``g * (1 - a) / 2`` where ``g > 0`` (the update would increase ``a``) and ``g * (a + 1) / 2`` elsewhere.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
-Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py: 1.9-2.1x SB3's ``DDPG`` updates per
-second with 1 skill, 1.6-1.7x with 2, on one CPU thread): the update is back-propagated by hand under
+Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread: 2.15-2.3x SB3's
+``DDPG`` updates per second with 1 skill, 1.6-1.9x with 2; see benchmarks/README.md): the update is back-propagated by hand under
 ``torch.no_grad()`` instead of through autograd (``HFOActor.forward_for_backward`` / ``skill_gradients``,
 ``HFOCritic.forward_for_backward`` / ``weight_gradients`` / ``action_gradient``: ``F.linear`` forward passes that keep
 each layer's input, then ``dZ.T @ input`` weight gradients, ``dZ.sum(0)`` bias gradients and ``dZ @ W`` input
