@@ -16,19 +16,20 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
 Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread: 2.15-2.3x SB3's
-``DDPG`` updates per second with 1 skill, 1.6-1.9x with 2; see benchmarks/README.md): the update is back-propagated by hand under
-``torch.no_grad()`` instead of through autograd (``HFOActor.forward_for_backward`` / ``skill_gradients``,
-``HFOCritic.forward_for_backward`` / ``weight_gradients`` / ``action_gradient``: ``F.linear`` forward passes that keep
-each layer's input, then ``dZ.T @ input`` weight gradients, ``dZ.sum(0)`` bias gradients and ``dZ @ W`` input
-gradients, activation derivatives from the kept outputs). That removes the graph building, the autograd engine and
-``nn.Module.__call__`` from the hot path, and computes only what is needed: no input gradient for the first layer,
-no critic weight gradient in the actor step, and at the critic's action layer only the ``(B, action_dim)`` action
-gradient. Skills: rows are sorted by skill, one backward pass gives every layer's gradient for all rows, and each
-skill's weight gradients are the products over its own rows (the FLOPs of one backward pass). Adam is torch's fused
-kernel called directly (``adam_step``), the targets move in one ``torch._foreach_lerp_``, statistics are summed in a
-tensor (no per-update ``.item()``) and ``set_training_mode`` writes the flags without ``nn.Module.train``'s
-recursion. What remains is mostly matrix products (~1.9 M multiply-adds per sample and update at 400-300-200), the
-Adam steps (one per optimiser: two over the trunk with 2 skills) and the target update, i.e. memory traffic.
+``DDPG`` updates per second with 1 skill, 1.6-1.9x with 2; see benchmarks/README.md): the update is
+back-propagated by hand under ``torch.no_grad()`` instead of through autograd (``HFOActor.forward_for_backward`` /
+``skill_gradients``, ``HFOCritic.forward_for_backward`` / ``weight_gradients`` / ``action_gradient``: ``F.linear``
+forward passes that keep each layer's input, then ``dZ.T @ input`` weight gradients, ``dZ.sum(0)`` bias gradients
+and ``dZ @ W`` input gradients, activation derivatives from the kept outputs). That removes the graph building,
+the autograd engine and ``nn.Module.__call__`` from the hot path, and computes only what is needed: no input
+gradient for the first layer, no critic weight gradient in the actor step, and at the critic's action layer only
+the ``(B, action_dim)`` action gradient. Skills: rows are sorted by skill, one backward pass gives every layer's
+gradient for all rows, and each skill's weight gradients are the products over its own rows (the FLOPs of one
+backward pass). Adam is torch's fused kernel called directly (``adam_step``), the targets move in one
+``torch._foreach_lerp_``, statistics are summed in a tensor (no per-update ``.item()``) and ``set_training_mode``
+writes the flags without ``nn.Module.train``'s recursion. What remains is mostly matrix products (~1.9 M
+multiply-adds per sample and update at 400-300-200), the Adam steps (one per optimiser: with 2 skills two of them
+over the trunk) and the target update.
 
 Exploration (``_sample_action``): SB3's random warm-up (``learning_starts``) and ``action_noise`` as usual, then
 epsilon-greedy over the discrete actions of a parameterised flat action (HFO: the first 3 of 8 entries are the
