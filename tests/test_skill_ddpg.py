@@ -17,21 +17,42 @@ from stable_baselines3.common.noise import NormalActionNoise
 from torch.nn import functional as F
 
 from sb3_hfo import FieldHalfRouter, HFOPolicy, SkillDDPG, SkillRouter
+from sb3_hfo.common.buffers import MonteCarloReplayBufferSamples
 from sb3_hfo.common.toy_env import HybridTargetEnv
 
 TINY = dict(net_arch=[16, 16])
 
 
-def make_batch(n: int = 32, seed: int = 0, far_fraction: float = 0.5) -> ReplayBufferSamples:
-    """A fixed minibatch for HybridTargetEnv-shaped models; ``far_fraction`` of the rows route to skill 0."""
+def make_batch(
+    n: int = 32,
+    seed: int = 0,
+    far_fraction: float = 0.5,
+    n_step_discounts: bool = False,
+    mc_returns: bool = False,
+) -> ReplayBufferSamples | MonteCarloReplayBufferSamples:
+    """A fixed minibatch for HybridTargetEnv-shaped models; ``far_fraction`` of the rows route to skill 0.
+
+    Rows are shuffled (skills interleaved). ``n_step_discounts``: per-row discounts ``gamma^k`` (k in 1..3), as SB3's
+    ``NStepReplayBuffer`` returns them. ``mc_returns``: Monte Carlo returns, known for about half of the rows.
+    """
     rng = np.random.default_rng(seed)
     obs = rng.uniform(-1, 1, (n, 58)).astype(np.float32)
     next_obs = rng.uniform(-1, 1, (n, 58)).astype(np.float32)
     n_far = round(far_fraction * n)
-    obs[:, 46] = np.where(np.arange(n) < n_far, rng.uniform(0.1, 1, n), rng.uniform(-1, -0.1, n))
+    far = rng.permutation(np.arange(n) < n_far)
+    obs[:, 46] = np.where(far, rng.uniform(0.1, 1, n), rng.uniform(-1, -0.1, n))
     tensors = [obs, rng.uniform(-1, 1, (n, 8)), next_obs, (rng.random((n, 1)) < 0.2), rng.normal(size=(n, 1))]
     obs_t, actions, next_t, dones, rewards = (th.as_tensor(np.asarray(x, np.float32)) for x in tensors)
-    return ReplayBufferSamples(obs_t, actions, next_t, dones, rewards)
+    discounts = None
+    if n_step_discounts:
+        discounts = th.as_tensor(0.99 ** rng.integers(1, 4, (n, 1)), dtype=th.float32)
+    if mc_returns:
+        returns = th.as_tensor(rng.normal(2.0, 1.0, (n, 1)), dtype=th.float32)
+        valid = th.as_tensor(rng.random((n, 1)) < 0.5, dtype=th.float32)
+        return MonteCarloReplayBufferSamples(
+            obs_t, actions, next_t, dones, rewards, discounts, returns, valid
+        )
+    return ReplayBufferSamples(obs_t, actions, next_t, dones, rewards, discounts)
 
 
 def make_model(n_skills: int = 1, **kwargs: object) -> SkillDDPG:
@@ -56,18 +77,32 @@ def reference_optimizers(policy: HFOPolicy) -> tuple[th.optim.Adam, list[th.opti
 def reference_update(
     policy: HFOPolicy,
     optimizers: tuple[th.optim.Adam, list[th.optim.Adam]],
-    batch: ReplayBufferSamples,
+    batch: ReplayBufferSamples | MonteCarloReplayBufferSamples,
     gamma: float,
     tau: float,
+    mc_mixing: float = 0.0,
+    preactivation_penalty: float = 0.0,
 ) -> None:
-    """The update written the straightforward way: losses, ``backward``, plain Adam, Polyak loop."""
+    """The update written the straightforward way: losses, autograd, plain Adam, Polyak loop.
+
+    ``mc_mixing``: target ``(1 - beta) y + beta G`` where the Monte Carlo return ``G`` is known.
+    ``preactivation_penalty``: skill ``k``'s loss gains ``lambda * mean over its rows of ||z||^2`` (``z``: its head's
+    output before tanh).
+
+    With ``inverting_gradients``: target actions clamped to [-1, 1], and skill ``k``'s gradient is the actor's
+    vector-Jacobian product with ``-invert(dQ/da) / n_k`` on its rows (Hausknecht & Stone's rescaled dQ/da).
+    """
     critic_opt, skill_opts = optimizers
+    discounts = batch.discounts if batch.discounts is not None else gamma
     with th.no_grad():
-        next_q = policy.critic_target(
-            batch.next_observations,
-            policy.actor_target(batch.next_observations, policy.route(batch.next_observations)),
-        )
-        target = batch.rewards + (1 - batch.dones) * gamma * next_q
+        next_actions = policy.actor_target(batch.next_observations, policy.route(batch.next_observations))
+        if policy.inverting_gradients:
+            next_actions = next_actions.clamp(-1.0, 1.0)
+        next_q = policy.critic_target(batch.next_observations, next_actions)
+        target = batch.rewards + (1 - batch.dones) * discounts * next_q
+        if mc_mixing > 0:
+            mixed = (1 - mc_mixing) * target + mc_mixing * batch.mc_returns  # type: ignore[union-attr]
+            target = th.where(batch.mc_valid > 0, mixed, target)  # type: ignore[union-attr]
     loss = F.mse_loss(policy.critic(batch.observations, batch.actions), target)
     critic_opt.zero_grad()
     loss.backward()
@@ -75,12 +110,29 @@ def reference_update(
     skills = policy.route(batch.observations)
     if skills is None:
         skills = th.zeros(len(batch.observations), dtype=th.long)
-    q = policy.critic(batch.observations, policy.actor(batch.observations, skills))
+    actions = policy.actor(batch.observations, skills)
+    q = policy.critic(batch.observations, actions)
+    features = policy.actor.trunk(batch.observations)
+    preactivations = th.stack([head(features) for head in policy.actor.heads], dim=1)[
+        th.arange(len(skills)), skills
+    ]
     grads = {}
+    if policy.inverting_gradients:
+        (dq_da,) = th.autograd.grad(q.sum(), actions, retain_graph=True)
+        a = actions.detach()
+        inverted = th.where(dq_da > 0, dq_da * (1 - a) / 2, dq_da * (a + 1) / 2)
     for k in range(policy.n_skills):
         rows = skills == k
-        if rows.any():
-            grads[k] = th.autograd.grad(-q[rows].mean(), policy.skill_parameters(k), retain_graph=True)
+        if not rows.any():
+            continue
+        if policy.inverting_gradients:
+            grad_outputs = th.where(rows.unsqueeze(1), -inverted / int(rows.sum()), 0.0)
+            grads[k] = th.autograd.grad(
+                actions, policy.skill_parameters(k), grad_outputs=grad_outputs, retain_graph=True
+            )
+        else:
+            loss_k = -q[rows].mean() + preactivation_penalty * preactivations[rows].square().sum(1).mean()
+            grads[k] = th.autograd.grad(loss_k, policy.skill_parameters(k), retain_graph=True)
     for k, skill_grads in grads.items():
         for param, grad in zip(policy.skill_parameters(k), skill_grads, strict=True):
             param.grad = grad
@@ -95,17 +147,54 @@ def reference_update(
 # Update maths
 
 
-@pytest.mark.parametrize("n_skills", [1, 2])
-def test_update_equals_straightforward_reference(n_skills: int) -> None:
-    """Three updates (the first builds Adam's state, the next use the direct fused-kernel path)."""
-    model = make_model(n_skills, tau=0.05, learning_rate_actor=1e-2, learning_rate_critic=1e-2)
+@pytest.mark.parametrize(
+    ("n_skills", "inverting_gradients", "n_step_discounts", "activation_fn", "mc_mixing", "penalty"),
+    [
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0),
+        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0),
+        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0),
+        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0),
+        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0),
+        (1, False, False, th.nn.ReLU, 0.0, 0.0),
+        (2, False, False, th.nn.Tanh, 0.0, 0.0),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3),
+        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3),
+    ],
+)
+def test_update_equals_straightforward_reference(
+    n_skills: int,
+    inverting_gradients: bool,
+    n_step_discounts: bool,
+    activation_fn: type[th.nn.Module],
+    mc_mixing: float,
+    penalty: float,
+) -> None:
+    """Four updates (the first builds Adam's state, the next use the direct fused-kernel path) of the explicit
+    forward / backward update against an autograd reference; skills interleaved in the batch, one of them absent
+    from the last batch."""
+    policy_kwargs: dict[str, object] = dict(
+        inverting_gradients=inverting_gradients, activation_fn=activation_fn
+    )
+    if n_skills == 3:
+        policy_kwargs["skill_router"] = ThreeBandRouter()
+    model = make_model(
+        n_skills,
+        tau=0.05,
+        learning_rate_actor=1e-2,
+        learning_rate_critic=1e-2,
+        mc_mixing=mc_mixing,
+        preactivation_penalty=penalty,
+        policy_kwargs=policy_kwargs,
+    )
     reference = copy.deepcopy(model.policy)
     optimizers = reference_optimizers(reference)
     before = snapshot(model.policy)
-    for seed, far_fraction in ((0, 0.25), (1, 0.5), (2, 1.0)):
-        batch = make_batch(seed=seed, far_fraction=far_fraction)
+    for seed, far_fraction in ((0, 0.25), (1, 0.5), (3, 0.75), (2, 1.0)):
+        batch = make_batch(
+            seed=seed, far_fraction=far_fraction, n_step_discounts=n_step_discounts, mc_returns=mc_mixing > 0
+        )
         model._update(batch)
-        reference_update(reference, optimizers, batch, model.gamma, model.tau)
+        reference_update(reference, optimizers, batch, model.gamma, model.tau, mc_mixing, penalty)
     after, expected = snapshot(model.policy), snapshot(reference)
     changed = [name for name in after if not th.equal(after[name], before[name])]
     assert len(changed) == len(after)  # every parameter (targets included) moved
@@ -118,6 +207,61 @@ def test_update_equals_straightforward_reference(n_skills: int) -> None:
             state_ours, state_theirs = ours.state[param_ours], theirs.state[param_theirs]
             assert int(state_ours["step"]) == int(state_theirs["step"])
             th.testing.assert_close(state_ours["exp_avg"], state_theirs["exp_avg"], atol=1e-7, rtol=1e-4)
+
+
+class ThreeBandRouter(SkillRouter):
+    """Three skills by bands of feature 46 (for tests)."""
+
+    n_skills = 3
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        x = obs[..., 46]
+        if isinstance(x, th.Tensor):
+            return (x < 0.5).long() + (x < -0.5).long()
+        return (x < 0.5).astype(np.int64) + (x < -0.5).astype(np.int64)
+
+
+def test_update_statistics_match_their_definitions() -> None:
+    """The per-update sums behind train/critic_loss, actor_loss, max_q, mean_q and actor_loss_skill_k."""
+    model = make_model(2, learning_rate_actor=1e-2, learning_rate_critic=1e-2)
+    reference = copy.deepcopy(model.policy)
+    batch = make_batch(seed=4, far_fraction=0.25)
+    model._update(batch)
+    policy = reference
+    with th.no_grad():
+        next_obs = batch.next_observations
+        next_q = policy.critic_target(next_obs, policy.actor_target(next_obs, policy.route(next_obs)))
+        target = batch.rewards + (1 - batch.dones) * model.gamma * next_q
+        q = policy.critic(batch.observations, batch.actions)
+    critic_loss = F.mse_loss(q, target)
+    # The actor statistics use the critic after its step: take it from the model (the actor is not used by it).
+    skills = policy.route(batch.observations)
+    assert skills is not None
+    with th.no_grad():
+        q_actor = model.policy.critic(batch.observations, policy.actor(batch.observations, skills))
+    expected = [
+        critic_loss,
+        -q_actor.mean(),
+        q.max(),
+        q.mean(),
+        -q_actor[skills == 0].mean(),
+        -q_actor[skills == 1].mean(),
+    ]
+    th.testing.assert_close(model._stat_sums, th.stack(expected).flatten(), atol=1e-6, rtol=1e-5)
+    assert model._stat_updates == 1 and model._skill_updates == [1, 1]
+
+
+def test_set_training_mode_sets_every_flag() -> None:
+    policy = make_model(2).policy
+    for mode in (False, True, False):
+        policy.set_training_mode(mode)
+        assert policy.training is mode
+        assert all(m.training is mode for m in (*policy.actor.modules(), *policy.critic.modules()))
+
+
+def test_unsupported_activation_is_rejected() -> None:
+    with pytest.raises(ValueError, match="activation_fn must be"):
+        make_model(1, policy_kwargs=dict(activation_fn=th.nn.GELU))
 
 
 def test_skill_without_samples_is_not_updated() -> None:
@@ -478,26 +622,6 @@ def test_same_seed_same_training() -> None:
     assert th.equal(first, second)
 
 
-@pytest.mark.parametrize("n_skills", [1, 2])
-def test_preactivation_penalty_adds_its_gradient_to_each_skills_loss(n_skills: int) -> None:
-    penalty = 0.3
-    model = make_model(n_skills, learning_starts=10, preactivation_penalty=penalty)
-    model.learn(50)
-    assert model.replay_buffer is not None
-    batch = model.replay_buffer.sample(32)
-    obs = batch.observations
-    skills = model.policy.route(obs)
-    rows = th.ones(32, dtype=th.bool) if skills is None else skills == 0
-    actions, _, outputs = model.actor.forward_tracked(
-        obs, th.zeros(32, dtype=th.long) if skills is None else skills
-    )
-    loss = -model.critic(obs, actions)[rows].mean() + penalty * (outputs[-1][rows] ** 2).sum(1).mean()
-    expected = th.autograd.grad(loss, model._skill_params[0])
-    captured: dict[int, tuple[th.Tensor, ...]] = {}
-    model._apply_skill_step = lambda skill, grads: captured.setdefault(skill, tuple(grads))  # type: ignore[method-assign]
-    model.policy.critic_optimizer.param_groups[0]["lr"] = 0.0  # the actor step must see the same critic
-    model._update(batch)
-    for got, want in zip(captured[0], expected, strict=True):
-        assert th.allclose(got, want, atol=1e-6)
+def test_negative_preactivation_penalty_is_rejected() -> None:
     with pytest.raises(ValueError, match="preactivation_penalty"):
         make_model(1, preactivation_penalty=-1.0)

@@ -6,8 +6,8 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``).
 2. Actor (eq. 7), with the critic just updated: every row's action comes from the head its skill router picks;
    ``g = dQ/da`` at ``a = mu_{skill(s)}(s)`` for the whole minibatch in one critic pass. Skill ``k``'s loss is
-   ``-mean over the rows routed to k of Q(s, a)``; its gradient over (trunk + head k) is the vector-Jacobian product
-   of the actor with ``-g / n_k`` on those rows (computed for all skills in one backward pass, each skill's weight
+   ``-mean over the rows routed to k of Q(s, a)``; its gradient over (trunk + head k) is the back-propagation of
+   ``-g / n_k`` through the actor on those rows (computed for all skills in one backward pass, each skill's weight
    gradients summed over its own rows only). All skills' gradients are evaluated at the same parameters, then
    each skill that had rows takes one step of its own Adam (``policy.actor_skill_{k}_optimizer``). A skill without
    rows takes no step (parameters and Adam state unchanged). With one skill this is exactly DDPG's actor update.
@@ -15,11 +15,21 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``g * (1 - a) / 2`` where ``g > 0`` (the update would increase ``a``) and ``g * (a + 1) / 2`` elsewhere.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
-Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py): fused Adam, the actor's gradient
-obtained with ``torch.autograd.grad`` through a weight-frozen critic pass so that neither the critic's weight
-gradients nor its hidden-state input gradients are computed in the actor step, per-skill gradients from a single
-backward pass, one vectorised target update, no per-update ``.item()``: losses and Q statistics are summed in a tensor and
-converted when the logger dumps.
+Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread: 2.15-2.3x SB3's
+``DDPG`` updates per second with 1 skill, 1.6-1.9x with 2; see benchmarks/README.md): the update is
+back-propagated by hand under ``torch.no_grad()`` instead of through autograd (``HFOActor.forward_for_backward`` /
+``skill_gradients``, ``HFOCritic.forward_for_backward`` / ``weight_gradients`` / ``action_gradient``: ``F.linear``
+forward passes that keep each layer's input, then ``dZ.T @ input`` weight gradients, ``dZ.sum(0)`` bias gradients
+and ``dZ @ W`` input gradients, activation derivatives from the kept outputs). That removes the graph building,
+the autograd engine and ``nn.Module.__call__`` from the hot path, and computes only what is needed: no input
+gradient for the first layer, no critic weight gradient in the actor step, and at the critic's action layer only
+the ``(B, action_dim)`` action gradient. Skills: rows are sorted by skill, one backward pass gives every layer's
+gradient for all rows, and each skill's weight gradients are the products over its own rows (the FLOPs of one
+backward pass). Adam is torch's fused kernel called directly (``adam_step``), the targets move in one
+``torch._foreach_lerp_``, statistics are summed in a tensor (no per-update ``.item()``) and ``set_training_mode``
+writes the flags without ``nn.Module.train``'s recursion. What remains is mostly matrix products (~1.9 M
+multiply-adds per sample and update at 400-300-200), the Adam steps (one per optimiser: with 2 skills two of them
+over the trunk) and the target update.
 
 Exploration (``_sample_action``): SB3's random warm-up (``learning_starts``) and ``action_noise`` as usual, then
 epsilon-greedy over the discrete actions of a parameterised flat action (HFO: the first 3 of 8 entries are the
@@ -53,10 +63,9 @@ from stable_baselines3.common.utils import (
     LinearSchedule,
     update_learning_rate,
 )
-from torch.nn import functional as F
 
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
-from sb3_hfo.skill_ddpg.policies import HFOPolicy
+from sb3_hfo.skill_ddpg.policies import HFOPolicy, Segment
 
 __all__ = ["HFO_FLAT_ACTION_DIM", "HFO_N_DISCRETE_ACTIONS", "SkillDDPG", "adam_step"]
 
@@ -323,6 +332,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._target_params = [*self.actor_target.parameters(), *self.critic_target.parameters()]
         self._skill_params = [self.policy.skill_parameters(k) for k in range(self.policy.n_skills)]
         self._critic_params = list(self.critic.parameters())
+        self._skill_optimizers = self.policy.actor_optimizers
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
@@ -353,140 +363,92 @@ class SkillDDPG(OffPolicyAlgorithm):
             self._update(self.replay_buffer.sample(batch_size, env=self._vec_normalize_env))
         self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
 
+    @th.no_grad()
     def _update(self, batch: ReplayBufferSamples) -> None:
         """One critic, actor and target update on ``batch`` (observations ``(B, obs_dim)``, actions ``(B, A)``
-        in [-1, 1], rewards / dones ``(B, 1)``)."""
+        in [-1, 1], rewards / dones ``(B, 1)``), back-propagated explicitly (no autograd graph)."""
         policy = self.policy
-        obs, actions = batch.observations, batch.actions
-
-        # 1. Critic (eq. 5, 6).
-        target_q = self._critic_target(batch)
-        current_q = self.critic(obs, actions)
-        critic_loss = F.mse_loss(current_q, target_q)
-        adam_step(
-            policy.critic_optimizer, self._critic_params, th.autograd.grad(critic_loss, self._critic_params)
-        )
-
-        # 2. Actor (eq. 7) against the updated critic.
+        actor, critic = self.actor, self.critic
+        obs = batch.observations
         batch_size = obs.shape[0]
-        stats = self._stat_sums
+
+        # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B.
+        target_q = self._critic_target(batch)
+        current_q, critic_inputs = critic.forward_for_backward(obs, batch.actions)
+        error = current_q - target_q
+        critic_grads = critic.weight_gradients(critic_inputs, error * (2.0 / error.numel()))
+        adam_step(policy.critic_optimizer, self._critic_params, critic_grads)
+
+        # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
         skills = policy.route(obs)
         if skills is None:
-            if self.preactivation_penalty > 0:
-                actor_actions, _, layer_outputs = self.actor.forward_tracked(
-                    obs, th.zeros_like(obs[:, 0]).long()
-                )
-                outputs, output_grads = self._with_preactivation_penalty(
-                    actor_actions, layer_outputs[-1], -1.0 / batch_size
-                )
-            else:
-                actor_actions = self.actor(obs)
-            q_actor = self.critic.q_with_frozen_weights(obs, actor_actions)
-            dq_da = self._action_gradient(q_actor, actor_actions)
-            if self.preactivation_penalty > 0:
-                output_grads[0] = dq_da * (-1.0 / batch_size)
-                grads = th.autograd.grad(outputs, self._skill_params[0], grad_outputs=output_grads)
-            else:
-                grads = th.autograd.grad(
-                    actor_actions, self._skill_params[0], grad_outputs=dq_da * (-1.0 / batch_size)
-                )
-            self._apply_skill_step(0, grads)
-            self._skill_updates[0] += 1
-            q_detached = q_actor.detach()
-            stats[_N_GLOBAL_STATS] -= q_detached.mean()
+            segments: list[Segment] = [(0, 0, batch_size)]
+            row_weight: th.Tensor | float = -1.0 / batch_size
         else:
-            q_detached = self._update_skills(obs, skills)
+            # Rows sorted by skill, so that each skill's rows are one slice.
+            order = th.argsort(skills, stable=True)
+            obs, skills = obs[order], skills[order]
+            counts = th.bincount(skills, minlength=policy.n_skills)
+            segments = []
+            weights: list[float] = []
+            start = 0
+            for k, n_rows in enumerate(counts.tolist()):
+                if n_rows > 0:
+                    segments.append((k, start, start + n_rows))
+                    weights += [-1.0 / n_rows] * n_rows
+                    start += n_rows
+            # Built in Python: one small tensor instead of five tensor ops on the counts.
+            row_weight = th.tensor(weights, dtype=obs.dtype, device=obs.device).unsqueeze(1)
+        actor_actions, actor_inputs, actor_outputs = actor.forward_for_backward(obs, segments)
+        actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions)
+        dq_da = critic.action_gradient(q_inputs)
+        if policy.inverting_gradients:
+            dq_da = self._invert_gradients(dq_da, actor_actions)
+        # d(lambda * mean_k ||z||^2)/dz = 2 lambda z / n_k = -2 lambda z * row_weight.
+        grad_outputs = (
+            actor_outputs * (row_weight * (-2.0 * self.preactivation_penalty))
+            if self.preactivation_penalty > 0
+            else None
+        )
+        skill_grads = actor.skill_gradients(
+            actor_inputs, actor_actions, dq_da * row_weight, segments, grad_outputs=grad_outputs
+        )
+        # All skills' gradients were taken at the same parameters; now each skill with rows takes its Adam step.
+        for (k, _, _), grads in zip(segments, skill_grads, strict=True):
+            adam_step(self._skill_optimizers[k], self._skill_params[k], grads)
+            self._skill_updates[k] += 1
 
         # 3. Targets.
-        with th.no_grad():
-            th._foreach_lerp_(self._target_params, self._online_params, self.tau)
-            current = current_q.detach()
-            stats[_STAT_CRITIC_LOSS] += critic_loss.detach()
-            stats[_STAT_ACTOR_LOSS] -= q_detached.mean()
-            stats[_STAT_MAX_Q] += current.max()
-            stats[_STAT_MEAN_Q] += current.mean()
+        th._foreach_lerp_(self._target_params, self._online_params, self.tau)
+
+        # Statistics, summed as tensors (no synchronisation); -mean_k Q is the sum of row_weight * Q over skill k.
+        actor_loss = -actor_q.mean()
+        stats = self._stat_sums
+        stats[:_N_GLOBAL_STATS].add_(
+            th.stack((error.square().mean(), actor_loss, current_q.max(), current_q.mean()))
+        )
+        if skills is None:
+            stats[_N_GLOBAL_STATS].add_(actor_loss)
+        else:
+            stats[_N_GLOBAL_STATS:].index_add_(0, skills, (actor_q * row_weight).squeeze(1))
         self._stat_updates += 1
 
-    @th.no_grad()
     def _critic_target(self, batch: ReplayBufferSamples) -> th.Tensor:
         """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``gamma^n`` from ``batch.discounts``
         with n-step returns), mixed with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose
-        return is known when ``mc_mixing = beta > 0``."""
+        return is known when ``mc_mixing = beta > 0``. Call under ``torch.no_grad()``."""
         policy = self.policy
         next_obs = batch.next_observations
-        next_actions = self.actor_target(next_obs, policy.route(next_obs))
+        next_actions = self.actor_target.forward(next_obs, policy.route(next_obs))
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
-        next_q = self.critic_target(next_obs, next_actions)
+        next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
         discounts = batch.discounts if batch.discounts is not None else self.gamma
         target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
         if self.mc_mixing > 0:
             mixed: MonteCarloReplayBufferSamples = batch  # type: ignore[assignment]
             target_q += self.mc_mixing * mixed.mc_valid * (mixed.mc_returns - target_q)
         return target_q
-
-    def _action_gradient(self, q_actor: th.Tensor, actor_actions: th.Tensor) -> th.Tensor:
-        """dQ/da ``(B, A)`` at the actor's actions, inverted when ``inverting_gradients`` is on."""
-        (dq_da,) = th.autograd.grad(q_actor.sum(), actor_actions)
-        if self.policy.inverting_gradients:
-            dq_da = self._invert_gradients(dq_da, actor_actions.detach())
-        return dq_da
-
-    def _update_skills(self, obs: th.Tensor, skills: th.Tensor) -> th.Tensor:
-        """Actor update with ``n_skills > 1``; returns the detached ``Q (B, 1)`` of the actor's actions (rows sorted
-        by skill).
-
-        Rows are sorted by skill so that each skill's rows form one slice. One backward pass gives the gradient of
-        every Linear's output (rows never mix in an MLP, so row ``i``'s gradient only involves its own skill's
-        loss); each skill's weight gradients are then ``d_out[rows].T @ input[rows]`` over its own rows: the same
-        numbers as one backward pass per skill, for the FLOPs of one.
-        """
-        policy = self.policy
-        n_skills = policy.n_skills
-        order = th.argsort(skills, stable=True)
-        obs, skills = obs[order], skills[order]
-        counts_tensor = th.bincount(skills, minlength=n_skills)
-        counts = counts_tensor.tolist()
-        actor_actions, layer_inputs, layer_outputs = self.actor.forward_tracked(obs, skills)
-        q_actor = self.critic.q_with_frozen_weights(obs, actor_actions)
-        dq_da = self._action_gradient(q_actor, actor_actions)
-        # Skill k's loss is -mean over its n_k rows of Q: row weight -1 / n_k (clamp: absent skills have no rows).
-        row_weight = (-1.0 / counts_tensor.clamp(min=1).to(dq_da.dtype))[skills].unsqueeze(1)
-        outputs, grad_outputs = self._with_preactivation_penalty(actor_actions, layer_outputs[-1], row_weight)
-        grad_outputs[0] = dq_da * row_weight
-        output_grads = th.autograd.grad(outputs, layer_outputs, grad_outputs=grad_outputs)
-        q_detached = q_actor.detach()
-        stats = self._stat_sums
-        start = 0
-        for k, n_rows in enumerate(counts):
-            if n_rows == 0:
-                continue
-            rows = slice(start, start + n_rows)
-            start += n_rows
-            grads: list[th.Tensor] = []
-            for layer_input, output_grad in zip(layer_inputs, output_grads, strict=True):
-                grad_rows = output_grad[rows]
-                grads += [grad_rows.t().mm(layer_input[rows].detach()), grad_rows.sum(0)]
-            self._apply_skill_step(k, tuple(grads))
-            self._skill_updates[k] += 1
-            stats[_N_GLOBAL_STATS + k] -= q_detached[rows].mean()
-        return q_detached
-
-    def _with_preactivation_penalty(
-        self, actions: th.Tensor, preactivations: th.Tensor, row_weight: th.Tensor | float
-    ) -> tuple[list[th.Tensor], list[th.Tensor | None]]:
-        """Outputs and (partial) output gradients for the actor's backward pass: ``[actions]`` and a placeholder
-        for dL/da, plus ``z`` with the penalty's gradient ``2 * lambda * z / n_k`` when ``preactivation_penalty > 0``.
-
-        ``row_weight`` is ``-1 / n_k`` per row (or one float), so ``-2 * lambda * z * row_weight`` is that gradient.
-        """
-        if self.preactivation_penalty <= 0:
-            return [actions], [None]
-        penalty_grad = (-2.0 * self.preactivation_penalty) * preactivations.detach() * row_weight
-        return [actions, preactivations], [None, penalty_grad]
-
-    def _apply_skill_step(self, skill: int, grads: Sequence[th.Tensor]) -> None:
-        adam_step(self.policy.actor_optimizers[skill], self._skill_params[skill], grads)
 
     @staticmethod
     def _invert_gradients(dq_da: th.Tensor, actions: th.Tensor) -> th.Tensor:
@@ -608,6 +570,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_target_params",
             "_skill_params",
             "_critic_params",
+            "_skill_optimizers",
             "_stat_sums",
         ]
 
