@@ -165,9 +165,10 @@ class SkillDDPG(OffPolicyAlgorithm):
         return from the sampled state (:class:`~sb3_hfo.common.buffers.MonteCarloReplayBuffer`, selected
         automatically). 0 (default) is the paper's pure TD target. Not combinable with ``n_steps > 1``.
     :param preactivation_penalty: ``lambda`` of an extra actor loss ``lambda * mean over rows of ||z||^2`` on the
-        output layer's pre-``tanh`` values ``z`` (per skill, over its own rows). The critic's gradient can push ``z`` without bound
-        towards an action bound, where ``tanh`` saturates and passes back no gradient (Hausknecht & Stone 2016's
-        motivation for inverting gradients); the penalty holds ``z`` where ``tanh`` still responds. 0: the paper.
+        output layer's pre-``tanh`` values ``z`` (per skill, over its own rows). The critic's gradient can push
+        ``z`` without bound towards an action bound, where ``tanh`` saturates and passes back no gradient
+        (Hausknecht & Stone 2016's motivation for inverting gradients); the penalty holds ``z`` where ``tanh``
+        still responds. 0: the paper.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
     :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
@@ -274,6 +275,9 @@ class SkillDDPG(OffPolicyAlgorithm):
             raise ValueError(f"preactivation_penalty must be >= 0, got {self.preactivation_penalty}")
         if not 0.0 <= self.mc_mixing <= 1.0:
             raise ValueError(f"mc_mixing must lie in [0, 1], got {self.mc_mixing}")
+
+    def _select_replay_buffer(self) -> None:
+        """``mc_mixing > 0`` needs the episode returns that only :class:`MonteCarloReplayBuffer` keeps."""
         if self.mc_mixing > 0:
             if self.n_steps > 1:
                 raise ValueError(
@@ -308,6 +312,7 @@ class SkillDDPG(OffPolicyAlgorithm):
 
     def _setup_model(self) -> None:
         self._check_arguments()
+        self._select_replay_buffer()
         super()._setup_model()
         if not isinstance(self.policy, HFOPolicy):
             raise ValueError(f"SkillDDPG needs an HFOPolicy (or subclass), got {type(self.policy).__name__}")
