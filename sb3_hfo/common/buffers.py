@@ -107,24 +107,15 @@ class MonteCarloReplayBuffer(ReplayBuffer):
         length = int(self.episode_lengths[env_index])
         positions = (last_position - np.arange(length - 1, -1, -1)) % self.buffer_size  # oldest first
         rewards = self.rewards[positions, env_index].astype(np.float64)
-        # G_t = sum_k gamma^(k - t) r_k: a reversed cumulative sum of gamma^k r_k, divided by gamma^t.
-        powers = self.gamma ** np.arange(length, dtype=np.float64)
-        if self.gamma > 0.0 and powers[-1] > 1e-300:
-            returns = np.cumsum((rewards * powers)[::-1])[::-1] / powers
-        else:
-            returns = self._returns_by_recursion(rewards)
+        # A plain backward loop: once per episode (<= 500 steps in HFO), and no gamma^t that could underflow.
+        returns = np.empty_like(rewards)
+        running = 0.0
+        for step in range(length - 1, -1, -1):
+            running = rewards[step] + self.gamma * running
+            returns[step] = running
         self.mc_returns[positions, env_index] = returns
         self.mc_valid[positions, env_index] = 1.0
         self.episode_lengths[env_index] = 0
-
-    def _returns_by_recursion(self, rewards: np.ndarray) -> np.ndarray:
-        """``G_t = r_t + gamma * G_{t+1}`` step by step (when gamma^length would underflow)."""
-        returns = np.empty_like(rewards)
-        running = 0.0
-        for step in range(rewards.size - 1, -1, -1):
-            running = rewards[step] + self.gamma * running
-            returns[step] = running
-        return returns
 
     def _get_samples(  # type: ignore[override]
         self, batch_inds: np.ndarray, env: VecNormalize | None = None
