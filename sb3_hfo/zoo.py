@@ -222,3 +222,55 @@ class HFOEpisodeStatsCallback(BaseCallback):
             self.logger.record("rollout/goal_rate", float(np.mean(self.recent_goals)))
             self.logger.record("rollout/episodes", self.episodes)
         return True
+
+
+class ActionNoiseDecayCallback(BaseCallback):
+    """Anneal the standard deviation of the model's Gaussian (or Ornstein-Uhlenbeck) action noise linearly.
+
+    SB3's ``action_noise`` keeps its ``sigma`` fixed, and rl-zoo3's ``noise_std`` sets it once. A wide noise helps
+    the critic see many kick directions early on; late in training the same noise spoils most aimed kicks, so the
+    behaviour policy (and the Monte Carlo returns of ``mc_mixing``) lag far behind the greedy one. This callback
+    moves every noise's ``sigma`` from its value at the start of ``learn`` to ``final_std`` over the first
+    ``decay_fraction`` of the ``learn`` call (the schedule of SB3's epsilon), then holds it, and logs it as
+    ``rollout/action_noise_std``.
+
+    :param final_std: noise standard deviation at the end of the decay, on the policy's action scale ([-1, 1]
+        in SB3's buffer; the same unit as rl-zoo3's ``noise_std``).
+    :param decay_fraction: fraction of the ``learn`` call's ``total_timesteps`` over which to decay, in (0, 1].
+    """
+
+    def __init__(self, final_std: float, decay_fraction: float = 1.0, verbose: int = 0) -> None:
+        super().__init__(verbose)
+        if not np.isfinite(final_std) or final_std < 0:
+            raise ValueError(f"final_std must be a finite number >= 0, got {final_std!r}")
+        if not 0 < decay_fraction <= 1:
+            raise ValueError(f"decay_fraction must be in (0, 1], got {decay_fraction!r}")
+        self.final_std = float(final_std)
+        self.decay_fraction = float(decay_fraction)
+        self.initial_sigmas: list[np.ndarray] = []
+
+    def _noises(self) -> list[Any]:
+        noise = getattr(self.model, "action_noise", None)
+        if noise is None:
+            return []
+        return list(getattr(noise, "noises", [noise]))  # VectorizedActionNoise holds one noise per env
+
+    def _init_callback(self) -> None:
+        noises = self._noises()
+        if not noises or not all(hasattr(noise, "_sigma") for noise in noises):
+            raise ValueError(
+                "ActionNoiseDecayCallback needs a model with a Gaussian or Ornstein-Uhlenbeck action_noise "
+                f"(rl-zoo3: noise_type normal or ornstein-uhlenbeck); got {getattr(self.model, 'action_noise', None)!r}"
+            )
+
+    def _on_training_start(self) -> None:
+        self.initial_sigmas = [np.array(noise._sigma, dtype=np.float64, copy=True) for noise in self._noises()]
+        self._start_timesteps = self.num_timesteps
+
+    def _on_step(self) -> bool:
+        total = max(int(getattr(self.model, "_total_timesteps", 0)) - self._start_timesteps, 1)
+        progress = min((self.num_timesteps - self._start_timesteps) / (self.decay_fraction * total), 1.0)
+        for noise, initial in zip(self._noises(), self.initial_sigmas, strict=True):
+            noise._sigma = initial + progress * (self.final_std - initial)
+        self.logger.record("rollout/action_noise_std", float(np.mean(self._noises()[0]._sigma)))
+        return True

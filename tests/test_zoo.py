@@ -347,6 +347,42 @@ def test_episode_stats_callback_logs_goal_rate() -> None:
     assert recorder.values == {"rollout/goal_rate": 0.5, "rollout/episodes": 3}
 
 
+def test_action_noise_decay_callback_anneals_sigma_per_env() -> None:
+    from stable_baselines3 import TD3
+    from stable_baselines3.common.callbacks import BaseCallback
+    from stable_baselines3.common.env_util import make_vec_env
+    from stable_baselines3.common.noise import NormalActionNoise
+
+    from sb3_hfo.zoo import ActionNoiseDecayCallback
+
+    class SigmaRecorder(BaseCallback):
+        def __init__(self) -> None:
+            super().__init__()
+            self.sigmas: list[float] = []
+
+        def _on_step(self) -> bool:
+            self.sigmas.append(float(self.model.action_noise.noises[1]._sigma[0]))
+            return True
+
+    env = make_vec_env("Pendulum-v1", n_envs=2, seed=0)
+    noise = NormalActionNoise(mean=np.zeros(1), sigma=np.full(1, 0.4))
+    # learning_starts beyond the budget: only the rollout (and its noise) runs, no gradient step.
+    model = TD3("MlpPolicy", env, action_noise=noise, learning_starts=1_000, seed=0)
+    recorder = SigmaRecorder()
+    model.learn(80, callback=[ActionNoiseDecayCallback(final_std=0.1, decay_fraction=0.5), recorder])
+    # 2 envs: 40 callback calls, 2 timesteps each; the decay ends at timestep 40 (half of 80).
+    assert recorder.sigmas[9] == pytest.approx(0.4 - 0.3 * 20 / 40)
+    assert recorder.sigmas[19:] == pytest.approx([0.1] * 21)
+    assert model.logger.name_to_value["rollout/action_noise_std"] == pytest.approx(0.1)
+
+    with pytest.raises(ValueError, match="final_std"):
+        ActionNoiseDecayCallback(final_std=float("nan"))
+    with pytest.raises(ValueError, match="decay_fraction"):
+        ActionNoiseDecayCallback(final_std=0.1, decay_fraction=0.0)
+    with pytest.raises(ValueError, match="action_noise"):
+        TD3("MlpPolicy", env, learning_starts=1_000).learn(4, callback=ActionNoiseDecayCallback(final_std=0.1))
+
+
 # ------------------------------------------------------------------------------------------------------------------
 # End to end (one training subprocess for all configs)
 
