@@ -264,7 +264,9 @@ class ActionNoiseDecayCallback(BaseCallback):
             )
 
     def _on_training_start(self) -> None:
-        self.initial_sigmas = [np.array(noise._sigma, dtype=np.float64, copy=True) for noise in self._noises()]
+        self.initial_sigmas = [
+            np.array(noise._sigma, dtype=np.float64, copy=True) for noise in self._noises()
+        ]
         self._start_timesteps = self.num_timesteps
 
     def _on_step(self) -> bool:

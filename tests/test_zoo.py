@@ -380,7 +380,9 @@ def test_action_noise_decay_callback_anneals_sigma_per_env() -> None:
     with pytest.raises(ValueError, match="decay_fraction"):
         ActionNoiseDecayCallback(final_std=0.1, decay_fraction=0.0)
     with pytest.raises(ValueError, match="action_noise"):
-        TD3("MlpPolicy", env, learning_starts=1_000).learn(4, callback=ActionNoiseDecayCallback(final_std=0.1))
+        TD3("MlpPolicy", env, learning_starts=1_000).learn(
+            4, callback=ActionNoiseDecayCallback(final_std=0.1)
+        )
 
 
 # ------------------------------------------------------------------------------------------------------------------
