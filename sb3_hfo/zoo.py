@@ -248,6 +248,7 @@ class ActionNoiseDecayCallback(BaseCallback):
         self.final_std = float(final_std)
         self.decay_fraction = float(decay_fraction)
         self.initial_sigmas: list[np.ndarray] = []
+        self._start_timesteps = 0
 
     def _noises(self) -> list[Any]:
         noise = getattr(self.model, "action_noise", None)
