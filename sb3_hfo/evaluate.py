@@ -1,6 +1,6 @@
 """Evaluate a trained SkillDDPG agent on an HFO task: scoring rate with a 95% CI and behaviour statistics.
 
-``python -m sb3_hfo.evaluate MODEL --env HFO/EmptyGoal-v0 --episodes 100 --seed 0 --deterministic --json out.json``
+``python -m sb3_hfo.evaluate MODEL --env HFO/EmptyGoal-v0 --episodes 100 --seed 0 --json out.json``
 
 MODEL is a SkillDDPG ``.zip`` (the suffix may be left out) or an rl-zoo3 run folder such as
 ``logs/skill_ddpg/HFO-EmptyGoal-v0_1`` (its final model ``HFO-EmptyGoal-v0.zip`` is used, else
@@ -300,7 +300,7 @@ def evaluate(
     env_id: str | None = None,
     episodes: int = 100,
     seed: int = 0,
-    deterministic: bool = False,
+    deterministic: bool = True,
     env_kwargs: dict[str, Any] | None = None,
 ) -> EvaluationResult:
     """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors."""
@@ -392,10 +392,18 @@ def build_parser() -> argparse.ArgumentParser:
     )
     parser.add_argument("--episodes", type=int, default=100, help="number of episodes (default 100)")
     parser.add_argument("--seed", type=int, default=0, help="seed of the first env reset (default 0)")
+    # Greedy by default, like SB3's evaluate_policy and rl-zoo3's enjoy (which has --stochastic to opt out).
+    parser.add_argument(
+        "--stochastic",
+        dest="deterministic",
+        action="store_false",
+        help="predict(deterministic=False) (SkillDDPG's actor is greedy either way; for other algorithms)",
+    )
     parser.add_argument(
         "--deterministic",
+        dest="deterministic",
         action="store_true",
-        help="predict(deterministic=True) (SkillDDPG's actor is greedy either way; kept for other algorithms)",
+        help="predict(deterministic=True), the default (kept so that older command lines still run)",
     )
     parser.add_argument("--json", default=None, help="write the result as JSON to this file")
     parser.add_argument(

@@ -424,6 +424,16 @@ def test_evaluate_reports_json_for_an_rl_zoo_run_folder(
     ):
         assert key in report
     assert report["dribble_fraction"] >= 0.0
+    assert report["deterministic"] is True  # greedy unless --stochastic
+
+
+def test_evaluate_is_greedy_unless_stochastic() -> None:
+    from sb3_hfo.evaluate import build_parser
+
+    parser = build_parser()
+    assert parser.parse_args(["m.zip"]).deterministic is True
+    assert parser.parse_args(["m.zip", "--deterministic"]).deterministic is True
+    assert parser.parse_args(["m.zip", "--stochastic"]).deterministic is False
 
 
 def test_evaluate_unknown_env_id_lists_hfo_ids(trained_runs: tuple[Path, dict[str, str], str]) -> None:
