@@ -307,29 +307,36 @@ class HFOActor(nn.Module):
         if grad_outputs is not None:
             grad_out = grad_out + grad_outputs
         features = inputs[-1]
+        trunk_layers = self.trunk_layers
+        backward = self.activation.backward
         if len(segments) == 1:
-            rows: list[slice] = [slice(None)]
-            head_weight = self.head_layers[segments[0][0]][0]
-            grads = [[grad_out.t().mm(features), grad_out.sum(0)]]
-            grad_hidden = grad_out.mm(head_weight)
-        else:
-            rows = [slice(start, stop) for _, start, stop in segments]
-            grads = []
-            grad_hidden = th.empty_like(features)
-            for (k, _, _), part in zip(segments, rows, strict=True):
-                grad_part = grad_out[part]
-                grads.append([grad_part.t().mm(features[part]), grad_part.sum(0)])
-                th.mm(grad_part, self.head_layers[k][0], out=grad_hidden[part])
-        # Collected from the output down: [W_head, b_head, b_n, W_n, ..., b_1, W_1], reordered at the end.
-        for index in range(len(self.trunk_layers) - 1, -1, -1):
-            grad_z = self.activation.backward(grad_hidden, inputs[index + 1])
-            layer_input = inputs[index]
-            for part, skill_grads in zip(rows, grads, strict=True):
-                grad_part = grad_z[part]
-                skill_grads += [grad_part.sum(0), grad_part.t().mm(layer_input[part])]
+            grads = [grad_out.t().mm(features), grad_out.sum(0)]
+            grad_hidden = grad_out.mm(self.head_layers[segments[0][0]][0])
+            # Collected from the output down: [W_head, b_head, b_n, W_n, ..., b_1, W_1], reordered at the end.
+            for index in range(len(trunk_layers) - 1, -1, -1):
+                grad_z = backward(grad_hidden, inputs[index + 1])
+                grads += [grad_z.sum(0), grad_z.t().mm(inputs[index])]
+                if index > 0:
+                    grad_hidden = grad_z.mm(trunk_layers[index][0])
+            return [grads[:1:-1] + grads[:2]]
+        # Each skill's rows as views from one split per tensor (instead of one slice per skill and tensor).
+        sizes = [stop - start for _, start, stop in segments]
+        grad_hidden = th.empty_like(features)
+        per_skill = []
+        for (k, _, _), grad_part, input_part, hidden_part in zip(
+            segments, grad_out.split(sizes), features.split(sizes), grad_hidden.split(sizes), strict=True
+        ):
+            per_skill.append([grad_part.t().mm(input_part), grad_part.sum(0)])
+            th.mm(grad_part, self.head_layers[k][0], out=hidden_part)
+        for index in range(len(trunk_layers) - 1, -1, -1):
+            grad_z = backward(grad_hidden, inputs[index + 1])
+            for grad_part, input_part, skill_grads in zip(
+                grad_z.split(sizes), inputs[index].split(sizes), per_skill, strict=True
+            ):
+                skill_grads += [grad_part.sum(0), grad_part.t().mm(input_part)]
             if index > 0:
-                grad_hidden = grad_z.mm(self.trunk_layers[index][0])
-        return [skill_grads[:1:-1] + skill_grads[:2] for skill_grads in grads]
+                grad_hidden = grad_z.mm(trunk_layers[index][0])
+        return [skill_grads[:1:-1] + skill_grads[:2] for skill_grads in per_skill]
 
 
 class HFOCritic(nn.Module):
