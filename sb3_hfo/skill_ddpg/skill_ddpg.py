@@ -81,6 +81,8 @@ _STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3
 _N_GLOBAL_STATS = 4
 # Bound on SkillDDPG's cache of minibatch layouts (one per split of the batch between skills).
 _MAX_CACHED_LAYOUTS = 4096
+# (segments, row_weight, skill_weight, mean_weight): see SkillDDPG._skill_layout.
+_Layout = tuple[list[Segment], th.Tensor | float, th.Tensor, th.Tensor]
 
 # torch's fused Adam kernel (an ATen op, present since torch 2.0); used directly by adam_step.
 _HAS_FUSED_ADAM = hasattr(th, "_fused_adam_")
@@ -95,7 +97,7 @@ class _FusedAdamState:
     Valid while ``optimizer.state`` is the same object (``load_state_dict`` replaces it) and holds these tensors.
     """
 
-    __slots__ = ("exp_avg_sqs", "exp_avgs", "params", "state", "step_views", "steps")
+    __slots__ = ("exp_avg_sqs", "exp_avgs", "ones", "params", "state", "step_views", "steps")
 
     def __init__(self, optimizer: th.optim.Optimizer, params: list[th.Tensor]) -> None:
         states = optimizer.state
@@ -104,6 +106,8 @@ class _FusedAdamState:
         self.params = params
         self.steps = th.stack([state["step"] for state in param_states])
         self.step_views = list(self.steps.unbind())
+        # Adding a tensor of ones: ``add_(1)`` would convert the wrapped Python scalar on every call.
+        self.ones = th.ones_like(self.steps)
         for state, view in zip(param_states, self.step_views, strict=True):
             state["step"] = view
         self.exp_avgs = [state["exp_avg"] for state in param_states]
@@ -142,7 +146,7 @@ def adam_step(optimizer: th.optim.Optimizer, params: list[th.Tensor], grads: Seq
                 optimizer.__dict__["_sb3_hfo_fused_adam"] = cached
         if cached is not None:
             beta1, beta2 = group["betas"]
-            cached.steps.add_(1)
+            cached.steps.add_(cached.ones)
             th._fused_adam_(
                 params,
                 grads if isinstance(grads, list) else list(grads),
@@ -373,12 +377,21 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._skill_params = [self.policy.skill_parameters(k) for k in range(self.policy.n_skills)]
         self._critic_params = list(self.critic.parameters())
         self._skill_optimizers = self.policy.actor_optimizers
-        self._layouts: dict[tuple[Any, ...], tuple[list[Segment], th.Tensor, th.Tensor]] = {}
+        self._layouts: dict[tuple[Any, ...], _Layout] = {}
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
         n_skills = self.policy.n_skills
         self._stat_sums = th.zeros(_N_GLOBAL_STATS + n_skills, device=self.device)
+        # (1, 1) views of each global statistic and the (n_skills, 1) view of the skills' losses, for addmm_.
+        column = self._stat_sums.view(-1, 1)
+        self._stat_views = (
+            column[_STAT_CRITIC_LOSS : _STAT_CRITIC_LOSS + 1],
+            column[_STAT_ACTOR_LOSS : _STAT_ACTOR_LOSS + 1],
+            column[_STAT_MAX_Q : _STAT_MAX_Q + 1],
+            column[_STAT_MEAN_Q : _STAT_MEAN_Q + 1],
+            column[_N_GLOBAL_STATS:],
+        )
         self._stat_updates = 0
         self._skill_updates = [0] * n_skills
         self._skill_steps = np.zeros(n_skills, dtype=np.int64)
@@ -413,25 +426,29 @@ class SkillDDPG(OffPolicyAlgorithm):
         obs = batch.observations
         batch_size = obs.shape[0]
 
+        # Skills of the states and of the next states, from one router call.
+        skills = next_skills = None
+        if policy.n_skills > 1:
+            both = policy.route(th.cat((obs, batch.next_observations)))
+            assert both is not None
+            skills, next_skills = both[:batch_size], both[batch_size:]
+
         # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B.
-        target_q = self._critic_target(batch)
+        target_q = self._critic_target(batch, next_skills)
         current_q, critic_inputs = critic.forward_for_backward(obs, batch.actions)
         error = current_q - target_q
-        critic_grads = critic.weight_gradients(critic_inputs, error * (2.0 / error.numel()))
+        grad_q = error * (2.0 / batch_size)
+        critic_grads = critic.weight_gradients(critic_inputs, grad_q)
         adam_step(policy.critic_optimizer, self._critic_params, critic_grads)
 
         # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
-        skills = policy.route(obs)
         if skills is None:
-            segments: list[Segment] = [(0, 0, batch_size)]
-            row_weight: th.Tensor | float = -1.0 / batch_size
-            skill_weight = None
+            counts: tuple[int, ...] = (batch_size,)
         else:
             # Rows sorted by skill, so that each skill's rows are one slice.
             obs = obs.index_select(0, th.argsort(skills, stable=True))
-            segments, row_weight, skill_weight = self._skill_layout(
-                tuple(th.bincount(skills, minlength=policy.n_skills).tolist()), obs
-            )
+            counts = tuple(th.bincount(skills, minlength=policy.n_skills).tolist())
+        segments, row_weight, skill_weight, mean_weight = self._skill_layout(counts, obs)
         actor_actions, actor_inputs, actor_outputs = actor.forward_for_backward(obs, segments)
         actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions)
         dq_da = critic.action_gradient(q_inputs)
@@ -454,57 +471,64 @@ class SkillDDPG(OffPolicyAlgorithm):
         # 3. Targets.
         th._foreach_lerp_(self._target_params, self._online_params, self.tau)
 
-        # Statistics, summed as tensors (no synchronisation); -mean_k Q is the sum of row_weight * Q over skill k.
-        actor_loss = -actor_q.mean()
-        stats = self._stat_sums
-        stats[:_N_GLOBAL_STATS].add_(
-            th.stack((error.square().mean(), actor_loss, current_q.max(), current_q.mean()))
-        )
-        if skill_weight is None:
-            stats[_N_GLOBAL_STATS].add_(actor_loss)
-        else:
-            stats[_N_GLOBAL_STATS:].add_(skill_weight.mm(actor_q).squeeze(1))
+        # Statistics, summed in place into views of self._stat_sums (no synchronisation). Means are products with
+        # the (B, 1) column of 1 / B, the mean squared error is error . grad_q / 2, and skill k's loss -mean_k Q is
+        # row k of skill_weight @ Q: one kernel each, where .mean() would also convert its divisor every time.
+        critic_loss, actor_loss, max_q, mean_q, skill_losses = self._stat_views
+        critic_loss.addmm_(error.t(), grad_q, alpha=0.5)
+        actor_loss.addmm_(actor_q.t(), mean_weight, alpha=-1.0)
+        max_q.add_(current_q.max())
+        mean_q.addmm_(current_q.t(), mean_weight)
+        skill_losses.addmm_(skill_weight, actor_q)
         self._stat_updates += 1
 
-    def _skill_layout(
-        self, counts: tuple[int, ...], like: th.Tensor
-    ) -> tuple[list[Segment], th.Tensor, th.Tensor]:
+    def _skill_layout(self, counts: tuple[int, ...], like: th.Tensor) -> _Layout:
         """Segments and loss weights of a minibatch sorted by skill with ``counts[k]`` rows of skill ``k``.
 
-        :return: ``(segments, row_weight (B, 1), skill_weight (n_skills, B))``: ``row_weight`` is ``-1 / n_k`` on
-            skill ``k``'s rows (the derivative of ``-mean_k Q`` by each row's ``Q``) and ``skill_weight[k]`` is
-            ``row_weight`` restricted to skill ``k``'s rows (zero elsewhere), so that ``skill_weight @ Q`` gives
-            every skill's loss. Cached by ``counts``: a batch of 32 split between 2 skills has 33 layouts, and
-            building one takes ~10 small tensor operations.
+        :return: ``(segments, row_weight, skill_weight (n_skills, B), mean_weight (B, 1))``: ``row_weight`` is
+            ``-1 / n_k`` on skill ``k``'s rows (the derivative of ``-mean_k Q`` by each row's ``Q``; a ``(B, 1)``
+            tensor, or the float ``-1 / B`` with one skill), ``skill_weight[k]`` is ``row_weight`` restricted to
+            skill ``k``'s rows (zero elsewhere), so that ``skill_weight @ Q`` gives every skill's loss, and
+            ``mean_weight`` is ``1 / B`` on every row. Cached by ``counts``: a batch of 32 split between 2 skills
+            has 33 layouts, and building one takes ~10 small tensor operations.
         """
         key = (counts, like.dtype, like.device)
         layout = self._layouts.get(key)
         if layout is None:
             segments: list[Segment] = []
-            skill_weight = th.zeros(len(counts), sum(counts), dtype=like.dtype, device=like.device)
+            batch_size = sum(counts)
+            skill_weight = th.zeros(len(counts), batch_size, dtype=like.dtype, device=like.device)
             start = 0
             for k, n_rows in enumerate(counts):
                 if n_rows > 0:
                     segments.append((k, start, start + n_rows))
                     skill_weight[k, start : start + n_rows] = -1.0 / n_rows
                     start += n_rows
+            row_weight = -1.0 / batch_size if len(counts) == 1 else skill_weight.sum(0).unsqueeze(1)
+            mean_weight = th.full((batch_size, 1), 1.0 / batch_size, dtype=like.dtype, device=like.device)
             if len(self._layouts) >= _MAX_CACHED_LAYOUTS:
                 self._layouts.clear()
-            layout = self._layouts[key] = (segments, skill_weight.sum(0).unsqueeze(1), skill_weight)
+            layout = self._layouts[key] = (segments, row_weight, skill_weight, mean_weight)
         return layout
 
-    def _critic_target(self, batch: ReplayBufferSamples) -> th.Tensor:
+    def _critic_target(self, batch: ReplayBufferSamples, next_skills: th.Tensor | None = None) -> th.Tensor:
         """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``gamma^n`` from ``batch.discounts``
         with n-step returns), mixed with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose
-        return is known when ``mc_mixing = beta > 0``. Call under ``torch.no_grad()``."""
+        return is known when ``mc_mixing = beta > 0``. ``next_skills``: the routed skills of the next states
+        (``None``: routed here). Call under ``torch.no_grad()``."""
         policy = self.policy
         next_obs = batch.next_observations
-        next_actions = self.actor_target.forward(next_obs, policy.route(next_obs))
+        if next_skills is None:
+            next_skills = policy.route(next_obs)
+        next_actions = self.actor_target.forward(next_obs, next_skills)
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
         next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
-        discounts = batch.discounts if batch.discounts is not None else self.gamma
-        target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
+        if batch.discounts is None:
+            # (1 - done) is 0 or 1, so this is r + gamma * (1 - done) * Q' with the same rounding, in one kernel.
+            target_q = th.addcmul(batch.rewards, 1 - batch.dones, next_q, value=self.gamma)
+        else:
+            target_q = batch.rewards + (1 - batch.dones) * batch.discounts * next_q
         if self.mc_mixing > 0:
             mixed: MonteCarloReplayBufferSamples = batch  # type: ignore[assignment]
             target_q += self.mc_mixing * mixed.mc_valid * (mixed.mc_returns - target_q)
@@ -637,6 +661,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_critic_params",
             "_skill_optimizers",
             "_stat_sums",
+            "_stat_views",
             "_layouts",
         ]
 
