@@ -280,19 +280,19 @@ class HFOActor(nn.Module):
             )
         return (th.tanh(out) if self.squash else out), inputs, out
 
-    def skill_gradients(
+    def output_gradients(
         self,
         inputs: list[th.Tensor],
         action: th.Tensor,
         grad_action: th.Tensor,
         segments: list[Segment],
         grad_outputs: th.Tensor | None = None,
-    ) -> list[list[th.Tensor]]:
-        """Explicit backward pass: each skill's gradient over its own parameters (trunk, then its head).
+    ) -> list[th.Tensor]:
+        """Explicit backward pass of ``grad_action`` for all rows: every layer's pre-activation gradient ``dZ``.
 
-        Rows never mix in an MLP, so one backward pass of ``grad_action`` gives every layer's output gradient for
-        all rows; skill ``k``'s weight gradient of a layer is ``dZ[rows_k].T @ input[rows_k]`` (bias: the row
-        sum), i.e. the gradient of skill ``k``'s loss alone, for the FLOPs of one backward pass.
+        Rows never mix in an MLP, so one backward pass gives every layer's ``dZ`` for all rows at the current
+        parameters; skill ``k``'s gradient is then :meth:`skill_weight_gradients` over its rows alone (the
+        gradient of skill ``k``'s loss alone, for the FLOPs of one backward pass), and needs no parameter.
 
         :param inputs: the layer inputs returned by :meth:`forward_for_backward` (same ``segments``).
         :param action: ``(B, action_dim)``, the actions it returned.
@@ -300,43 +300,57 @@ class HFOActor(nn.Module):
         :param segments: as for :meth:`forward_for_backward`.
         :param grad_outputs: optional ``(B, action_dim)`` extra gradient with respect to the heads' outputs before
             ``tanh`` (a loss term on them, e.g. SkillDDPG's ``preactivation_penalty``).
-        :return: one list per segment, in the order of ``HFOPolicy.skill_parameters(skill)``:
-            ``[W_1, b_1, ..., W_n, b_n, W_head, b_head]`` gradients.
+        :return: ``dZ`` of every trunk layer, input side first, then of the heads' outputs ``(B, action_dim)``.
         """
         grad_out = _tanh_backward(grad_action, action) if self.squash else grad_action
         if grad_outputs is not None:
             grad_out = grad_out + grad_outputs
-        features = inputs[-1]
         trunk_layers = self.trunk_layers
         backward = self.activation.backward
         if len(segments) == 1:
-            grads = [grad_out.t().mm(features), grad_out.sum(0)]
             grad_hidden = grad_out.mm(self.head_layers[segments[0][0]][0])
-            # Collected from the output down: [W_head, b_head, b_n, W_n, ..., b_1, W_1], reordered at the end.
-            for index in range(len(trunk_layers) - 1, -1, -1):
-                grad_z = backward(grad_hidden, inputs[index + 1])
-                grads += [grad_z.sum(0), grad_z.t().mm(inputs[index])]
-                if index > 0:
-                    grad_hidden = grad_z.mm(trunk_layers[index][0])
-            return [grads[:1:-1] + grads[:2]]
-        # Each skill's rows as views from one split per tensor (instead of one slice per skill and tensor).
-        sizes = [stop - start for _, start, stop in segments]
-        grad_hidden = th.empty_like(features)
-        per_skill = []
-        for (k, _, _), grad_part, input_part, hidden_part in zip(
-            segments, grad_out.split(sizes), features.split(sizes), grad_hidden.split(sizes), strict=True
-        ):
-            per_skill.append([grad_part.t().mm(input_part), grad_part.sum(0)])
-            th.mm(grad_part, self.head_layers[k][0], out=hidden_part)
+        else:
+            sizes = [stop - start for _, start, stop in segments]
+            grad_hidden = th.empty_like(inputs[-1])
+            for (k, _, _), grad_part, hidden_part in zip(
+                segments, grad_out.split(sizes), grad_hidden.split(sizes), strict=True
+            ):
+                th.mm(grad_part, self.head_layers[k][0], out=hidden_part)
+        grad_zs = [grad_out]  # collected from the output down, reversed at the end
         for index in range(len(trunk_layers) - 1, -1, -1):
             grad_z = backward(grad_hidden, inputs[index + 1])
-            for grad_part, input_part, skill_grads in zip(
-                grad_z.split(sizes), inputs[index].split(sizes), per_skill, strict=True
-            ):
-                skill_grads += [grad_part.sum(0), grad_part.t().mm(input_part)]
+            grad_zs.append(grad_z)
             if index > 0:
                 grad_hidden = grad_z.mm(trunk_layers[index][0])
-        return [skill_grads[:1:-1] + skill_grads[:2] for skill_grads in per_skill]
+        return grad_zs[::-1]
+
+    @staticmethod
+    def skill_weight_gradients(
+        inputs: list[th.Tensor],
+        grad_zs: list[th.Tensor],
+        rows: slice,
+        out: list[th.Tensor] | None = None,
+    ) -> list[th.Tensor]:
+        """One skill's gradients from :meth:`output_gradients`: ``dZ[rows].T @ input[rows]`` (bias: the row sum)
+        for every layer, in the order of ``HFOPolicy.skill_parameters(skill)``: ``[W_1, b_1, ..., W_head, b_head]``.
+
+        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
+        :param grad_zs: what :meth:`output_gradients` returned.
+        :param rows: the skill's rows (``slice(None)``: all of them).
+        :param out: optional tensors to write the gradients into (same order and shapes), e.g. buffers reused from
+            one update to the next.
+        """
+        whole = rows == slice(None)
+        grads: list[th.Tensor] = []
+        for index, (layer_input, grad_z) in enumerate(zip(inputs, grad_zs, strict=True)):
+            if not whole:
+                layer_input, grad_z = layer_input[rows], grad_z[rows]
+            if out is None:
+                grads += [grad_z.t().mm(layer_input), grad_z.sum(0)]
+            else:
+                weight_grad, bias_grad = out[2 * index], out[2 * index + 1]
+                grads += [th.mm(grad_z.t(), layer_input, out=weight_grad), th.sum(grad_z, 0, out=bias_grad)]
+        return grads
 
 
 class HFOCritic(nn.Module):

@@ -378,6 +378,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._critic_params = list(self.critic.parameters())
         self._skill_optimizers = self.policy.actor_optimizers
         self._layouts: dict[tuple[Any, ...], _Layout] = {}
+        # Every skill's gradients are written into these in turn (trunk + head shapes are the same for all skills).
+        self._actor_grad_buffers = [th.empty_like(param) for param in self._skill_params[0]]
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
@@ -460,11 +462,15 @@ class SkillDDPG(OffPolicyAlgorithm):
             if self.preactivation_penalty > 0
             else None
         )
-        skill_grads = actor.skill_gradients(
+        grad_zs = actor.output_gradients(
             actor_inputs, actor_actions, dq_da * row_weight, segments, grad_outputs=grad_outputs
         )
-        # All skills' gradients were taken at the same parameters; now each skill with rows takes its Adam step.
-        for (k, _, _), grads in zip(segments, skill_grads, strict=True):
+        # All skills' dZ were taken at the same parameters; each skill's weight gradients need no parameter, so
+        # each skill with rows now takes its gradient and its Adam step in turn, all in the same buffers.
+        buffers = self._actor_grad_buffers
+        for k, start, stop in segments:
+            rows = slice(None) if stop - start == batch_size else slice(start, stop)
+            grads = actor.skill_weight_gradients(actor_inputs, grad_zs, rows, out=buffers)
             adam_step(self._skill_optimizers[k], self._skill_params[k], grads)
             self._skill_updates[k] += 1
 
@@ -663,6 +669,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_stat_sums",
             "_stat_views",
             "_layouts",
+            "_actor_grad_buffers",
         ]
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
