@@ -326,30 +326,18 @@ class HFOActor(nn.Module):
 
     @staticmethod
     def skill_weight_gradients(
-        inputs: list[th.Tensor],
-        grad_zs: list[th.Tensor],
-        rows: slice,
-        out: list[th.Tensor] | None = None,
+        inputs: list[th.Tensor], grad_zs: list[th.Tensor], rows: slice = slice(None)
     ) -> list[th.Tensor]:
         """One skill's gradients from :meth:`output_gradients`: ``dZ[rows].T @ input[rows]`` (bias: the row sum)
         for every layer, in the order of ``HFOPolicy.skill_parameters(skill)``: ``[W_1, b_1, ..., W_head, b_head]``.
 
         :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
         :param grad_zs: what :meth:`output_gradients` returned.
-        :param rows: the skill's rows (``slice(None)``: all of them).
-        :param out: optional tensors to write the gradients into (same order and shapes), e.g. buffers reused from
-            one update to the next.
+        :param rows: the skill's rows (default: all of them).
         """
-        whole = rows == slice(None)
         grads: list[th.Tensor] = []
-        for index, (layer_input, grad_z) in enumerate(zip(inputs, grad_zs, strict=True)):
-            if not whole:
-                layer_input, grad_z = layer_input[rows], grad_z[rows]
-            if out is None:
-                grads += [grad_z.t().mm(layer_input), grad_z.sum(0)]
-            else:
-                weight_grad, bias_grad = out[2 * index], out[2 * index + 1]
-                grads += [th.mm(grad_z.t(), layer_input, out=weight_grad), th.sum(grad_z, 0, out=bias_grad)]
+        for layer_input, grad_z in zip(inputs, grad_zs, strict=True):
+            grads += [grad_z[rows].t().mm(layer_input[rows]), grad_z[rows].sum(0)]
         return grads
 
 
@@ -418,28 +406,37 @@ class HFOCritic(nn.Module):
         weight, bias = layers[-1]
         return F.linear(inputs[-1], weight, bias), inputs
 
-    def weight_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
-        """Explicit backward pass of ``grad_q = dLoss/dQ (B, 1)``: gradients of all parameters, in the order of
-        ``self.parameters()`` (``W, b`` of every layer, input side first).
+    def output_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
+        """Explicit backward pass of ``grad_q = dLoss/dQ (B, 1)``: every layer's pre-activation gradient ``dZ``,
+        input side first (the last one is ``grad_q``). Layer ``i``'s weight gradient is ``dZ_i.T @ inputs[i]``,
+        its bias gradient the row sum of ``dZ_i``.
 
         :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
         """
         layers = self.layers
         n_features = self.n_features
+        backward = self.activation.backward
         grad_z = grad_q
-        grads: list[th.Tensor] = []  # collected from the output down, reversed at the end
-        for index in range(len(layers) - 1, -1, -1):
-            grads += [grad_z.sum(0), grad_z.t().mm(inputs[index])]
-            if index == 0:
-                break
+        grad_zs = [grad_z]  # collected from the output down, reversed at the end
+        for index in range(len(layers) - 1, 0, -1):
             weight = layers[index][0]
             if index == 1:  # only the features' gradient; the action's is not needed here
-                grad_z = self.activation.backward(
-                    grad_z.mm(weight[:, :n_features]), inputs[1][:, :n_features]
-                )
+                grad_z = backward(grad_z.mm(weight[:, :n_features]), inputs[1][:, :n_features])
             else:
-                grad_z = self.activation.backward(grad_z.mm(weight), inputs[index])
-        return grads[::-1]
+                grad_z = backward(grad_z.mm(weight), inputs[index])
+            grad_zs.append(grad_z)
+        return grad_zs[::-1]
+
+    def weight_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
+        """Gradients of all parameters for ``grad_q = dLoss/dQ (B, 1)``, in the order of ``self.parameters()``
+        (``W, b`` of every layer, input side first).
+
+        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
+        """
+        grads: list[th.Tensor] = []
+        for layer_input, grad_z in zip(inputs, self.output_gradients(inputs, grad_q), strict=True):
+            grads += [grad_z.t().mm(layer_input), grad_z.sum(0)]
+        return grads
 
     def action_gradient(self, inputs: list[th.Tensor]) -> th.Tensor:
         """dQ/da ``(B, action_dim)`` of every row's own ``Q`` (i.e. of ``Q.sum()``), without any weight gradient.

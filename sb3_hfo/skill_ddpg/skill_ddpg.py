@@ -82,7 +82,7 @@ _N_GLOBAL_STATS = 4
 # Bound on SkillDDPG's cache of minibatch layouts (one per split of the batch between skills).
 _MAX_CACHED_LAYOUTS = 4096
 # (segments, row_weight, skill_weight, mean_weight): see SkillDDPG._skill_layout.
-_Layout = tuple[list[Segment], th.Tensor | float, th.Tensor, th.Tensor]
+_Layout = tuple[list[Segment], th.Tensor | float, th.Tensor, th.Tensor, th.Tensor]
 
 # torch's fused Adam kernel (an ATen op, present since torch 2.0); used directly by adam_step.
 _HAS_FUSED_ADAM = hasattr(th, "_fused_adam_")
@@ -115,6 +115,36 @@ class _FusedAdamState:
 
     def valid_for(self, optimizer: th.optim.Optimizer, params: list[th.Tensor]) -> bool:
         return self.state is optimizer.state and self.params is params
+
+
+class _GradientBuffers:
+    """Gradient tensors reused from one update to the next for parameters laid out ``[W_1, b_1, ..., W_n, b_n]``.
+
+    One set of weight-gradient tensors, and the bias gradients of up to ``n_rows`` gradients (one per skill with
+    rows) as rows of one ``(n_rows, sum of bias sizes)`` tensor, so that all of them come from one product
+    ``indicator @ [dZ_1 | ... | dZ_n]`` (row ``j`` of ``indicator`` selects gradient ``j``'s minibatch rows)
+    instead of one ``sum`` per layer and skill. ``grads[j]`` is the parameter-ordered list handed to the
+    optimiser for gradient ``j``: the shared weight tensors and row ``j``'s bias views.
+    """
+
+    def __init__(self, params: list[th.Tensor], n_rows: int) -> None:
+        self.weights = [th.empty_like(weight) for weight in params[0::2]]
+        sizes = [bias.numel() for bias in params[1::2]]
+        self.biases = params[1].new_empty(n_rows, sum(sizes))
+        self.first_rows = [self.biases[:n] for n in range(1, n_rows + 1)]
+        self.grads: list[list[th.Tensor]] = []
+        for row in self.biases:
+            views = row.split(sizes)
+            self.grads.append([tensor for pair in zip(self.weights, views, strict=True) for tensor in pair])
+
+    def bias_gradients(self, indicator: th.Tensor, grad_zs: list[th.Tensor]) -> None:
+        """Row ``j`` of the bias gradients: the sums of every ``dZ`` over the rows that ``indicator[j]`` selects."""
+        th.mm(indicator, th.cat(grad_zs, dim=1), out=self.first_rows[indicator.shape[0] - 1])
+
+    def weight_gradients(self, parts: Sequence[tuple[th.Tensor, th.Tensor]]) -> None:
+        """``dZ.T @ input`` of every layer, for ``parts`` = ``(dZ.T, input)`` of each layer (rows of one gradient)."""
+        for (grad_z_t, layer_input), out in zip(parts, self.weights, strict=True):
+            th.mm(grad_z_t, layer_input, out=out)
 
 
 def adam_step(optimizer: th.optim.Optimizer, params: list[th.Tensor], grads: Sequence[th.Tensor]) -> None:
@@ -378,8 +408,9 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._critic_params = list(self.critic.parameters())
         self._skill_optimizers = self.policy.actor_optimizers
         self._layouts: dict[tuple[Any, ...], _Layout] = {}
-        # Every skill's gradients are written into these in turn (trunk + head shapes are the same for all skills).
-        self._actor_grad_buffers = [th.empty_like(param) for param in self._skill_params[0]]
+        # Every skill's gradients are written into the same tensors in turn (all skills' shapes are the same).
+        self._actor_grads = _GradientBuffers(self._skill_params[0], self.policy.n_skills)
+        self._critic_grads = _GradientBuffers(self._critic_params, 1)
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
@@ -440,8 +471,11 @@ class SkillDDPG(OffPolicyAlgorithm):
         current_q, critic_inputs = critic.forward_for_backward(obs, batch.actions)
         error = current_q - target_q
         grad_q = error * (2.0 / batch_size)
-        critic_grads = critic.weight_gradients(critic_inputs, grad_q)
-        adam_step(policy.critic_optimizer, self._critic_params, critic_grads)
+        critic_grad_zs = critic.output_gradients(critic_inputs, grad_q)
+        buffers = self._critic_grads
+        buffers.weight_gradients([(g.t(), x) for g, x in zip(critic_grad_zs, critic_inputs, strict=True)])
+        buffers.bias_gradients(self._batch_ones(batch_size, obs), critic_grad_zs)
+        adam_step(policy.critic_optimizer, self._critic_params, buffers.grads[0])
 
         # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
         if skills is None:
@@ -450,7 +484,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             # Rows sorted by skill, so that each skill's rows are one slice.
             obs = obs.index_select(0, th.argsort(skills, stable=True))
             counts = tuple(th.bincount(skills, minlength=policy.n_skills).tolist())
-        segments, row_weight, skill_weight, mean_weight = self._skill_layout(counts, obs)
+        segments, row_weight, skill_weight, mean_weight, indicator = self._skill_layout(counts, obs)
         actor_actions, actor_inputs, actor_outputs = actor.forward_for_backward(obs, segments)
         actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions)
         dq_da = critic.action_gradient(q_inputs)
@@ -465,13 +499,23 @@ class SkillDDPG(OffPolicyAlgorithm):
         grad_zs = actor.output_gradients(
             actor_inputs, actor_actions, dq_da * row_weight, segments, grad_outputs=grad_outputs
         )
-        # All skills' dZ were taken at the same parameters; each skill's weight gradients need no parameter, so
-        # each skill with rows now takes its gradient and its Adam step in turn, all in the same buffers.
-        buffers = self._actor_grad_buffers
-        for k, start, stop in segments:
-            rows = slice(None) if stop - start == batch_size else slice(start, stop)
-            grads = actor.skill_weight_gradients(actor_inputs, grad_zs, rows, out=buffers)
-            adam_step(self._skill_optimizers[k], self._skill_params[k], grads)
+        # All skills' dZ were taken at the same parameters and their weight gradients need no parameter: all bias
+        # gradients come from one product, then each skill with rows takes its weight gradients and its Adam step
+        # in turn, in the same buffers (hot in cache for the step).
+        buffers = self._actor_grads
+        buffers.bias_gradients(indicator, grad_zs)
+        if len(segments) == 1:
+            parts = [[(g.t(), x) for g, x in zip(grad_zs, actor_inputs, strict=True)]]
+        else:
+            sizes = [stop - start for _, start, stop in segments]
+            per_layer = [
+                zip(g.t().split(sizes, dim=1), x.split(sizes), strict=True)
+                for g, x in zip(grad_zs, actor_inputs, strict=True)
+            ]
+            parts = list(zip(*per_layer, strict=True))
+        for row, ((k, _, _), skill_parts) in enumerate(zip(segments, parts, strict=True)):
+            buffers.weight_gradients(skill_parts)
+            adam_step(self._skill_optimizers[k], self._skill_params[k], buffers.grads[row])
             self._skill_updates[k] += 1
 
         # 3. Targets.
@@ -491,11 +535,12 @@ class SkillDDPG(OffPolicyAlgorithm):
     def _skill_layout(self, counts: tuple[int, ...], like: th.Tensor) -> _Layout:
         """Segments and loss weights of a minibatch sorted by skill with ``counts[k]`` rows of skill ``k``.
 
-        :return: ``(segments, row_weight, skill_weight (n_skills, B), mean_weight (B, 1))``: ``row_weight`` is
+        :return: ``(segments, row_weight, skill_weight (n_skills, B), mean_weight (B, 1), indicator)``: ``row_weight`` is
             ``-1 / n_k`` on skill ``k``'s rows (the derivative of ``-mean_k Q`` by each row's ``Q``; a ``(B, 1)``
             tensor, or the float ``-1 / B`` with one skill), ``skill_weight[k]`` is ``row_weight`` restricted to
             skill ``k``'s rows (zero elsewhere), so that ``skill_weight @ Q`` gives every skill's loss, and
-            ``mean_weight`` is ``1 / B`` on every row. Cached by ``counts``: a batch of 32 split between 2 skills
+            ``mean_weight`` is ``1 / B`` on every row; ``indicator (n_segments, B)`` is 1 on segment ``j``'s rows
+            in row ``j`` (0 elsewhere). Cached by ``counts``: a batch of 32 split between 2 skills
             has 33 layouts, and building one takes ~10 small tensor operations.
         """
         key = (counts, like.dtype, like.device)
@@ -512,10 +557,15 @@ class SkillDDPG(OffPolicyAlgorithm):
                     start += n_rows
             row_weight = -1.0 / batch_size if len(counts) == 1 else skill_weight.sum(0).unsqueeze(1)
             mean_weight = th.full((batch_size, 1), 1.0 / batch_size, dtype=like.dtype, device=like.device)
+            indicator = (skill_weight[[k for k, _, _ in segments]] != 0).to(like.dtype)
             if len(self._layouts) >= _MAX_CACHED_LAYOUTS:
                 self._layouts.clear()
-            layout = self._layouts[key] = (segments, row_weight, skill_weight, mean_weight)
+            layout = self._layouts[key] = (segments, row_weight, skill_weight, mean_weight, indicator)
         return layout
+
+    def _batch_ones(self, batch_size: int, like: th.Tensor) -> th.Tensor:
+        """``(1, batch_size)`` ones: the indicator of a gradient over all rows (cached)."""
+        return self._skill_layout((batch_size,), like)[4]
 
     def _critic_target(self, batch: ReplayBufferSamples, next_skills: th.Tensor | None = None) -> th.Tensor:
         """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``gamma^n`` from ``batch.discounts``
@@ -669,7 +719,8 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_stat_sums",
             "_stat_views",
             "_layouts",
-            "_actor_grad_buffers",
+            "_actor_grads",
+            "_critic_grads",
         ]
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
