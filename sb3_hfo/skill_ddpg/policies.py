@@ -239,6 +239,10 @@ class HFOActor(nn.Module):
         if skills is None or self.n_skills == 1:
             weight, bias = self.head_layers[0]
             out = F.linear(features, weight, bias)
+        elif skills.shape[0] == 1:
+            # Acting in one environment: only the routed head (one scalar read instead of every head and a select).
+            weight, bias = self.head_layers[int(skills)]
+            out = F.linear(features, weight, bias)
         elif self.n_skills == 2:
             # One select instead of stacking both heads and gathering (~10 us less per call).
             (weight_0, bias_0), (weight_1, bias_1) = self.head_layers
@@ -256,7 +260,8 @@ class HFOActor(nn.Module):
     def forward_for_backward(
         self, obs: th.Tensor, segments: list[Segment]
     ) -> tuple[th.Tensor, list[th.Tensor], th.Tensor]:
-        """:meth:`forward` on rows grouped by skill, keeping what :meth:`skill_gradients` needs.
+        """:meth:`forward` on rows grouped by skill, keeping what the backward pass (:meth:`output_gradients`,
+        :meth:`skill_weight_gradients`) needs.
 
         :param obs: ``(B, obs_dim)``, rows sorted by skill.
         :param segments: ``(skill, start, stop)`` for each skill with rows: rows ``start:stop`` use head ``skill``.

@@ -8,28 +8,32 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``g = dQ/da`` at ``a = mu_{skill(s)}(s)`` for the whole minibatch in one critic pass. Skill ``k``'s loss is
    ``-mean over the rows routed to k of Q(s, a)``; its gradient over (trunk + head k) is the back-propagation of
    ``-g / n_k`` through the actor on those rows (computed for all skills in one backward pass, each skill's weight
-   gradients summed over its own rows only). All skills' gradients are evaluated at the same parameters, then
-   each skill that had rows takes one step of its own Adam (``policy.actor_skill_{k}_optimizer``). A skill without
-   rows takes no step (parameters and Adam state unchanged). With one skill this is exactly DDPG's actor update.
+   gradients summed over its own rows only). All skills' gradients are evaluated at the same parameters (the
+   per-layer ``dZ`` of all rows first; the weight products need no parameter), then each skill that had rows
+   takes one step of its own Adam (``policy.actor_skill_{k}_optimizer``). A skill without rows takes no step
+   (parameters and Adam state unchanged). With one skill this is exactly DDPG's actor update.
    With ``inverting_gradients`` ``g`` is first rescaled per dimension (Hausknecht & Stone 2016, bounds [-1, 1]):
    ``g * (1 - a) / 2`` where ``g > 0`` (the update would increase ``a``) and ``g * (a + 1) / 2`` elsewhere.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
-Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread: 2.15-2.3x SB3's
-``DDPG`` updates per second with 1 skill, 1.6-1.9x with 2; see benchmarks/README.md): the update is
-back-propagated by hand under ``torch.no_grad()`` instead of through autograd (``HFOActor.forward_for_backward`` /
-``skill_gradients``, ``HFOCritic.forward_for_backward`` / ``weight_gradients`` / ``action_gradient``: ``F.linear``
-forward passes that keep each layer's input, then ``dZ.T @ input`` weight gradients, ``dZ.sum(0)`` bias gradients
-and ``dZ @ W`` input gradients, activation derivatives from the kept outputs). That removes the graph building,
-the autograd engine and ``nn.Module.__call__`` from the hot path, and computes only what is needed: no input
-gradient for the first layer, no critic weight gradient in the actor step, and at the critic's action layer only
-the ``(B, action_dim)`` action gradient. Skills: rows are sorted by skill, one backward pass gives every layer's
-gradient for all rows, and each skill's weight gradients are the products over its own rows (the FLOPs of one
-backward pass). Adam is torch's fused kernel called directly (``adam_step``), the targets move in one
-``torch._foreach_lerp_``, statistics are summed in a tensor (no per-update ``.item()``) and ``set_training_mode``
-writes the flags without ``nn.Module.train``'s recursion. What remains is mostly matrix products (~1.9 M
-multiply-adds per sample and update at 400-300-200), the Adam steps (one per optimiser: with 2 skills two of them
-over the trunk) and the target update.
+Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread: SPEED_FIGURES;
+see benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of through
+autograd (``HFOActor.forward_for_backward`` / ``output_gradients`` / ``skill_weight_gradients``,
+``HFOCritic.forward_for_backward`` / ``output_gradients`` / ``action_gradient``: ``F.linear`` forward passes that
+keep each layer's input, then ``dZ @ W`` input gradients with activation derivatives from the kept outputs,
+``dZ.T @ input`` weight gradients and row sums of ``dZ`` as bias gradients). That removes the graph building, the
+autograd engine and ``nn.Module.__call__`` from the hot path, and computes only what is needed: no input gradient
+for the first layer, no critic weight gradient in the actor step, and at the critic's action layer only the
+``(B, action_dim)`` action gradient. Skills: one router call for the states and next states, rows sorted by
+skill, one backward pass gives every layer's ``dZ`` for all rows, and each skill's weight gradients are the
+products over its own rows (the FLOPs of one backward pass), formed right before that skill's Adam step (they need
+no parameter) in buffers reused by every skill and update. All bias gradients of a network come from one product
+``indicator @ [dZ_1 | ... | dZ_n]``. Adam is torch's fused kernel called directly (``adam_step``, state lists
+gathered once, step counters advanced by one ``add_``), the targets move in one ``torch._foreach_lerp_``,
+statistics are summed in place by small products (no per-update ``.item()`` or ``.mean()``) and
+``set_training_mode`` writes the flags without ``nn.Module.train``'s recursion. What remains is mostly matrix
+products (~1.9 M multiply-adds per sample and update at 400-300-200), the Adam steps (one per optimiser: with 2
+skills two of them over the trunk, each streaming its own moments) and the target update.
 
 Exploration (``_sample_action``): SB3's random warm-up (``learning_starts``) and ``action_noise`` as usual, then
 epsilon-greedy over the discrete actions of a parameterised flat action (HFO: the first 3 of 8 entries are the
