@@ -239,6 +239,18 @@ class HFOActor(nn.Module):
         if skills is None or self.n_skills == 1:
             weight, bias = self.head_layers[0]
             out = F.linear(features, weight, bias)
+        elif skills.shape[0] == 1:
+            # Acting in one environment: only the routed head (one scalar read instead of every head and a select).
+            weight, bias = self.head_layers[int(skills)]
+            out = F.linear(features, weight, bias)
+        elif self.n_skills == 2:
+            # One select instead of stacking both heads and gathering (~10 us less per call).
+            (weight_0, bias_0), (weight_1, bias_1) = self.head_layers
+            out = th.where(
+                skills.view(-1, 1).bool(),
+                F.linear(features, weight_1, bias_1),
+                F.linear(features, weight_0, bias_0),
+            )
         else:
             per_skill = th.stack([F.linear(features, w, b) for w, b in self.head_layers], dim=1)
             index = skills.view(-1, 1, 1).expand(-1, 1, self.action_dim)
@@ -248,7 +260,8 @@ class HFOActor(nn.Module):
     def forward_for_backward(
         self, obs: th.Tensor, segments: list[Segment]
     ) -> tuple[th.Tensor, list[th.Tensor], th.Tensor]:
-        """:meth:`forward` on rows grouped by skill, keeping what :meth:`skill_gradients` needs.
+        """:meth:`forward` on rows grouped by skill, keeping what the backward pass (:meth:`output_gradients`,
+        :meth:`skill_weight_gradients`) needs.
 
         :param obs: ``(B, obs_dim)``, rows sorted by skill.
         :param segments: ``(skill, start, stop)`` for each skill with rows: rows ``start:stop`` use head ``skill``.
@@ -272,19 +285,19 @@ class HFOActor(nn.Module):
             )
         return (th.tanh(out) if self.squash else out), inputs, out
 
-    def skill_gradients(
+    def output_gradients(
         self,
         inputs: list[th.Tensor],
         action: th.Tensor,
         grad_action: th.Tensor,
         segments: list[Segment],
         grad_outputs: th.Tensor | None = None,
-    ) -> list[list[th.Tensor]]:
-        """Explicit backward pass: each skill's gradient over its own parameters (trunk, then its head).
+    ) -> list[th.Tensor]:
+        """Explicit backward pass of ``grad_action`` for all rows: every layer's pre-activation gradient ``dZ``.
 
-        Rows never mix in an MLP, so one backward pass of ``grad_action`` gives every layer's output gradient for
-        all rows; skill ``k``'s weight gradient of a layer is ``dZ[rows_k].T @ input[rows_k]`` (bias: the row
-        sum), i.e. the gradient of skill ``k``'s loss alone, for the FLOPs of one backward pass.
+        Rows never mix in an MLP, so one backward pass gives every layer's ``dZ`` for all rows at the current
+        parameters; skill ``k``'s gradient is then :meth:`skill_weight_gradients` over its rows alone (the
+        gradient of skill ``k``'s loss alone, for the FLOPs of one backward pass), and needs no parameter.
 
         :param inputs: the layer inputs returned by :meth:`forward_for_backward` (same ``segments``).
         :param action: ``(B, action_dim)``, the actions it returned.
@@ -292,36 +305,45 @@ class HFOActor(nn.Module):
         :param segments: as for :meth:`forward_for_backward`.
         :param grad_outputs: optional ``(B, action_dim)`` extra gradient with respect to the heads' outputs before
             ``tanh`` (a loss term on them, e.g. SkillDDPG's ``preactivation_penalty``).
-        :return: one list per segment, in the order of ``HFOPolicy.skill_parameters(skill)``:
-            ``[W_1, b_1, ..., W_n, b_n, W_head, b_head]`` gradients.
+        :return: ``dZ`` of every trunk layer, input side first, then of the heads' outputs ``(B, action_dim)``.
         """
         grad_out = _tanh_backward(grad_action, action) if self.squash else grad_action
         if grad_outputs is not None:
             grad_out = grad_out + grad_outputs
-        features = inputs[-1]
+        trunk_layers = self.trunk_layers
+        backward = self.activation.backward
         if len(segments) == 1:
-            rows: list[slice] = [slice(None)]
-            head_weight = self.head_layers[segments[0][0]][0]
-            grads = [[grad_out.t().mm(features), grad_out.sum(0)]]
-            grad_hidden = grad_out.mm(head_weight)
+            grad_hidden = grad_out.mm(self.head_layers[segments[0][0]][0])
         else:
-            rows = [slice(start, stop) for _, start, stop in segments]
-            grads = []
-            grad_hidden = th.empty_like(features)
-            for (k, _, _), part in zip(segments, rows, strict=True):
-                grad_part = grad_out[part]
-                grads.append([grad_part.t().mm(features[part]), grad_part.sum(0)])
-                th.mm(grad_part, self.head_layers[k][0], out=grad_hidden[part])
-        # Collected from the output down: [W_head, b_head, b_n, W_n, ..., b_1, W_1], reordered at the end.
-        for index in range(len(self.trunk_layers) - 1, -1, -1):
-            grad_z = self.activation.backward(grad_hidden, inputs[index + 1])
-            layer_input = inputs[index]
-            for part, skill_grads in zip(rows, grads, strict=True):
-                grad_part = grad_z[part]
-                skill_grads += [grad_part.sum(0), grad_part.t().mm(layer_input[part])]
+            sizes = [stop - start for _, start, stop in segments]
+            grad_hidden = th.empty_like(inputs[-1])
+            for (k, _, _), grad_part, hidden_part in zip(
+                segments, grad_out.split(sizes), grad_hidden.split(sizes), strict=True
+            ):
+                th.mm(grad_part, self.head_layers[k][0], out=hidden_part)
+        grad_zs = [grad_out]  # collected from the output down, reversed at the end
+        for index in range(len(trunk_layers) - 1, -1, -1):
+            grad_z = backward(grad_hidden, inputs[index + 1])
+            grad_zs.append(grad_z)
             if index > 0:
-                grad_hidden = grad_z.mm(self.trunk_layers[index][0])
-        return [skill_grads[:1:-1] + skill_grads[:2] for skill_grads in grads]
+                grad_hidden = grad_z.mm(trunk_layers[index][0])
+        return grad_zs[::-1]
+
+    @staticmethod
+    def skill_weight_gradients(
+        inputs: list[th.Tensor], grad_zs: list[th.Tensor], rows: slice = slice(None)
+    ) -> list[th.Tensor]:
+        """One skill's gradients from :meth:`output_gradients`: ``dZ[rows].T @ input[rows]`` (bias: the row sum)
+        for every layer, in the order of ``HFOPolicy.skill_parameters(skill)``: ``[W_1, b_1, ..., W_head, b_head]``.
+
+        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
+        :param grad_zs: what :meth:`output_gradients` returned.
+        :param rows: the skill's rows (default: all of them).
+        """
+        grads: list[th.Tensor] = []
+        for layer_input, grad_z in zip(inputs, grad_zs, strict=True):
+            grads += [grad_z[rows].t().mm(layer_input[rows]), grad_z[rows].sum(0)]
+        return grads
 
 
 class HFOCritic(nn.Module):
@@ -389,28 +411,37 @@ class HFOCritic(nn.Module):
         weight, bias = layers[-1]
         return F.linear(inputs[-1], weight, bias), inputs
 
-    def weight_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
-        """Explicit backward pass of ``grad_q = dLoss/dQ (B, 1)``: gradients of all parameters, in the order of
-        ``self.parameters()`` (``W, b`` of every layer, input side first).
+    def output_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
+        """Explicit backward pass of ``grad_q = dLoss/dQ (B, 1)``: every layer's pre-activation gradient ``dZ``,
+        input side first (the last one is ``grad_q``). Layer ``i``'s weight gradient is ``dZ_i.T @ inputs[i]``,
+        its bias gradient the row sum of ``dZ_i``.
 
         :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
         """
         layers = self.layers
         n_features = self.n_features
+        backward = self.activation.backward
         grad_z = grad_q
-        grads: list[th.Tensor] = []  # collected from the output down, reversed at the end
-        for index in range(len(layers) - 1, -1, -1):
-            grads += [grad_z.sum(0), grad_z.t().mm(inputs[index])]
-            if index == 0:
-                break
+        grad_zs = [grad_z]  # collected from the output down, reversed at the end
+        for index in range(len(layers) - 1, 0, -1):
             weight = layers[index][0]
             if index == 1:  # only the features' gradient; the action's is not needed here
-                grad_z = self.activation.backward(
-                    grad_z.mm(weight[:, :n_features]), inputs[1][:, :n_features]
-                )
+                grad_z = backward(grad_z.mm(weight[:, :n_features]), inputs[1][:, :n_features])
             else:
-                grad_z = self.activation.backward(grad_z.mm(weight), inputs[index])
-        return grads[::-1]
+                grad_z = backward(grad_z.mm(weight), inputs[index])
+            grad_zs.append(grad_z)
+        return grad_zs[::-1]
+
+    def weight_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
+        """Gradients of all parameters for ``grad_q = dLoss/dQ (B, 1)``, in the order of ``self.parameters()``
+        (``W, b`` of every layer, input side first).
+
+        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
+        """
+        grads: list[th.Tensor] = []
+        for layer_input, grad_z in zip(inputs, self.output_gradients(inputs, grad_q), strict=True):
+            grads += [grad_z.t().mm(layer_input), grad_z.sum(0)]
+        return grads
 
     def action_gradient(self, inputs: list[th.Tensor]) -> th.Tensor:
         """dQ/da ``(B, action_dim)`` of every row's own ``Q`` (i.e. of ``Q.sum()``), without any weight gradient.
@@ -563,6 +594,11 @@ class HFOPolicy(BasePolicy):
     def skill_parameters(self, skill: int) -> list[nn.Parameter]:
         """Parameters skill ``skill`` trains: the shared trunk followed by its own output layer."""
         return list(self.actor.trunk.parameters()) + list(self.actor.heads[skill].parameters())
+
+    @property
+    def router_checked(self) -> bool:
+        """Whether :meth:`route` has validated the router's output (it does so on its first call)."""
+        return self._router_checked
 
     def route(self, obs: th.Tensor) -> th.Tensor | None:
         """Skill index per row of ``obs (B, obs_dim)`` as a long tensor ``(B,)``; ``None`` when ``n_skills == 1``.
