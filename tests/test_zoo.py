@@ -51,6 +51,8 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
     env_id, hyperparams = _load_config(config)
     # --hyperparams replaces whole values, so the config's policy_kwargs are kept and only net_arch shrinks.
     policy_kwargs = {**(hyperparams.get("policy_kwargs") or {}), "net_arch": SMOKE_NET_ARCH}
+    # Steps are counted over all environments: each of a config's n_envs gets SMOKE_STEPS, enough to end episodes.
+    n_envs = int(hyperparams.get("n_envs", 1))
     argv = [
         "--algo",
         "skill_ddpg",
@@ -61,7 +63,7 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
         "--seed",
         "0",
         "-n",
-        str(SMOKE_STEPS),
+        str(SMOKE_STEPS * n_envs),
         "--log-interval",
         "1",
         "--tensorboard-log",
@@ -77,7 +79,7 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
     ]
     # One run exercises rl-zoo3's periodic evaluation callback too.
     argv += (
-        ["--eval-freq", "200", "--eval-episodes", "1"]
+        ["--eval-freq", str(200 * n_envs), "--eval-episodes", "1"]
         if config.stem == "e1_empty_goal_fast"
         else ["--eval-freq", "-1"]
     )
