@@ -5,7 +5,8 @@
 
 Four panels against training episodes: average critic loss (``train/critic_loss``), maximum Q-value
 (``train/max_q``), accumulated reward per episode (``rollout/ep_rew_mean``, SB3's mean over the last 100
-episodes) and goal rate (``rollout/goal_rate``, logged by ``sb3_hfo.zoo.HFOEpisodeStatsCallback``). Each LOGDIR
+episodes) and goal rate (``rollout/goal_rate``, logged by ``sb3_hfo.zoo.HFOEpisodeStatsCallback``, with the greedy
+evaluations ``eval/success_rate`` dashed when rl-zoo3's ``--eval-freq`` wrote them). Each LOGDIR
 is searched recursively; every folder holding ``events.out.tfevents.*`` files is one run (one curve).
 
 The x axis is episodes: ``rollout/episodes`` (or ``time/episodes``) when logged; otherwise episodes are estimated
@@ -32,8 +33,15 @@ PANELS: tuple[tuple[str, str], ...] = (
     ("train/critic_loss", "Average loss"),
     ("train/max_q", "Max Q-value"),
     ("rollout/ep_rew_mean", "Accumulated reward"),
-    ("rollout/goal_rate", "Goal rate"),
+    ("rollout/goal_rate", "Goal rate (dashed: greedy evaluations)"),
 )
+
+#: The training goal rate (with exploration); its panel also shows the greedy evaluations (EVAL_SUCCESS_TAG).
+GOAL_RATE_TAG = "rollout/goal_rate"
+
+#: The greedy-evaluation tag (rl-zoo3's EvalCallback; HFOEnv sets ``is_success``): ``--summary`` reads it and the
+#: goal-rate panel draws it dashed.
+EVAL_SUCCESS_TAG = "eval/success_rate"
 
 #: Tags that count finished episodes, by preference.
 EPISODE_TAGS: tuple[str, ...] = ("rollout/episodes", "time/episodes")
@@ -93,10 +101,6 @@ def load_run(run_dir: Path, label: str) -> Run:
         run.scalars[tag] = (steps, np.array([points[int(s)][0] for s in steps], dtype=float))
         run.wall_clock[tag] = np.array([points[int(s)][1] - start for s in steps], dtype=float)
     return run
-
-
-#: The greedy-evaluation tag that ``--summary`` reads (rl-zoo3's EvalCallback; HFOEnv sets ``is_success``).
-EVAL_SUCCESS_TAG = "eval/success_rate"
 
 
 def time_to_targets(run: Run, targets: Sequence[float]) -> dict[str, Any]:
@@ -185,10 +189,24 @@ def plot_runs(runs: Sequence[Run], out: Path, smooth: int = 1, title: str | None
             x_names.add(x_name)
             # Markers keep short runs (a single log point) visible.
             marker = "o" if len(x) < 20 else None
-            axis.plot(
+            (line,) = axis.plot(
                 x, moving_average(values, smooth), label=run.label, linewidth=1.2, marker=marker, markersize=3
             )
             drawn = True
+            if tag == GOAL_RATE_TAG and EVAL_SUCCESS_TAG in run.scalars:
+                # The training goal rate includes exploration; the greedy evaluations are what a user gets.
+                eval_steps, eval_values = run.scalars[EVAL_SUCCESS_TAG]
+                eval_x, _ = run.episodes_at(eval_steps)
+                axis.plot(
+                    eval_x,
+                    eval_values,
+                    label=f"{run.label} (greedy eval)",
+                    color=line.get_color(),
+                    linestyle="--",
+                    marker="o",
+                    markersize=3,
+                    linewidth=1.0,
+                )
         axis.set_title(panel_title)
         axis.grid(alpha=0.3)
         if drawn:
