@@ -260,8 +260,8 @@ class HFOActor(nn.Module):
     def forward_for_backward(
         self, obs: th.Tensor, segments: list[Segment]
     ) -> tuple[th.Tensor, list[th.Tensor], th.Tensor]:
-        """:meth:`forward` on rows grouped by skill, keeping what the backward pass (:meth:`output_gradients`,
-        :meth:`skill_weight_gradients`) needs.
+        """:meth:`forward` on rows grouped by skill, keeping what the backward pass (:meth:`output_gradients`)
+        needs.
 
         :param obs: ``(B, obs_dim)``, rows sorted by skill.
         :param segments: ``(skill, start, stop)`` for each skill with rows: rows ``start:stop`` use head ``skill``.
@@ -296,8 +296,9 @@ class HFOActor(nn.Module):
         """Explicit backward pass of ``grad_action`` for all rows: every layer's pre-activation gradient ``dZ``.
 
         Rows never mix in an MLP, so one backward pass gives every layer's ``dZ`` for all rows at the current
-        parameters; skill ``k``'s gradient is then :meth:`skill_weight_gradients` over its rows alone (the
-        gradient of skill ``k``'s loss alone, for the FLOPs of one backward pass), and needs no parameter.
+        parameters; skill ``k``'s weight gradients are then ``dZ[rows_k].T @ input[rows_k]`` over its
+        rows alone (the gradient of skill ``k``'s loss alone, for the FLOPs of one backward pass), needing no
+        parameter.
 
         :param inputs: the layer inputs returned by :meth:`forward_for_backward` (same ``segments``).
         :param action: ``(B, action_dim)``, the actions it returned.
@@ -328,22 +329,6 @@ class HFOActor(nn.Module):
             if index > 0:
                 grad_hidden = grad_z.mm(trunk_layers[index][0])
         return grad_zs[::-1]
-
-    @staticmethod
-    def skill_weight_gradients(
-        inputs: list[th.Tensor], grad_zs: list[th.Tensor], rows: slice = slice(None)
-    ) -> list[th.Tensor]:
-        """One skill's gradients from :meth:`output_gradients`: ``dZ[rows].T @ input[rows]`` (bias: the row sum)
-        for every layer, in the order of ``HFOPolicy.skill_parameters(skill)``: ``[W_1, b_1, ..., W_head, b_head]``.
-
-        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
-        :param grad_zs: what :meth:`output_gradients` returned.
-        :param rows: the skill's rows (default: all of them).
-        """
-        grads: list[th.Tensor] = []
-        for layer_input, grad_z in zip(inputs, grad_zs, strict=True):
-            grads += [grad_z[rows].t().mm(layer_input[rows]), grad_z[rows].sum(0)]
-        return grads
 
 
 class HFOCritic(nn.Module):
@@ -396,7 +381,7 @@ class HFOCritic(nn.Module):
         return self.joint_net(th.cat((self.obs_net(obs), action), dim=1))
 
     def forward_for_backward(self, obs: th.Tensor, action: th.Tensor) -> tuple[th.Tensor, list[th.Tensor]]:
-        """:meth:`forward` (same numbers) keeping every layer's input for :meth:`weight_gradients` /
+        """:meth:`forward` (same numbers) keeping every layer's input for :meth:`output_gradients` /
         :meth:`action_gradient`.
 
         :return: ``(Q (B, 1), layer_inputs)``: ``obs``, ``[obs features, action] (B, qf[0] + action_dim)``, then
@@ -431,17 +416,6 @@ class HFOCritic(nn.Module):
                 grad_z = backward(grad_z.mm(weight), inputs[index])
             grad_zs.append(grad_z)
         return grad_zs[::-1]
-
-    def weight_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
-        """Gradients of all parameters for ``grad_q = dLoss/dQ (B, 1)``, in the order of ``self.parameters()``
-        (``W, b`` of every layer, input side first).
-
-        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
-        """
-        grads: list[th.Tensor] = []
-        for layer_input, grad_z in zip(inputs, self.output_gradients(inputs, grad_q), strict=True):
-            grads += [grad_z.t().mm(layer_input), grad_z.sum(0)]
-        return grads
 
     def action_gradient(self, inputs: list[th.Tensor]) -> th.Tensor:
         """dQ/da ``(B, action_dim)`` of every row's own ``Q`` (i.e. of ``Q.sum()``), without any weight gradient.

@@ -19,7 +19,7 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
 Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread of a loaded
 2-core VM: 2.2-2.4x SB3's ``DDPG`` updates per second with 1 skill, 1.65-2.1x with 2, median 1.9x; see
 benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of through
-autograd (``HFOActor.forward_for_backward`` / ``output_gradients`` / ``skill_weight_gradients``,
+autograd (``HFOActor.forward_for_backward`` / ``output_gradients``,
 ``HFOCritic.forward_for_backward`` / ``output_gradients`` / ``action_gradient``: ``F.linear`` forward passes that
 keep each layer's input, then ``dZ @ W`` input gradients with activation derivatives from the kept outputs,
 ``dZ.T @ input`` weight gradients and row sums of ``dZ`` as bias gradients). That removes the graph building, the
