@@ -16,8 +16,8 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``g * (1 - a) / 2`` where ``g > 0`` (the update would increase ``a``) and ``g * (a + 1) / 2`` elsewhere.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
-Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread of a loaded
-2-core VM: 2.2-2.4x SB3's ``DDPG`` updates per second with 1 skill, 1.65-2.1x with 2, median 1.9x; see
+Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread of a shared
+2-core VM: 1.9-2.4x SB3's ``DDPG`` updates per second with 1 skill, 1.65-2.1x with 2 (about 1.85x typical); see
 benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of through
 autograd (``HFOActor.forward_for_backward`` / ``output_gradients``,
 ``HFOCritic.forward_for_backward`` / ``output_gradients`` / ``action_gradient``: ``F.linear`` forward passes that
