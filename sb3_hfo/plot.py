@@ -28,16 +28,16 @@ from typing import Any
 
 import numpy as np
 
+#: The training goal rate (with exploration); its panel also shows the greedy evaluations (EVAL_SUCCESS_TAG).
+GOAL_RATE_TAG = "rollout/goal_rate"
+
 #: (tag, panel title) of the four panels, in the paper's order plus the goal rate.
 PANELS: tuple[tuple[str, str], ...] = (
     ("train/critic_loss", "Average loss"),
     ("train/max_q", "Max Q-value"),
     ("rollout/ep_rew_mean", "Accumulated reward"),
-    ("rollout/goal_rate", "Goal rate (dashed: greedy evaluations)"),
+    (GOAL_RATE_TAG, "Goal rate (dashed: greedy evaluations)"),
 )
-
-#: The training goal rate (with exploration); its panel also shows the greedy evaluations (EVAL_SUCCESS_TAG).
-GOAL_RATE_TAG = "rollout/goal_rate"
 
 #: The greedy-evaluation tag (rl-zoo3's EvalCallback; HFOEnv sets ``is_success``): ``--summary`` reads it and the
 #: goal-rate panel draws it dashed.
