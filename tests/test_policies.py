@@ -344,3 +344,45 @@ def test_policy_rejects_unsupported_spaces() -> None:
         HFOPolicy(spaces.Discrete(4), ACTION_SPACE, lambda _: 1e-3)
     with pytest.raises(ValueError, match="weight_init_std"):
         make_policy(weight_init_std=0.0)
+
+
+def test_parameter_mask_keeps_the_preferences_and_the_chosen_actions_parameters() -> None:
+    policy = make_policy(mask_unused_parameters=True)
+    assert policy.action_parameter_sizes == (2, 1, 2)
+    actions = th.tensor(
+        [
+            [0.9, 0.1, 0.2, 0.5, -0.5, 0.7, -0.8, 0.9],  # DASH: dash power and direction kept
+            [0.1, 0.9, 0.2, 0.5, -0.5, 0.7, -0.8, 0.9],  # TURN: turn direction kept
+            [0.1, 0.2, 0.9, 0.5, -0.5, 0.7, -0.8, 0.9],  # KICK: kick power and direction kept
+            [0.3, 0.3, 0.3, 0.5, -0.5, 0.7, -0.8, 0.9],  # a tie: the first maximum (DASH), as hfo2d decides
+        ]
+    )
+    expected = th.tensor(
+        [
+            [0.9, 0.1, 0.2, 0.5, -0.5, 0.0, 0.0, 0.0],
+            [0.1, 0.9, 0.2, 0.0, 0.0, 0.7, 0.0, 0.0],
+            [0.1, 0.2, 0.9, 0.0, 0.0, 0.0, -0.8, 0.9],
+            [0.3, 0.3, 0.3, 0.5, -0.5, 0.0, 0.0, 0.0],
+        ]
+    )
+    assert th.equal(policy.critic_action(actions), expected)
+    custom = HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, mask_unused_parameters=[0, 3])
+    assert th.equal(
+        custom.critic_action(th.tensor([[0.5, -0.5, 0.1, 0.2, 0.3], [-0.5, 0.5, 0.1, 0.2, 0.3]])),
+        th.tensor([[0.5, -0.5, 0.0, 0.0, 0.0], [-0.5, 0.5, 0.1, 0.2, 0.3]]),
+    )
+    unmasked = make_policy()
+    assert unmasked.parameter_mask(actions) is None and unmasked.critic_action(actions) is actions
+    # Not saved in the state dict: models saved without the option load unchanged.
+    assert "parameter_masks" not in policy.state_dict()
+
+
+def test_mask_unused_parameters_errors_name_the_problem() -> None:
+    with pytest.raises(ValueError, match="means HFO's flat action.*has 5"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, mask_unused_parameters=True)
+    with pytest.raises(ValueError, match=r"3 preferences \+ 4 parameters = 7 action entries.*has 8"):
+        make_policy(mask_unused_parameters=(2, 1, 1))
+    with pytest.raises(ValueError, match="ints >= 0"):
+        make_policy(mask_unused_parameters=(2, -1, 4))
+    with pytest.raises(ValueError, match="a bool or a sequence of ints"):
+        make_policy(mask_unused_parameters="kick")

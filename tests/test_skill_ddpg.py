@@ -74,6 +74,19 @@ def reference_optimizers(policy: HFOPolicy) -> tuple[th.optim.Adam, list[th.opti
     return critic_opt, skill_opts
 
 
+def masked(policy: HFOPolicy, actions: th.Tensor) -> th.Tensor:
+    """With ``mask_unused_parameters`` (HFO layout): the parameters of the two discrete actions not chosen (first
+    maximum of the three preferences) replaced by 0, written out index by index; ``actions`` otherwise."""
+    if not policy.mask_unused_parameters:
+        return actions
+    parameter_columns = {0: [3, 4], 1: [5], 2: [6, 7]}
+    keep = th.zeros_like(actions)
+    keep[:, :3] = 1.0
+    for row, chosen in enumerate(actions[:, :3].argmax(dim=1).tolist()):
+        keep[row, parameter_columns[chosen]] = 1.0
+    return actions * keep
+
+
 def reference_update(
     policy: HFOPolicy,
     optimizers: tuple[th.optim.Adam, list[th.optim.Adam]],
@@ -86,6 +99,7 @@ def reference_update(
     """The update written the straightforward way: losses, autograd, plain Adam, Polyak loop.
 
     ``mc_mixing``: target ``(1 - beta) y + beta G`` where the Monte Carlo return ``G`` is known.
+    ``mask_unused_parameters``: the critic sees every action through :func:`masked`.
     ``preactivation_penalty``: skill ``k``'s loss gains ``lambda * mean over its rows of ||z||^2`` (``z``: its head's
     output before tanh).
 
@@ -98,12 +112,12 @@ def reference_update(
         next_actions = policy.actor_target(batch.next_observations, policy.route(batch.next_observations))
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
-        next_q = policy.critic_target(batch.next_observations, next_actions)
+        next_q = policy.critic_target(batch.next_observations, masked(policy, next_actions))
         target = batch.rewards + (1 - batch.dones) * discounts * next_q
         if mc_mixing > 0:
             mixed = (1 - mc_mixing) * target + mc_mixing * batch.mc_returns  # type: ignore[union-attr]
             target = th.where(batch.mc_valid > 0, mixed, target)  # type: ignore[union-attr]
-    loss = F.mse_loss(policy.critic(batch.observations, batch.actions), target)
+    loss = F.mse_loss(policy.critic(batch.observations, masked(policy, batch.actions)), target)
     critic_opt.zero_grad()
     loss.backward()
     critic_opt.step()
@@ -111,7 +125,7 @@ def reference_update(
     if skills is None:
         skills = th.zeros(len(batch.observations), dtype=th.long)
     actions = policy.actor(batch.observations, skills)
-    q = policy.critic(batch.observations, actions)
+    q = policy.critic(batch.observations, masked(policy, actions))
     features = policy.actor.trunk(batch.observations)
     preactivations = th.stack([head(features) for head in policy.actor.heads], dim=1)[
         th.arange(len(skills)), skills
@@ -148,17 +162,19 @@ def reference_update(
 
 
 @pytest.mark.parametrize(
-    ("n_skills", "inverting_gradients", "n_step_discounts", "activation_fn", "mc_mixing", "penalty"),
+    ("n_skills", "inverting_gradients", "n_step_discounts", "activation_fn", "mc_mixing", "penalty", "mask"),
     [
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0),
-        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0),
-        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0),
-        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0),
-        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0),
-        (1, False, False, th.nn.ReLU, 0.0, 0.0),
-        (2, False, False, th.nn.Tanh, 0.0, 0.0),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3),
-        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False),
+        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False),
+        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False),
+        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False),
+        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False),
+        (1, False, False, th.nn.ReLU, 0.0, 0.0, False),
+        (2, False, False, th.nn.Tanh, 0.0, 0.0, False),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False),
+        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True),
+        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True),
     ],
 )
 def test_update_equals_straightforward_reference(
@@ -168,15 +184,18 @@ def test_update_equals_straightforward_reference(
     activation_fn: type[th.nn.Module],
     mc_mixing: float,
     penalty: float,
+    mask: bool,
 ) -> None:
     """Four updates (the first builds Adam's state, the next use the direct fused-kernel path) of the explicit
     forward / backward update against an autograd reference; skills interleaved in the batch, one of them absent
     from the last batch."""
     policy_kwargs: dict[str, object] = dict(
-        inverting_gradients=inverting_gradients, activation_fn=activation_fn
+        inverting_gradients=inverting_gradients, activation_fn=activation_fn, mask_unused_parameters=mask
     )
     if n_skills == 3:
         policy_kwargs["skill_router"] = ThreeBandRouter()
+    if mask:  # actions far from 0, so that masking changes what the critic sees
+        policy_kwargs["weight_init_std"] = 0.5
     model = make_model(
         n_skills,
         tau=0.05,
@@ -493,7 +512,9 @@ def test_pendulum_single_skill() -> None:
 
 def test_save_load_round_trip(tmp_path: Path) -> None:
     router = FieldHalfRouter(threshold=0.1)
-    model = make_model(2, learning_starts=50, policy_kwargs=dict(skill_router=router))
+    model = make_model(
+        2, learning_starts=50, policy_kwargs=dict(skill_router=router, mask_unused_parameters=True)
+    )
     model.learn(150)
     model.save(tmp_path / "model.zip")
     model.save_replay_buffer(tmp_path / "buffer.pkl")
@@ -505,6 +526,7 @@ def test_save_load_round_trip(tmp_path: Path) -> None:
         model.predict(obs, deterministic=True)[0], loaded.predict(obs, deterministic=True)[0]
     )
     assert loaded.policy.skill_router == router and loaded.policy.n_skills == 2
+    assert loaded.policy.action_parameter_sizes == (2, 1, 2)
     pairs = [(model.policy.critic_optimizer, loaded.policy.critic_optimizer)]
     pairs += list(zip(model.policy.actor_optimizers, loaded.policy.actor_optimizers, strict=True))
     for original, restored in pairs:

@@ -31,6 +31,15 @@ A skill that no sample chose takes no step at all (its head and its Adam state s
 Inverting gradients (Hausknecht & Stone 2016, the paper's Figure 2 alternative): with ``inverting_gradients=True``
 the actor's output layer is linear (no ``tanh``); the algorithm rescales dQ/da to keep actions inside [-1, 1] and
 acting clips actions to [-1, 1]. Figure 2's 1024-512-256-128 network is ``net_arch=[1024, 512, 256, 128]``.
+
+Unused parameters (an option beyond the paper, off by default): in a parameterised action only the chosen discrete
+action's parameters reach the environment, yet the paper's critic sees all of them, so dQ/da pushes the others
+along whatever the critic happens to have learnt about them. In HFO they drift into ``tanh``'s saturation (the
+kick direction of a trained E1 actor sits at +180 degrees in every probed state, benchmarks/RESULTS.md) and pass
+back no gradient when they are finally used. With ``mask_unused_parameters`` the critic receives the action with
+every other discrete action's parameters set to 0 (the middle of the [-1, 1] scale), from the replay buffer and
+from the actor alike, so their gradient is exactly zero and Q depends only on what the environment executed
+(the zeroing of other actions' parameters in Bester et al. 2019's multi-pass Q-network, MP-DQN).
 """
 
 from __future__ import annotations
@@ -52,6 +61,7 @@ from sb3_hfo.common.routers import SkillRouter, make_router, validate_skills
 
 __all__ = [
     "DEFAULT_NET_ARCH",
+    "HFO_ACTION_PARAMETER_SIZES",
     "HFOActor",
     "HFOCritic",
     "HFOPolicy",
@@ -69,6 +79,9 @@ DEFAULT_NET_ARCH: dict[str, list[int]] = {"pi": [400, 300, 200], "qf": [400, 300
 LEAKY_RELU_SLOPE = 1e-2
 #: "Weights are initialized with a truncated normal distribution with a standard deviation 10^-2".
 WEIGHT_INIT_STD = 1e-2
+#: Parameters of HFO's DASH (power, direction), TURN (direction) and KICK (power, direction) in its flat action,
+#: after the three preferences (hfo2d's ``action_format="flat"``).
+HFO_ACTION_PARAMETER_SIZES = (2, 1, 2)
 
 
 def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[list[int], list[int]]:
@@ -100,6 +113,32 @@ def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[l
         ):
             raise ValueError(f"net_arch[{name!r}] must be a non-empty list of positive ints, got {arch!r}")
     return [int(n) for n in actor_arch], [int(n) for n in critic_arch]
+
+
+def _parameter_sizes(option: bool | tuple[int, ...] | list[int], action_dim: int) -> tuple[int, ...] | None:
+    """The per-discrete-action parameter counts that ``mask_unused_parameters=option`` means (``None``: off)."""
+    if option is False or option is None:
+        return None
+    if option is True:
+        if action_dim != 3 + sum(HFO_ACTION_PARAMETER_SIZES):
+            raise ValueError(
+                f"mask_unused_parameters=True means HFO's flat action (8 entries), but the action has {action_dim}; "
+                "pass the parameter count of each discrete action instead, e.g. (2, 1, 2)"
+            )
+        return HFO_ACTION_PARAMETER_SIZES
+    if isinstance(option, (str, bytes)) or not isinstance(option, (tuple, list)):
+        raise ValueError(f"mask_unused_parameters must be a bool or a sequence of ints, got {option!r}")
+    sizes = tuple(option)
+    if not sizes or any(isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0 for n in sizes):
+        raise ValueError(
+            f"mask_unused_parameters must list ints >= 0 (one per discrete action), got {option!r}"
+        )
+    if len(sizes) + sum(sizes) != action_dim:
+        raise ValueError(
+            f"mask_unused_parameters={option!r} describes {len(sizes)} preferences + {sum(sizes)} parameters = "
+            f"{len(sizes) + sum(sizes)} action entries, but the action has {action_dim}"
+        )
+    return tuple(int(n) for n in sizes)
 
 
 def _make_activation(activation_fn: type[nn.Module]) -> nn.Module:
@@ -450,6 +489,10 @@ class HFOPolicy(BasePolicy):
     :param skill_router: a :class:`~sb3_hfo.common.routers.SkillRouter`, a router name (``"single"``,
         ``"field_half"``) or ``None`` (``"single"`` for 1 skill, ``"field_half"`` for 2).
     :param inverting_gradients: linear actor output + Hausknecht & Stone's inverting gradients (see module doc).
+    :param mask_unused_parameters: the critic sees only the chosen discrete action's parameters (see module doc).
+        ``False`` (default, the paper), ``True`` (HFO's flat layout, :data:`HFO_ACTION_PARAMETER_SIZES`; needs an
+        8-dimensional action) or the number of parameters of each discrete action in order, e.g. ``(2, 1, 2)``:
+        the action is then ``[one preference per discrete action, their parameters in the same order]``.
     :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
     :param optimizer_class: optimiser class for the critic and each skill (default Adam).
     :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
@@ -475,6 +518,7 @@ class HFOPolicy(BasePolicy):
         n_skills: int = 1,
         skill_router: SkillRouter | str | None = None,
         inverting_gradients: bool = False,
+        mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
         weight_init_std: float = WEIGHT_INIT_STD,
         optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
         optimizer_kwargs: dict[str, Any] | None = None,
@@ -515,6 +559,8 @@ class HFOPolicy(BasePolicy):
         self.weight_init_std = float(weight_init_std)
         self.obs_dim = get_flattened_obs_dim(observation_space)
         self.action_dim = get_action_dim(action_space)
+        self.mask_unused_parameters = mask_unused_parameters
+        self.action_parameter_sizes = _parameter_sizes(mask_unused_parameters, self.action_dim)
         self._router_checked = False
         self._build(lr_schedule)
 
@@ -550,6 +596,7 @@ class HFOPolicy(BasePolicy):
         for target in (self.actor_target, self.critic_target):
             target.requires_grad_(False)
             target.train(False)
+        self._build_parameter_masks()
 
         lr = lr_schedule(1)
         kwargs = self._optimizer_kwargs()
@@ -559,6 +606,37 @@ class HFOPolicy(BasePolicy):
             optimizer = self.optimizer_class(trunk + list(head.parameters()), lr=lr, **kwargs)  # type: ignore[call-arg]
             # One named attribute per skill so that SkillDDPG.save / load can address each state dict.
             setattr(self, f"actor_skill_{k}_optimizer", optimizer)
+
+    def _build_parameter_masks(self) -> None:
+        """``parameter_masks (n_discrete, action_dim)``: row ``j`` is 1 on every preference and on discrete action
+        ``j``'s parameters, 0 elsewhere (not saved: it follows from ``mask_unused_parameters``)."""
+        sizes = self.action_parameter_sizes
+        masks = None
+        if sizes is not None:
+            n_discrete = len(sizes)
+            masks = th.zeros(n_discrete, self.action_dim)
+            masks[:, :n_discrete] = 1.0
+            start = n_discrete
+            for j, size in enumerate(sizes):
+                masks[j, start : start + size] = 1.0
+                start += size
+        self.parameter_masks: th.Tensor | None
+        self.register_buffer("parameter_masks", masks, persistent=False)
+
+    def parameter_mask(self, actions: th.Tensor) -> th.Tensor | None:
+        """``(B, action_dim)`` mask of what the environment executes for ``actions (B, action_dim)``: the
+        preferences and the parameters of their argmax (the first maximum on ties, like hfo2d); ``None`` when
+        ``mask_unused_parameters`` is off."""
+        masks = self.parameter_masks
+        if masks is None:
+            return None
+        return masks.index_select(0, actions[:, : masks.shape[0]].argmax(dim=1))
+
+    def critic_action(self, actions: th.Tensor) -> th.Tensor:
+        """``actions (B, action_dim)`` as the critic sees them: unused parameters set to 0 with
+        ``mask_unused_parameters``, unchanged otherwise."""
+        mask = self.parameter_mask(actions)
+        return actions if mask is None else actions * mask
 
     @property
     def actor_optimizers(self) -> list[th.optim.Optimizer]:
@@ -598,6 +676,7 @@ class HFOPolicy(BasePolicy):
                 n_skills=self.n_skills,
                 skill_router=self.skill_router,
                 inverting_gradients=self.inverting_gradients,
+                mask_unused_parameters=self.mask_unused_parameters,
                 weight_init_std=self.weight_init_std,
                 lr_schedule=self._dummy_schedule,
                 optimizer_class=self.optimizer_class,

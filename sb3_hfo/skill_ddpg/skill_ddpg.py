@@ -14,6 +14,8 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    (parameters and Adam state unchanged). With one skill this is exactly DDPG's actor update.
    With ``inverting_gradients`` ``g`` is first rescaled per dimension (Hausknecht & Stone 2016, bounds [-1, 1]):
    ``g * (1 - a) / 2`` where ``g > 0`` (the update would increase ``a``) and ``g * (a + 1) / 2`` elsewhere.
+   With the policy's ``mask_unused_parameters`` the critic sees every action (replayed, the actor's and the target
+   actor's) with the parameters of the discrete actions not chosen set to 0, and ``g`` is zero on them.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
 Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread of a shared
@@ -473,7 +475,7 @@ class SkillDDPG(OffPolicyAlgorithm):
 
         # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B.
         target_q = self._critic_target(batch, next_skills)
-        current_q, critic_inputs = critic.forward_for_backward(obs, batch.actions)
+        current_q, critic_inputs = critic.forward_for_backward(obs, policy.critic_action(batch.actions))
         error = current_q - target_q
         grad_q = error * (2.0 / batch_size)
         critic_grad_zs = critic.output_gradients(critic_inputs, grad_q)
@@ -491,8 +493,13 @@ class SkillDDPG(OffPolicyAlgorithm):
             counts = tuple(th.bincount(skills, minlength=policy.n_skills).tolist())
         segments, row_weight, skill_weight, mean_weight, indicator = self._skill_layout(counts, obs)
         actor_actions, actor_inputs, actor_outputs = actor.forward_for_backward(obs, segments)
-        actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions)
-        dq_da = critic.action_gradient(q_inputs)
+        parameter_mask = policy.parameter_mask(actor_actions)
+        if parameter_mask is None:
+            actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions)
+            dq_da = critic.action_gradient(q_inputs)
+        else:  # Q sees a * mask, so dQ/da = mask * dQ/d(a * mask): no gradient for parameters the env ignores
+            actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions * parameter_mask)
+            dq_da = critic.action_gradient(q_inputs) * parameter_mask
         if policy.inverting_gradients:
             dq_da = self._invert_gradients(dq_da, actor_actions)
         # d(lambda * mean_k ||z||^2)/dz = 2 lambda z / n_k = -2 lambda z * row_weight.
@@ -584,7 +591,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         next_actions = self.actor_target.forward(next_obs, next_skills)
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
-        next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
+        next_q, _ = self.critic_target.forward_for_backward(next_obs, policy.critic_action(next_actions))
         if batch.discounts is None:
             # (1 - done) is 0 or 1, so this is r + gamma * (1 - done) * Q' with the same rounding, in one kernel.
             target_q = th.addcmul(batch.rewards, 1 - batch.dones, next_q, value=self.gamma)
