@@ -209,16 +209,27 @@ def plot_runs(runs: Sequence[Run], out: Path, smooth: int = 1, title: str | None
                 )
         axis.set_title(panel_title)
         axis.grid(alpha=0.3)
-        if drawn:
-            axis.legend(fontsize="small")
-        else:
+        if not drawn:
             axis.text(0.5, 0.5, f"{tag}\nnot logged", ha="center", va="center", transform=axis.transAxes)
     x_label = " / ".join(sorted(x_names)) or "episodes"
     for axis in axes[1]:
         axis.set_xlabel(x_label)
     if title:
         figure.suptitle(title)
-    figure.tight_layout()
+    # One legend below the panels: inside a panel it covers the curves once several runs are overlaid.
+    labelled: dict[str, Any] = {}
+    for axis in axes.flat:
+        for handle, label in zip(*axis.get_legend_handles_labels(), strict=True):
+            labelled.setdefault(label, handle)
+    # Each run's column holds its training curve above its greedy evaluations (legends fill column by column).
+    order = [name for run in runs for name in (run.label, f"{run.label} (greedy eval)") if name in labelled]
+    legend_rows = 0
+    if order:
+        columns = min(len(runs) if len(order) > len(runs) else len(order), 4)
+        legend_rows = -(-len(order) // columns)
+        handles = [labelled[name] for name in order]
+        figure.legend(handles, order, loc="lower center", ncol=columns, fontsize="small")
+    figure.tight_layout(rect=(0.0, 0.03 * legend_rows + 0.01 * bool(legend_rows), 1.0, 1.0))
     out.parent.mkdir(parents=True, exist_ok=True)
     figure.savefig(out, dpi=120)
     plt.close(figure)
