@@ -3,6 +3,7 @@
 Usage::
 
     python benchmarks/update_throughput.py --threads 1 --updates 300 --repeats 5 --out /tmp/update_throughput.json
+    python benchmarks/update_throughput.py --threads 1 2 --updates 300 --repeats 5 --out /tmp/update_throughput.json
 
 What is measured (all on ``HFO/EmptyGoal-v0``: 58 observation features, 8 action entries; batch 32):
 
@@ -20,7 +21,10 @@ under 1 % (8 x 400 vs 8 x 300 weights). The algorithms are otherwise the same ma
 smoothing, actor updated every step).
 
 Measurements are interleaved (contestant A, B, C, A, B, C, ...) and the median of ``--repeats`` rounds is reported
-so that load from other processes affects all contestants alike. ``torch.set_num_threads(--threads)`` applies to all.
+so that load from other processes affects all contestants alike. ``torch.set_num_threads`` applies to all; with
+several ``--threads`` values every contestant is timed at each of them within the same rounds, ratios are given per
+thread count, and also with each contestant at its own fastest count (the issue lists the thread count among the
+levers, and a user picks it).
 """
 
 from __future__ import annotations
@@ -47,6 +51,8 @@ from sb3_hfo import SkillDDPG
 ENV_ID = "HFO/EmptyGoal-v0"
 PAPER_ARCH = [400, 300, 200]
 BATCH_SIZE = 32
+#: The contestant every ratio is taken against.
+BASELINE = "sb3_ddpg"
 
 
 def make_contestants(buffer_size: int, learning_starts: int) -> dict[str, Callable[[], BaseAlgorithm]]:
@@ -89,11 +95,21 @@ def time_learn(model: BaseAlgorithm, steps: int) -> float:
     return steps / (time.perf_counter() - start)
 
 
+def ratios(rates: dict[str, float], baseline: str = BASELINE) -> dict[str, float]:
+    return {name: rate / rates[baseline] for name, rate in rates.items()}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(
         description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter
     )
-    parser.add_argument("--threads", type=int, default=1, help="torch.set_num_threads for every contestant")
+    parser.add_argument(
+        "--threads",
+        type=int,
+        nargs="+",
+        default=[1],
+        help="torch.set_num_threads values; every contestant is timed at each, interleaved in the same rounds",
+    )
     parser.add_argument("--updates", type=int, default=300, help="updates per timed train() call")
     parser.add_argument(
         "--learn-steps", type=int, default=300, help="environment steps per timed learn() call"
@@ -104,8 +120,10 @@ def main() -> None:
     )
     parser.add_argument("--out", type=Path, default=None, help="write the results as JSON here")
     args = parser.parse_args()
+    if any(n < 1 for n in args.threads):
+        parser.error(f"--threads must be >= 1, got {args.threads}")
 
-    th.set_num_threads(args.threads)
+    th.set_num_threads(args.threads[0])
     contestants = make_contestants(buffer_size=max(10 * args.fill, 100_000), learning_starts=args.fill)
     models: dict[str, BaseAlgorithm] = {}
     for name, factory in contestants.items():
@@ -114,48 +132,69 @@ def main() -> None:
         model.train(gradient_steps=20, batch_size=BATCH_SIZE)  # type: ignore[attr-defined]  # warm caches
         models[name] = model
 
-    train_rates: dict[str, list[float]] = {name: [] for name in models}
-    learn_rates: dict[str, list[float]] = {name: [] for name in models}
+    train_rates = {t: {name: [] for name in models} for t in args.threads}
+    learn_rates = {t: {name: [] for name in models} for t in args.threads}
     for _ in range(args.repeats):
-        for name, model in models.items():
-            train_rates[name].append(time_train(model, args.updates))
-        for name, model in models.items():
-            learn_rates[name].append(time_learn(model, args.learn_steps))
+        for threads in args.threads:
+            th.set_num_threads(threads)
+            for name, model in models.items():
+                train_rates[threads][name].append(time_train(model, args.updates))
+            for name, model in models.items():
+                learn_rates[threads][name].append(time_learn(model, args.learn_steps))
 
-    baseline = "sb3_ddpg"
+    by_threads: dict[str, Any] = {}
+    for threads in args.threads:
+        train = {name: statistics.median(rates) for name, rates in train_rates[threads].items()}
+        learn = {name: statistics.median(rates) for name, rates in learn_rates[threads].items()}
+        by_threads[str(threads)] = {
+            "train_updates_per_s": train,
+            "learn_steps_per_s": learn,
+            "train_ratio_vs_sb3_ddpg": ratios(train),
+            "learn_ratio_vs_sb3_ddpg": ratios(learn),
+            "train_updates_per_s_all": train_rates[threads],
+            "learn_steps_per_s_all": learn_rates[threads],
+        }
     results: dict[str, Any] = {
         "machine": {
             "platform": platform.platform(),
             "processor": platform.processor() or platform.machine(),
             "cpu_count": os.cpu_count(),
             "torch": th.__version__,
-            "torch_threads": args.threads,
             "python": platform.python_version(),
         },
         "settings": vars(args) | {"out": str(args.out) if args.out else None, "batch_size": BATCH_SIZE},
-        "train_updates_per_s": {name: statistics.median(rates) for name, rates in train_rates.items()},
-        "learn_steps_per_s": {name: statistics.median(rates) for name, rates in learn_rates.items()},
-        "train_updates_per_s_all": train_rates,
-        "learn_steps_per_s_all": learn_rates,
+        "by_threads": by_threads,
     }
-    results["train_ratio_vs_sb3_ddpg"] = {
-        name: rate / results["train_updates_per_s"][baseline]
-        for name, rate in results["train_updates_per_s"].items()
-    }
-    results["learn_ratio_vs_sb3_ddpg"] = {
-        name: rate / results["learn_steps_per_s"][baseline]
-        for name, rate in results["learn_steps_per_s"].items()
-    }
-
+    print(f"torch {th.__version__}, batch {BATCH_SIZE}, median of {args.repeats} interleaved rounds")
     print(
-        f"torch {th.__version__}, {args.threads} thread(s), batch {BATCH_SIZE}, median of {args.repeats} rounds"
+        f"{'threads':>7}  {'contestant':<22}{'train upd/s':>13}{'ratio':>8}{'learn steps/s':>15}{'ratio':>8}"
     )
-    print(f"{'contestant':<22}{'train upd/s':>13}{'ratio':>8}{'learn steps/s':>15}{'ratio':>8}")
-    for name in models:
-        print(
-            f"{name:<22}{results['train_updates_per_s'][name]:>13.1f}{results['train_ratio_vs_sb3_ddpg'][name]:>8.2f}"
-            f"{results['learn_steps_per_s'][name]:>15.1f}{results['learn_ratio_vs_sb3_ddpg'][name]:>8.2f}"
-        )
+    for threads, row in by_threads.items():
+        for name in models:
+            print(
+                f"{threads:>7}  {name:<22}{row['train_updates_per_s'][name]:>13.1f}"
+                f"{row['train_ratio_vs_sb3_ddpg'][name]:>8.2f}"
+                f"{row['learn_steps_per_s'][name]:>15.1f}{row['learn_ratio_vs_sb3_ddpg'][name]:>8.2f}"
+            )
+    if len(args.threads) > 1:
+        # Each contestant at its own fastest thread count: what a user who picks the setting gets.
+        best: dict[str, Any] = {}
+        for kind in ("train_updates_per_s", "learn_steps_per_s"):
+            fastest = {
+                name: max((row[kind][name], int(t)) for t, row in by_threads.items()) for name in models
+            }
+            best[kind] = {name: rate for name, (rate, _) in fastest.items()}
+            best[kind.replace("per_s", "threads")] = {name: t for name, (_, t) in fastest.items()}
+            best[kind.split("_per_s")[0] + "_ratio_vs_sb3_ddpg"] = ratios(best[kind])
+        results["each_at_its_fastest_thread_count"] = best
+        print("each at its fastest thread count (threads in brackets):")
+        for name in models:
+            print(
+                f"         {name:<22}{best['train_updates_per_s'][name]:>9.1f} "
+                f"[{best['train_updates_threads'][name]}]{best['train_updates_ratio_vs_sb3_ddpg'][name]:>8.2f}"
+                f"{best['learn_steps_per_s'][name]:>11.1f} "
+                f"[{best['learn_steps_threads'][name]}]{best['learn_steps_ratio_vs_sb3_ddpg'][name]:>8.2f}"
+            )
     if args.out is not None:
         args.out.parent.mkdir(parents=True, exist_ok=True)
         args.out.write_text(json.dumps(results, indent=2))
