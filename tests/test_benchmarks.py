@@ -1,0 +1,39 @@
+"""The benchmark scripts run end to end at tiny settings (their figures come from full runs, not from here)."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+REPO = Path(__file__).resolve().parents[1]
+
+
+def test_update_throughput_times_every_contestant_at_every_thread_count(tmp_path: Path) -> None:
+    out = tmp_path / "throughput.json"
+    command = [sys.executable, str(REPO / "benchmarks" / "update_throughput.py"), "--threads", "1", "2"]
+    command += ["--updates", "2", "--learn-steps", "2", "--repeats", "1", "--fill", "64", "--out", str(out)]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    results = json.loads(out.read_text())
+    contestants = {"sb3_ddpg", "skill_ddpg_1_skill", "skill_ddpg_2_skills"}
+    assert set(results["by_threads"]) == {"1", "2"}
+    for row in results["by_threads"].values():
+        assert set(row["train_updates_per_s"]) == contestants
+        assert all(rate > 0 for rate in row["learn_steps_per_s"].values())
+        assert row["train_ratio_vs_sb3_ddpg"]["sb3_ddpg"] == 1.0
+    fastest = results["each_at_its_fastest_thread_count"]
+    for name in contestants:
+        rate = fastest["train_updates_per_s"][name]
+        assert rate == max(row["train_updates_per_s"][name] for row in results["by_threads"].values())
+        assert (
+            rate
+            == results["by_threads"][str(fastest["train_updates_threads"][name])]["train_updates_per_s"][name]
+        )
+
+
+def test_update_throughput_rejects_a_zero_thread_count(tmp_path: Path) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "update_throughput.py"), "--threads", "0"]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert completed.returncode == 2 and "--threads must be >= 1" in completed.stderr
