@@ -66,7 +66,8 @@ def snapshot(module: th.nn.Module) -> dict[str, th.Tensor]:
 
 def reference_optimizers(policy: HFOPolicy) -> tuple[th.optim.Adam, list[th.optim.Adam]]:
     """Plain (non-fused) Adams over the same parameter sets as the policy's optimisers."""
-    critic_opt = th.optim.Adam(policy.critic.parameters(), lr=policy.critic_optimizer.param_groups[0]["lr"])
+    critic_params = [param for critic in policy.critics for param in critic.parameters()]
+    critic_opt = th.optim.Adam(critic_params, lr=policy.critic_optimizer.param_groups[0]["lr"])
     skill_opts = [
         th.optim.Adam(policy.skill_parameters(k), lr=opt.param_groups[0]["lr"])
         for k, opt in enumerate(policy.actor_optimizers)
@@ -100,6 +101,8 @@ def reference_update(
 
     ``mc_mixing``: target ``(1 - beta) y + beta G`` where the Monte Carlo return ``G`` is known.
     ``mask_unused_parameters``: the critic sees every action through :func:`masked`.
+    ``n_critics > 1``: the target takes the smallest target critic's value, the loss sums every critic's mean
+    squared error (one Adam over all of them), and the actor follows the first critic.
     ``preactivation_penalty``: skill ``k``'s loss gains ``lambda * mean over its rows of ||z||^2`` (``z``: its head's
     output before tanh).
 
@@ -112,12 +115,16 @@ def reference_update(
         next_actions = policy.actor_target(batch.next_observations, policy.route(batch.next_observations))
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
-        next_q = policy.critic_target(batch.next_observations, masked(policy, next_actions))
+        next_q = th.stack(
+            [target(batch.next_observations, masked(policy, next_actions)) for target in policy.critic_targets]
+        ).min(dim=0).values
         target = batch.rewards + (1 - batch.dones) * discounts * next_q
         if mc_mixing > 0:
             mixed = (1 - mc_mixing) * target + mc_mixing * batch.mc_returns  # type: ignore[union-attr]
             target = th.where(batch.mc_valid > 0, mixed, target)  # type: ignore[union-attr]
-    loss = F.mse_loss(policy.critic(batch.observations, masked(policy, batch.actions)), target)
+    loss = sum(
+        F.mse_loss(critic(batch.observations, masked(policy, batch.actions)), target) for critic in policy.critics
+    )
     critic_opt.zero_grad()
     loss.backward()
     critic_opt.step()
@@ -152,7 +159,8 @@ def reference_update(
             param.grad = grad
         skill_opts[k].step()
     with th.no_grad():
-        for net, target_net in ((policy.actor, policy.actor_target), (policy.critic, policy.critic_target)):
+        pairs = [(policy.actor, policy.actor_target), *zip(policy.critics, policy.critic_targets, strict=True)]
+        for net, target_net in pairs:
             for param, target_param in zip(net.parameters(), target_net.parameters(), strict=True):
                 target_param.mul_(1 - tau).add_(tau * param)
 
@@ -162,19 +170,21 @@ def reference_update(
 
 
 @pytest.mark.parametrize(
-    ("n_skills", "inverting_gradients", "n_step_discounts", "activation_fn", "mc_mixing", "penalty", "mask"),
+    ("n_skills", "inverting_gradients", "n_step_discounts", "activation_fn", "mc_mixing", "penalty", "mask", "n_critics"),
     [
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False),
-        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False),
-        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False),
-        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False),
-        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False),
-        (1, False, False, th.nn.ReLU, 0.0, 0.0, False),
-        (2, False, False, th.nn.Tanh, 0.0, 0.0, False),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False),
-        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True),
-        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
+        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
+        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
+        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
+        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
+        (1, False, False, th.nn.ReLU, 0.0, 0.0, False, 1),
+        (2, False, False, th.nn.Tanh, 0.0, 0.0, False, 1),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1),
+        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True, 1),
+        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 2),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3),
     ],
 )
 def test_update_equals_straightforward_reference(
@@ -185,12 +195,16 @@ def test_update_equals_straightforward_reference(
     mc_mixing: float,
     penalty: float,
     mask: bool,
+    n_critics: int,
 ) -> None:
     """Four updates (the first builds Adam's state, the next use the direct fused-kernel path) of the explicit
     forward / backward update against an autograd reference; skills interleaved in the batch, one of them absent
     from the last batch."""
     policy_kwargs: dict[str, object] = dict(
-        inverting_gradients=inverting_gradients, activation_fn=activation_fn, mask_unused_parameters=mask
+        inverting_gradients=inverting_gradients,
+        activation_fn=activation_fn,
+        mask_unused_parameters=mask,
+        n_critics=n_critics,
     )
     if n_skills == 3:
         policy_kwargs["skill_router"] = ThreeBandRouter()
@@ -240,19 +254,25 @@ class ThreeBandRouter(SkillRouter):
         return (x < 0.5).astype(np.int64) + (x < -0.5).astype(np.int64)
 
 
-def test_update_statistics_match_their_definitions() -> None:
-    """The per-update sums behind train/critic_loss, actor_loss, max_q, mean_q and actor_loss_skill_k."""
-    model = make_model(2, learning_rate_actor=1e-2, learning_rate_critic=1e-2)
+@pytest.mark.parametrize("n_critics", [1, 2])
+def test_update_statistics_match_their_definitions(n_critics: int) -> None:
+    """The per-update sums behind train/critic_loss (the critics' mean loss), actor_loss, max_q, mean_q (of the
+    first critic) and actor_loss_skill_k."""
+    model = make_model(
+        2, learning_rate_actor=1e-2, learning_rate_critic=1e-2, policy_kwargs=dict(n_critics=n_critics)
+    )
     reference = copy.deepcopy(model.policy)
     batch = make_batch(seed=4, far_fraction=0.25)
     model._update(batch)
     policy = reference
     with th.no_grad():
         next_obs = batch.next_observations
-        next_q = policy.critic_target(next_obs, policy.actor_target(next_obs, policy.route(next_obs)))
+        next_actions = policy.actor_target(next_obs, policy.route(next_obs))
+        next_q = th.stack([target(next_obs, next_actions) for target in policy.critic_targets]).min(0).values
         target = batch.rewards + (1 - batch.dones) * model.gamma * next_q
-        q = policy.critic(batch.observations, batch.actions)
-    critic_loss = F.mse_loss(q, target)
+        qs = [critic(batch.observations, batch.actions) for critic in policy.critics]
+    q = qs[0]
+    critic_loss = th.stack([F.mse_loss(each_q, target) for each_q in qs]).mean()
     # The actor statistics use the critic after its step: take it from the model (the actor is not used by it).
     skills = policy.route(batch.observations)
     assert skills is not None
@@ -513,7 +533,7 @@ def test_pendulum_single_skill() -> None:
 def test_save_load_round_trip(tmp_path: Path) -> None:
     router = FieldHalfRouter(threshold=0.1)
     model = make_model(
-        2, learning_starts=50, policy_kwargs=dict(skill_router=router, mask_unused_parameters=True)
+        2, learning_starts=50, policy_kwargs=dict(skill_router=router, mask_unused_parameters=True, n_critics=2)
     )
     model.learn(150)
     model.save(tmp_path / "model.zip")
@@ -527,6 +547,7 @@ def test_save_load_round_trip(tmp_path: Path) -> None:
     )
     assert loaded.policy.skill_router == router and loaded.policy.n_skills == 2
     assert loaded.policy.action_parameter_sizes == (2, 1, 2)
+    assert loaded.policy.n_critics == 2 and len(loaded.policy.extra_critic_targets) == 1
     pairs = [(model.policy.critic_optimizer, loaded.policy.critic_optimizer)]
     pairs += list(zip(model.policy.actor_optimizers, loaded.policy.actor_optimizers, strict=True))
     for original, restored in pairs:
@@ -572,8 +593,8 @@ def test_bad_inputs_raise_clear_errors() -> None:
         make_model(1, n_discrete_actions=9)
     with pytest.raises(ValueError, match="learning_rate_critic"):
         make_model(1, learning_rate_critic="fast")
-    with pytest.raises(TypeError):
-        make_model(1, policy_kwargs=dict(n_critics=2))
+    with pytest.raises(TypeError, match="n_actors"):
+        make_model(1, policy_kwargs=dict(n_actors=2))
     model = make_model(2, learning_starts=0, policy_kwargs=dict(skill_router=OutOfRangeRouter()))
     with pytest.raises(ValueError, match=r"skill indices in \[5, 5\]"):
         model.learn(5)

@@ -40,6 +40,12 @@ back no gradient when they are finally used. With ``mask_unused_parameters`` the
 every other discrete action's parameters set to 0 (the middle of the [-1, 1] scale), from the replay buffer and
 from the actor alike, so their gradient is exactly zero and Q depends only on what the environment executed
 (the zeroing of other actions' parameters in Bester et al. 2019's multi-pass Q-network, MP-DQN).
+
+Twin critics (an option beyond the paper, off by default): with ``n_critics=2`` the policy keeps a second critic
+and its target copy (``extra_critics`` / ``extra_critic_targets``), both critics regress to one target computed
+with the smaller of the two target critics' values, and the actor follows the first critic only: the clipped
+double Q-learning of TD3 (Fujimoto et al. 2018), against DDPG's overestimation of Q. One Adam
+(``policy.critic_optimizer``) owns every critic's parameters, as in SB3's ``TD3``.
 """
 
 from __future__ import annotations
@@ -493,6 +499,7 @@ class HFOPolicy(BasePolicy):
         ``False`` (default, the paper), ``True`` (HFO's flat layout, :data:`HFO_ACTION_PARAMETER_SIZES`; needs an
         8-dimensional action) or the number of parameters of each discrete action in order, e.g. ``(2, 1, 2)``:
         the action is then ``[one preference per discrete action, their parameters in the same order]``.
+    :param n_critics: number of critics (1: the paper; 2: TD3's clipped double Q, see module doc).
     :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
     :param optimizer_class: optimiser class for the critic and each skill (default Adam).
     :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
@@ -506,6 +513,8 @@ class HFOPolicy(BasePolicy):
     actor_target: HFOActor
     critic: HFOCritic
     critic_target: HFOCritic
+    extra_critics: nn.ModuleList
+    extra_critic_targets: nn.ModuleList
     critic_optimizer: th.optim.Optimizer
 
     def __init__(
@@ -519,6 +528,7 @@ class HFOPolicy(BasePolicy):
         skill_router: SkillRouter | str | None = None,
         inverting_gradients: bool = False,
         mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
+        n_critics: int = 1,
         weight_init_std: float = WEIGHT_INIT_STD,
         optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
         optimizer_kwargs: dict[str, Any] | None = None,
@@ -540,6 +550,10 @@ class HFOPolicy(BasePolicy):
             raise ValueError("HFOPolicy only supports FlattenExtractor (feature-vector observations)")
         if weight_init_std <= 0:
             raise ValueError(f"weight_init_std must be > 0, got {weight_init_std}")
+        if isinstance(n_critics, bool) or not isinstance(n_critics, (int, np.integer)) or n_critics < 1:
+            raise ValueError(
+                f"n_critics must be an int >= 1 (1: the paper, 2: TD3's twin critics), got {n_critics!r}"
+            )
         super().__init__(
             observation_space,
             action_space,
@@ -557,6 +571,7 @@ class HFOPolicy(BasePolicy):
         self.n_skills = int(n_skills)
         self.inverting_gradients = bool(inverting_gradients)
         self.weight_init_std = float(weight_init_std)
+        self.n_critics = int(n_critics)
         self.obs_dim = get_flattened_obs_dim(observation_space)
         self.action_dim = get_action_dim(action_space)
         self.mask_unused_parameters = mask_unused_parameters
@@ -593,14 +608,19 @@ class HFOPolicy(BasePolicy):
         self.critic = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
         self.critic_target = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
         self.critic_target.load_state_dict(self.critic.state_dict())
-        for target in (self.actor_target, self.critic_target):
+        # Empty with one critic, so that the paper's policy has the same state dict as before the option existed.
+        self.extra_critics = nn.ModuleList(HFOCritic(**critic_kwargs) for _ in range(self.n_critics - 1))  # type: ignore[arg-type]
+        self.extra_critic_targets = nn.ModuleList(HFOCritic(**critic_kwargs) for _ in range(self.n_critics - 1))  # type: ignore[arg-type]
+        self.extra_critic_targets.load_state_dict(self.extra_critics.state_dict())
+        for target in (self.actor_target, self.critic_target, self.extra_critic_targets):
             target.requires_grad_(False)
             target.train(False)
         self._build_parameter_masks()
 
         lr = lr_schedule(1)
         kwargs = self._optimizer_kwargs()
-        self.critic_optimizer = self.optimizer_class(self.critic.parameters(), lr=lr, **kwargs)  # type: ignore[call-arg]
+        critic_params = [param for critic in self.critics for param in critic.parameters()]
+        self.critic_optimizer = self.optimizer_class(critic_params, lr=lr, **kwargs)  # type: ignore[call-arg]
         trunk = list(self.actor.trunk.parameters())
         for k, head in enumerate(self.actor.heads):
             optimizer = self.optimizer_class(trunk + list(head.parameters()), lr=lr, **kwargs)  # type: ignore[call-arg]
@@ -637,6 +657,16 @@ class HFOPolicy(BasePolicy):
         ``mask_unused_parameters``, unchanged otherwise."""
         mask = self.parameter_mask(actions)
         return actions if mask is None else actions * mask
+
+    @property
+    def critics(self) -> list[HFOCritic]:
+        """Every critic, the one the actor follows (``critic``) first."""
+        return [self.critic, *self.extra_critics]  # type: ignore[list-item]
+
+    @property
+    def critic_targets(self) -> list[HFOCritic]:
+        """The target copy of each of :attr:`critics`, in the same order."""
+        return [self.critic_target, *self.extra_critic_targets]  # type: ignore[list-item]
 
     @property
     def actor_optimizers(self) -> list[th.optim.Optimizer]:
@@ -677,6 +707,7 @@ class HFOPolicy(BasePolicy):
                 skill_router=self.skill_router,
                 inverting_gradients=self.inverting_gradients,
                 mask_unused_parameters=self.mask_unused_parameters,
+                n_critics=self.n_critics,
                 weight_init_std=self.weight_init_std,
                 lr_schedule=self._dummy_schedule,
                 optimizer_class=self.optimizer_class,
@@ -708,7 +739,7 @@ class HFOPolicy(BasePolicy):
         return action.clamp(-1.0, 1.0) if self.inverting_gradients else action
 
     def set_training_mode(self, mode: bool) -> None:
-        """Set the ``training`` flag of the policy, the actor and the critic (and all their submodules).
+        """Set the ``training`` flag of the policy, the actor and the critics (and all their submodules).
 
         SB3 switches it twice per environment step (acting, then training); ``nn.Module.train``'s recursion costs
         ~0.1 ms per call here, so the flags are written straight into a cached flat list of the modules. No layer
@@ -717,7 +748,7 @@ class HFOPolicy(BasePolicy):
         actor, critic = self.actor, self.critic
         cached = self.__dict__.get("_mode_modules")
         if cached is None or cached[0] is not actor or cached[1] is not critic:
-            cached = (actor, critic, [*actor.modules(), *critic.modules()])
+            cached = (actor, critic, [*actor.modules(), *critic.modules(), *self.extra_critics.modules()])
             self.__dict__["_mode_modules"] = cached
         for module in cached[2]:
             module.__dict__["training"] = mode

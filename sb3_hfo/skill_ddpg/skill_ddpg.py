@@ -3,7 +3,10 @@
 One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``batch_size``):
 
 1. Critic: ``y = r + gamma * (1 - done) * Q'(s', mu'_{skill(s')}(s'))`` with the target networks (paper eq. 6),
-   ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``).
+   ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``). With the policy's
+   ``n_critics=2`` (TD3's clipped double Q, beyond the paper) ``Q'`` in ``y`` is the smaller of the two target
+   critics' values, each critic takes the loss ``L`` on its own ``Q`` and one Adam step covers both; the actor
+   below follows the first critic (``policy.critic``) only.
 2. Actor (eq. 7), with the critic just updated: every row's action comes from the head its skill router picks;
    ``g = dQ/da`` at ``a = mu_{skill(s)}(s)`` for the whole minibatch in one critic pass. Skill ``k``'s loss is
    ``-mean over the rows routed to k of Q(s, a)``; its gradient over (trunk + head k) is the back-propagation of
@@ -409,15 +412,21 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.critic = self.policy.critic
         self.critic_target = self.policy.critic_target
         # Fixed parameter lists: module.to(device) and load_state_dict keep the same Parameter objects.
-        self._online_params = [*self.actor.parameters(), *self.critic.parameters()]
-        self._target_params = [*self.actor_target.parameters(), *self.critic_target.parameters()]
+        critics, critic_targets = self.policy.critics, self.policy.critic_targets
+        self._critic_params = [param for critic in critics for param in critic.parameters()]
+        self._online_params = [*self.actor.parameters(), *self._critic_params]
+        self._target_params = [
+            *self.actor_target.parameters(),
+            *(param for target in critic_targets for param in target.parameters()),
+        ]
         self._skill_params = [self.policy.skill_parameters(k) for k in range(self.policy.n_skills)]
-        self._critic_params = list(self.critic.parameters())
         self._skill_optimizers = self.policy.actor_optimizers
         self._layouts: dict[tuple[Any, ...], _Layout] = {}
         # Every skill's gradients are written into the same tensors in turn (all skills' shapes are the same).
         self._actor_grads = _GradientBuffers(self._skill_params[0], self.policy.n_skills)
-        self._critic_grads = _GradientBuffers(self._critic_params, 1)
+        self._critic_grads = [_GradientBuffers(list(critic.parameters()), 1) for critic in critics]
+        # In the critic optimiser's parameter order (critic after critic): one list object, for adam_step's cache.
+        self._critic_grad_list = [grad for buffers in self._critic_grads for grad in buffers.grads[0]]
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
@@ -473,16 +482,22 @@ class SkillDDPG(OffPolicyAlgorithm):
             assert both is not None
             skills, next_skills = both[:batch_size], both[batch_size:]
 
-        # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B.
+        # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B, for each critic against the same y.
         target_q = self._critic_target(batch, next_skills)
-        current_q, critic_inputs = critic.forward_for_backward(obs, policy.critic_action(batch.actions))
-        error = current_q - target_q
-        grad_q = error * (2.0 / batch_size)
-        critic_grad_zs = critic.output_gradients(critic_inputs, grad_q)
-        buffers = self._critic_grads
-        buffers.weight_gradients([(g.t(), x) for g, x in zip(critic_grad_zs, critic_inputs, strict=True)])
-        buffers.bias_gradients(self._batch_ones(batch_size, obs), critic_grad_zs)
-        adam_step(policy.critic_optimizer, self._critic_params, buffers.grads[0])
+        replayed_actions = policy.critic_action(batch.actions)
+        critic_loss_scale = 0.5 / policy.n_critics  # statistics: the critics' mean loss, error . grad_q / 2 each
+        critic_loss = self._stat_views[0]
+        for index, (each_critic, buffers) in enumerate(zip(policy.critics, self._critic_grads, strict=True)):
+            q_values, critic_inputs = each_critic.forward_for_backward(obs, replayed_actions)
+            error = q_values - target_q
+            grad_q = error * (2.0 / batch_size)
+            critic_grad_zs = each_critic.output_gradients(critic_inputs, grad_q)
+            buffers.weight_gradients([(g.t(), x) for g, x in zip(critic_grad_zs, critic_inputs, strict=True)])
+            buffers.bias_gradients(self._batch_ones(batch_size, obs), critic_grad_zs)
+            critic_loss.addmm_(error.t(), grad_q, alpha=critic_loss_scale)
+            if index == 0:
+                current_q = q_values
+        adam_step(policy.critic_optimizer, self._critic_params, self._critic_grad_list)
 
         # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
         if skills is None:
@@ -533,11 +548,10 @@ class SkillDDPG(OffPolicyAlgorithm):
         # 3. Targets.
         th._foreach_lerp_(self._target_params, self._online_params, self.tau)
 
-        # Statistics, summed in place into views of self._stat_sums (no synchronisation). Means are products with
-        # the (B, 1) column of 1 / B, the mean squared error is error . grad_q / 2, and skill k's loss -mean_k Q is
-        # row k of skill_weight @ Q: one kernel each, where .mean() would also convert its divisor every time.
-        critic_loss, actor_loss, max_q, mean_q, skill_losses = self._stat_views
-        critic_loss.addmm_(error.t(), grad_q, alpha=0.5)
+        # Statistics, summed in place into views of self._stat_sums (no synchronisation; the critic loss above).
+        # Means are products with the (B, 1) column of 1 / B, and skill k's loss -mean_k Q is row k of
+        # skill_weight @ Q: one kernel each, where .mean() would also convert its divisor every time.
+        _, actor_loss, max_q, mean_q, skill_losses = self._stat_views
         actor_loss.addmm_(actor_q.t(), mean_weight, alpha=-1.0)
         max_q.add_(current_q.max())
         mean_q.addmm_(current_q.t(), mean_weight)
@@ -581,7 +595,7 @@ class SkillDDPG(OffPolicyAlgorithm):
 
     def _critic_target(self, batch: ReplayBufferSamples, next_skills: th.Tensor | None = None) -> th.Tensor:
         """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``gamma^n`` from ``batch.discounts``
-        with n-step returns), mixed with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose
+        with n-step returns; ``Q'`` the smallest of the target critics' values with ``n_critics > 1``), mixed with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose
         return is known when ``mc_mixing = beta > 0``. ``next_skills``: the routed skills of the next states
         (``None``: routed here). Call under ``torch.no_grad()``."""
         policy = self.policy
@@ -591,7 +605,10 @@ class SkillDDPG(OffPolicyAlgorithm):
         next_actions = self.actor_target.forward(next_obs, next_skills)
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
-        next_q, _ = self.critic_target.forward_for_backward(next_obs, policy.critic_action(next_actions))
+        next_actions = policy.critic_action(next_actions)
+        next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
+        for target in policy.extra_critic_targets:  # clipped double Q: the smallest target value
+            next_q = th.minimum(next_q, target.forward_for_backward(next_obs, next_actions)[0])
         if batch.discounts is None:
             # (1 - done) is 0 or 1, so this is r + gamma * (1 - done) * Q' with the same rounding, in one kernel.
             target_q = th.addcmul(batch.rewards, 1 - batch.dones, next_q, value=self.gamma)
@@ -733,6 +750,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_layouts",
             "_actor_grads",
             "_critic_grads",
+            "_critic_grad_list",
         ]
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
