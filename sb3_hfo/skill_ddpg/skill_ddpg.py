@@ -21,9 +21,9 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    actor's) with the parameters of the discrete actions not chosen set to 0, and ``g`` is zero on them.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
-Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on one CPU thread of a shared
-2-core VM: 1.9-2.4x SB3's ``DDPG`` updates per second with 1 skill, 1.65-2.1x with 2 (about 1.85x typical); see
-benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of through
+Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on a quiet 2-core VM: 2.1-2.2x
+SB3's ``DDPG`` updates per second with 1 skill, 1.8x with 2, 1.5x SB3's ``TD3`` with ``n_critics=2``, at 1 and 2
+threads; see benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of through
 autograd (``HFOActor.forward_for_backward`` / ``output_gradients``,
 ``HFOCritic.forward_for_backward`` / ``output_gradients`` / ``action_gradient``: ``F.linear`` forward passes that
 keep each layer's input, then ``dZ @ W`` input gradients with activation derivatives from the kept outputs,
