@@ -51,3 +51,13 @@ def test_update_throughput_rejects_a_zero_thread_count(tmp_path: Path) -> None:
     command = [sys.executable, str(REPO / "benchmarks" / "update_throughput.py"), "--threads", "0"]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=120, cwd=tmp_path)
     assert completed.returncode == 2 and "--threads must be >= 1" in completed.stderr
+
+
+def test_discrete_choice_runs_both_modes_on_the_committed_model(tmp_path: Path) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "discrete_choice.py")]
+    command += [str(REPO / "models" / "e1_empty_goal_fast_seed0"), "--episodes", "2", "--seed", "0"]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    lines = completed.stdout.splitlines()
+    assert [line.split()[0] for line in lines] == ["actor", "critic"]
+    assert all("scoring rate" in line for line in lines)
