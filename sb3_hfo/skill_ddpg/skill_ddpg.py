@@ -23,8 +23,8 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
 
 Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on a quiet 2-core VM: 2.1-2.2x
 SB3's ``DDPG`` updates per second with 1 skill, 1.8x with 2, 1.5x SB3's ``TD3`` with ``n_critics=2``, at 1 and 2
-threads; see benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of through
-autograd (``HFOActor.forward_for_backward`` / ``output_gradients``,
+threads; see benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of
+through autograd (``HFOActor.forward_for_backward`` / ``output_gradients``,
 ``HFOCritic.forward_for_backward`` / ``output_gradients`` / ``action_gradient``: ``F.linear`` forward passes that
 keep each layer's input, then ``dZ @ W`` input gradients with activation derivatives from the kept outputs,
 ``dZ.T @ input`` weight gradients and row sums of ``dZ`` as bias gradients). That removes the graph building, the
@@ -412,7 +412,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.critic = self.policy.critic
         self.critic_target = self.policy.critic_target
         # Fixed parameter lists: module.to(device) and load_state_dict keep the same Parameter objects.
-        critics, critic_targets = self.policy.critics, self.policy.critic_targets
+        self._critics, self._critic_targets = self.policy.critics, self.policy.critic_targets
+        critics, critic_targets = self._critics, self._critic_targets
         self._critic_params = [param for critic in critics for param in critic.parameters()]
         self._online_params = [*self.actor.parameters(), *self._critic_params]
         self._target_params = [
@@ -487,16 +488,17 @@ class SkillDDPG(OffPolicyAlgorithm):
         replayed_actions = policy.critic_action(batch.actions)
         critic_loss_scale = 0.5 / policy.n_critics  # statistics: the critics' mean loss, error . grad_q / 2 each
         critic_loss = self._stat_views[0]
-        for index, (each_critic, buffers) in enumerate(zip(policy.critics, self._critic_grads, strict=True)):
+        critic_qs = []
+        for each_critic, buffers in zip(self._critics, self._critic_grads, strict=True):
             q_values, critic_inputs = each_critic.forward_for_backward(obs, replayed_actions)
+            critic_qs.append(q_values)
             error = q_values - target_q
             grad_q = error * (2.0 / batch_size)
             critic_grad_zs = each_critic.output_gradients(critic_inputs, grad_q)
             buffers.weight_gradients([(g.t(), x) for g, x in zip(critic_grad_zs, critic_inputs, strict=True)])
             buffers.bias_gradients(self._batch_ones(batch_size, obs), critic_grad_zs)
             critic_loss.addmm_(error.t(), grad_q, alpha=critic_loss_scale)
-            if index == 0:
-                current_q = q_values
+        current_q = critic_qs[0]  # the critic the actor follows: the max_q / mean_q statistics
         adam_step(policy.critic_optimizer, self._critic_params, self._critic_grad_list)
 
         # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
@@ -595,8 +597,9 @@ class SkillDDPG(OffPolicyAlgorithm):
 
     def _critic_target(self, batch: ReplayBufferSamples, next_skills: th.Tensor | None = None) -> th.Tensor:
         """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``gamma^n`` from ``batch.discounts``
-        with n-step returns; ``Q'`` the smallest of the target critics' values with ``n_critics > 1``), mixed with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose
-        return is known when ``mc_mixing = beta > 0``. ``next_skills``: the routed skills of the next states
+        with n-step returns; ``Q'`` the smallest of the target critics' values with ``n_critics > 1``), mixed
+        with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose return is known when
+        ``mc_mixing = beta > 0``. ``next_skills``: the routed skills of the next states
         (``None``: routed here). Call under ``torch.no_grad()``."""
         policy = self.policy
         next_obs = batch.next_observations
@@ -607,7 +610,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             next_actions = next_actions.clamp(-1.0, 1.0)
         next_actions = policy.critic_action(next_actions)
         next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
-        for target in policy.extra_critic_targets:  # clipped double Q: the smallest target value
+        for target in self._critic_targets[1:]:  # clipped double Q: the smallest target value
             next_q = th.minimum(next_q, target.forward_for_backward(next_obs, next_actions)[0])
         if batch.discounts is None:
             # (1 - done) is 0 or 1, so this is r + gamma * (1 - done) * Q' with the same rounding, in one kernel.
@@ -751,6 +754,8 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_actor_grads",
             "_critic_grads",
             "_critic_grad_list",
+            "_critics",
+            "_critic_targets",
         ]
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
