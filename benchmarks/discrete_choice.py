@@ -12,13 +12,14 @@ episodes (same seed, one torch thread). Used for the session-5 probe in benchmar
 from __future__ import annotations
 
 import argparse
+from collections import Counter
 
 import gymnasium as gym
 import numpy as np
 import torch as th
 
 from sb3_hfo import SkillDDPG
-from sb3_hfo.evaluate import resolve_model, wilson_interval
+from sb3_hfo.evaluate import resolve_model, run_episodes, wilson_interval
 
 N_DISCRETE_ACTIONS = 3  # hfo2d's flat action starts with the DASH, TURN and KICK preferences
 
@@ -37,22 +38,24 @@ def choose_action(model: SkillDDPG, obs: np.ndarray, mode: str) -> np.ndarray:
     return policy.unscale_action(action.numpy())[0]
 
 
-def scoring_rate(model: SkillDDPG, env_id: str, episodes: int, seed: int, mode: str) -> dict[str, int]:
+class _Chooser:
+    """``predict`` in SB3's form, so that :func:`sb3_hfo.evaluate.run_episodes` plays the episodes."""
+
+    def __init__(self, model: SkillDDPG, mode: str) -> None:
+        self.model, self.mode = model, mode
+
+    def predict(self, obs: np.ndarray, deterministic: bool = True) -> tuple[np.ndarray, None]:
+        return choose_action(self.model, obs, self.mode), None
+
+
+def status_counts(model: SkillDDPG, env_id: str, episodes: int, seed: int, mode: str) -> dict[str, int]:
     """End-status counts of ``episodes`` greedy episodes (first reset with ``seed``)."""
     env = gym.make(env_id)
-    counts: dict[str, int] = {}
-    obs, _ = env.reset(seed=seed)
-    for _ in range(episodes):
-        done = False
-        info: dict[str, object] = {}
-        while not done:
-            obs, _, terminated, truncated, info = env.step(choose_action(model, obs, mode))
-            done = terminated or truncated
-        status = str(info["status"])
-        counts[status] = counts.get(status, 0) + 1
-        obs, _ = env.reset()
-    env.close()
-    return counts
+    try:
+        records = run_episodes(_Chooser(model, mode), env, episodes, seed, deterministic=True, n_skills=1)
+    finally:
+        env.close()
+    return dict(Counter(record.status for record in records))
 
 
 def main() -> None:
@@ -68,7 +71,7 @@ def main() -> None:
     env_id = args.env or resolved.env_id or "HFO/EmptyGoal-v0"
     model = SkillDDPG.load(str(resolved.path), device="cpu", buffer_size=1)
     for mode in ("actor", "critic"):
-        counts = scoring_rate(model, env_id, args.episodes, args.seed, mode)
+        counts = status_counts(model, env_id, args.episodes, args.seed, mode)
         goals = counts.get("GOAL", 0)
         low, high = wilson_interval(goals, args.episodes)
         print(f"{mode:>6} picks: scoring rate {goals / args.episodes:.3f} [{low:.3f}, {high:.3f}], {counts}")
