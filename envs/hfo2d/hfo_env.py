@@ -62,6 +62,11 @@ OFFENSE_OFFSETS: tuple[tuple[float, float], ...] = (
 )
 OFFENSE_X_RANGE = (-0.1, PITCH_HALF_LENGTH)
 OFFENSE_Y_RANGE = BALL_Y_RANGE
+# Exploring starts (random_start_fraction; not HFO's, a training aid): ball and agent drawn independently over
+# most of the HFO half. The ball stays 2.5 m short of the goal line, out of the goalie's 1.085 m capture reach.
+RANDOM_START_BALL_X_RANGE = (0.0, 50.0)  # m
+RANDOM_START_AGENT_X_RANGE = (0.0, PITCH_HALF_LENGTH)  # m
+RANDOM_START_Y_RANGE = BALL_Y_RANGE  # m
 KEEPER_START = (PITCH_HALF_LENGTH, 0.0)
 KEEPER_START_BODY_DEG = -180.0  # facing the field
 AGENT_SIDE, AGENT_UNUM = "l", 11  # HFO's first offense agent
@@ -157,6 +162,10 @@ class HFOEnv(gym.Env):
         angle ~ U(-180, 180); the goalie at (52.5, 0) facing the field. Stamina, effort and recovery are restored.
         ``reset(options=...)`` may place things by hand: ``{"player": (x, y, body_deg[, vx, vy]),
         "ball": (x, y[, vx, vy]), "keeper": (x, y, body_deg)}``.
+        Exploring starts (not part of HFO; off by default): with ``random_start_fraction = p > 0`` each episode,
+        with probability ``p``, starts instead with the ball at rest at x ~ U(0, 50), y ~ U(-27.2, 27.2) and the
+        agent, independently, at x ~ U(0, 52.5), y ~ U(-27.2, 27.2), body ~ U(-180, 180): states near the goal and
+        far from the ball that the default start rarely reaches, for training. Evaluate with the default (0).
 
     Info (every step): ``status``; ``is_success`` (status is GOAL); ``player`` (x, y, vx, vy, body_deg); ``ball`` (x, y, vx, vy); ``keeper``
     (x, y, vx, vy, body_deg) with a goalie; ``reward_terms``; ``action`` ("DASH" / "TURN" / "KICK");
@@ -173,6 +182,7 @@ class HFOEnv(gym.Env):
         keeper_skill: goalie quality for task "keeper", in [0, 1].
         frames_per_trial: steps after which an episode is truncated.
         untouched_time: cycles without a player near the ball after which the episode ends.
+        random_start_fraction: probability in [0, 1] that an episode uses the exploring start above (0: HFO's).
     """
 
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 10}
@@ -188,6 +198,7 @@ class HFOEnv(gym.Env):
         keeper_skill: float = 1.0,
         frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
         untouched_time: int = DEFAULT_UNTOUCHED_TIME,
+        random_start_fraction: float = 0.0,
     ) -> None:
         if task not in TASKS:
             raise ValueError(f"unknown task {task!r}; choose one of {TASKS}")
@@ -203,6 +214,10 @@ class HFOEnv(gym.Env):
             raise ValueError(f"keeper_skill must be a number in [0, 1], got {keeper_skill!r}")
         if not 0.0 <= float(keeper_skill) <= 1.0:
             raise ValueError(f"keeper_skill must lie in [0, 1], got {keeper_skill!r}")
+        if isinstance(random_start_fraction, bool) or not isinstance(random_start_fraction, (int, float, np.number)):
+            raise ValueError(f"random_start_fraction must be a number in [0, 1], got {random_start_fraction!r}")
+        if not 0.0 <= float(random_start_fraction) <= 1.0:
+            raise ValueError(f"random_start_fraction must lie in [0, 1], got {random_start_fraction!r}")
         for name, value in (("frames_per_trial", frames_per_trial), ("untouched_time", untouched_time)):
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
@@ -215,6 +230,7 @@ class HFOEnv(gym.Env):
         self.keeper_skill = float(keeper_skill)
         self.frames_per_trial = int(frames_per_trial)
         self.untouched_time = int(untouched_time)
+        self.random_start_fraction = float(random_start_fraction)
         self.params: ServerParams = ServerParams.with_overrides(server_params)
         self.has_keeper = task != "empty_goal"
         self._kickable_distance = self.params.kickable_area - KICKABLE_BUFFER
@@ -299,6 +315,12 @@ class HFOEnv(gym.Env):
             max(ball_y + OFFENSE_SPREAD * (rng.uniform() + offset_y), OFFENSE_Y_RANGE[0]), OFFENSE_Y_RANGE[1]
         )
         agent_body = rng.uniform(-180.0, 180.0)
+        # Drawn after HFO's start (and only when enabled), so that the default episodes keep their random stream.
+        if self.random_start_fraction > 0.0 and rng.uniform() < self.random_start_fraction:
+            ball_x = rng.uniform(*RANDOM_START_BALL_X_RANGE)
+            ball_y = rng.uniform(*RANDOM_START_Y_RANGE)
+            agent_x = rng.uniform(*RANDOM_START_AGENT_X_RANGE)
+            agent_y = rng.uniform(*RANDOM_START_Y_RANGE)
 
         ball = placements.get("ball", (ball_x, ball_y, 0.0, 0.0))
         world.place_ball(*ball)
