@@ -115,15 +115,23 @@ def reference_update(
         next_actions = policy.actor_target(batch.next_observations, policy.route(batch.next_observations))
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
-        next_q = th.stack(
-            [target(batch.next_observations, masked(policy, next_actions)) for target in policy.critic_targets]
-        ).min(dim=0).values
+        next_q = (
+            th.stack(
+                [
+                    target(batch.next_observations, masked(policy, next_actions))
+                    for target in policy.critic_targets
+                ]
+            )
+            .min(dim=0)
+            .values
+        )
         target = batch.rewards + (1 - batch.dones) * discounts * next_q
         if mc_mixing > 0:
             mixed = (1 - mc_mixing) * target + mc_mixing * batch.mc_returns  # type: ignore[union-attr]
             target = th.where(batch.mc_valid > 0, mixed, target)  # type: ignore[union-attr]
     loss = sum(
-        F.mse_loss(critic(batch.observations, masked(policy, batch.actions)), target) for critic in policy.critics
+        F.mse_loss(critic(batch.observations, masked(policy, batch.actions)), target)
+        for critic in policy.critics
     )
     critic_opt.zero_grad()
     loss.backward()
@@ -159,7 +167,10 @@ def reference_update(
             param.grad = grad
         skill_opts[k].step()
     with th.no_grad():
-        pairs = [(policy.actor, policy.actor_target), *zip(policy.critics, policy.critic_targets, strict=True)]
+        pairs = [
+            (policy.actor, policy.actor_target),
+            *zip(policy.critics, policy.critic_targets, strict=True),
+        ]
         for net, target_net in pairs:
             for param, target_param in zip(net.parameters(), target_net.parameters(), strict=True):
                 target_param.mul_(1 - tau).add_(tau * param)
@@ -170,7 +181,16 @@ def reference_update(
 
 
 @pytest.mark.parametrize(
-    ("n_skills", "inverting_gradients", "n_step_discounts", "activation_fn", "mc_mixing", "penalty", "mask", "n_critics"),
+    (
+        "n_skills",
+        "inverting_gradients",
+        "n_step_discounts",
+        "activation_fn",
+        "mc_mixing",
+        "penalty",
+        "mask",
+        "n_critics",
+    ),
     [
         (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
         (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
@@ -533,7 +553,9 @@ def test_pendulum_single_skill() -> None:
 def test_save_load_round_trip(tmp_path: Path) -> None:
     router = FieldHalfRouter(threshold=0.1)
     model = make_model(
-        2, learning_starts=50, policy_kwargs=dict(skill_router=router, mask_unused_parameters=True, n_critics=2)
+        2,
+        learning_starts=50,
+        policy_kwargs=dict(skill_router=router, mask_unused_parameters=True, n_critics=2),
     )
     model.learn(150)
     model.save(tmp_path / "model.zip")

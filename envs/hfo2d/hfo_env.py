@@ -214,8 +214,12 @@ class HFOEnv(gym.Env):
             raise ValueError(f"keeper_skill must be a number in [0, 1], got {keeper_skill!r}")
         if not 0.0 <= float(keeper_skill) <= 1.0:
             raise ValueError(f"keeper_skill must lie in [0, 1], got {keeper_skill!r}")
-        if isinstance(random_start_fraction, bool) or not isinstance(random_start_fraction, (int, float, np.number)):
-            raise ValueError(f"random_start_fraction must be a number in [0, 1], got {random_start_fraction!r}")
+        if isinstance(random_start_fraction, bool) or not isinstance(
+            random_start_fraction, (int, float, np.number)
+        ):
+            raise ValueError(
+                f"random_start_fraction must be a number in [0, 1], got {random_start_fraction!r}"
+            )
         if not 0.0 <= float(random_start_fraction) <= 1.0:
             raise ValueError(f"random_start_fraction must lie in [0, 1], got {random_start_fraction!r}")
         for name, value in (("frames_per_trial", frames_per_trial), ("untouched_time", untouched_time)):
