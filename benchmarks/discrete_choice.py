@@ -33,7 +33,9 @@ def choose_action(model: SkillDDPG, obs: np.ndarray, mode: str) -> np.ndarray:
         if mode == "critic":
             candidates = action.repeat(N_DISCRETE_ACTIONS, 1)
             candidates[:, :N_DISCRETE_ACTIONS] = 2.0 * th.eye(N_DISCRETE_ACTIONS) - 1.0
-            q_values = policy.critic(obs_tensor.expand(N_DISCRETE_ACTIONS, -1), policy.critic_action(candidates))
+            q_values = policy.critic(
+                obs_tensor.expand(N_DISCRETE_ACTIONS, -1), policy.critic_action(candidates)
+            )
             action = candidates[int(q_values.argmax())].view(1, -1)
     return policy.unscale_action(action.numpy())[0]
 

@@ -87,7 +87,9 @@ def make_contestants(
     sb3_policy_kwargs = dict(net_arch=dict(pi=PAPER_ARCH, qf=PAPER_ARCH), activation_fn=nn.LeakyReLU)
 
     def sb3_ddpg() -> BaseAlgorithm:
-        return DDPG("MlpPolicy", gym.make(ENV_ID), learning_rate=1e-3, policy_kwargs=sb3_policy_kwargs, **common)
+        return DDPG(
+            "MlpPolicy", gym.make(ENV_ID), learning_rate=1e-3, policy_kwargs=sb3_policy_kwargs, **common
+        )
 
     def sb3_td3() -> BaseAlgorithm:
         return TD3(
@@ -100,7 +102,11 @@ def make_contestants(
             **common,
         )
 
-    contestants = {"sb3_ddpg": sb3_ddpg, "skill_ddpg_1_skill": skill_ddpg(1), "skill_ddpg_2_skills": skill_ddpg(2)}
+    contestants = {
+        "sb3_ddpg": sb3_ddpg,
+        "skill_ddpg_1_skill": skill_ddpg(1),
+        "skill_ddpg_2_skills": skill_ddpg(2),
+    }
     if twin_critics:
         contestants |= {TWIN_BASELINE: sb3_td3, TWIN: skill_ddpg(1, n_critics=2)}
     return contestants
@@ -220,7 +226,9 @@ def main() -> None:
             )
         if args.twin_critics:
             twin = row["twin_ratio_vs_sb3_td3"]
-            print(f"{threads:>7}  {TWIN} vs {TWIN_BASELINE}: train {twin['train']:.2f}x, learn {twin['learn']:.2f}x")
+            print(
+                f"{threads:>7}  {TWIN} vs {TWIN_BASELINE}: train {twin['train']:.2f}x, learn {twin['learn']:.2f}x"
+            )
     if len(args.threads) > 1:
         # Each contestant at its own fastest thread count: what a user who picks the setting gets.
         best: dict[str, Any] = {}

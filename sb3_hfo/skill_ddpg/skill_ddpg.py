@@ -486,7 +486,9 @@ class SkillDDPG(OffPolicyAlgorithm):
         # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B, for each critic against the same y.
         target_q = self._critic_target(batch, next_skills)
         replayed_actions = policy.critic_action(batch.actions)
-        critic_loss_scale = 0.5 / policy.n_critics  # statistics: the critics' mean loss, error . grad_q / 2 each
+        critic_loss_scale = (
+            0.5 / policy.n_critics
+        )  # statistics: the critics' mean loss, error . grad_q / 2 each
         critic_loss = self._stat_views[0]
         critic_qs = []
         for each_critic, buffers in zip(self._critics, self._critic_grads, strict=True):
