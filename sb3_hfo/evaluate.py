@@ -16,7 +16,10 @@ Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" an
   executed kicks (rcssserver power units, [0, 100]);
 * ``dribble_fraction``: fraction of all steps in which the ball is kickable (``info["kickable"]``) while the
   player moves faster than :data:`DRIBBLE_MIN_SPEED` (speed from ``info["player"]`` vx, vy);
-* ``skill_fractions``: fraction of steps each skill acted, for models with more than one skill.
+* ``skill_fractions``: fraction of steps each skill acted, for models with more than one skill;
+* ``out_of_bounds_exits``: OUT_OF_BOUNDS episodes by the line the ball left the HFO half over (from its final
+  ``info["ball"]`` position): ``goal_line`` (x > 52.5: a shot wide of the posts), ``side_line`` (|y| > 34) or
+  ``halfway_line`` (x < 0).
 """
 
 from __future__ import annotations
@@ -40,6 +43,22 @@ DRIBBLE_MIN_SPEED = 0.2
 Z_95 = 1.959963984540054
 
 GOAL_STATUS = "GOAL"
+OUT_OF_BOUNDS_STATUS = "OUT_OF_BOUNDS"
+#: The HFO half the ball must stay in (hfo_reference §1, ``HFORef::inHFOArea``): x in [0, 52.5], |y| <= 34 (m).
+PITCH_HALF_LENGTH = 52.5
+PITCH_HALF_WIDTH = 34.0
+EXIT_LINES: tuple[str, ...] = ("goal_line", "side_line", "halfway_line")
+
+
+def exit_line(ball_x: float, ball_y: float) -> str | None:
+    """The line of the HFO half that a ball at (x, y) m lies beyond (checked in this order), or None inside."""
+    if ball_x > PITCH_HALF_LENGTH:
+        return "goal_line"
+    if abs(ball_y) > PITCH_HALF_WIDTH:
+        return "side_line"
+    if ball_x < 0.0:
+        return "halfway_line"
+    return None
 
 
 class EvaluationError(Exception):
@@ -78,6 +97,7 @@ class EpisodeRecord:
     kick_powers: list[float]
     dribble_steps: int
     skill_steps: list[int]
+    exit: str | None = None  # OUT_OF_BOUNDS episodes: exit_line() of the ball's final position
 
 
 @dataclass
@@ -103,6 +123,7 @@ class EvaluationResult:
     dribble_min_speed: float
     n_skills: int
     skill_fractions: list[float] | None
+    out_of_bounds_exits: dict[str, int] = field(default_factory=dict)
     env_kwargs: dict[str, Any] = field(default_factory=dict)
 
 
@@ -143,6 +164,10 @@ def summarize(
         dribble_min_speed=DRIBBLE_MIN_SPEED,
         n_skills=n_skills,
         skill_fractions=[s / total_steps for s in skill_totals] if n_skills > 1 and total_steps else None,
+        out_of_bounds_exits={
+            line: sum(r.status == OUT_OF_BOUNDS_STATUS and r.exit == line for r in records)
+            for line in EXIT_LINES
+        },
         env_kwargs=dict(env_kwargs or {}),
     )
 
@@ -288,8 +313,10 @@ def run_episodes(
                 if speed > DRIBBLE_MIN_SPEED:
                     dribble_steps += 1
             done = bool(terminated or truncated)
+        ball = info.get("ball")
+        exit = exit_line(ball[0], ball[1]) if status == OUT_OF_BOUNDS_STATUS and ball is not None else None
         records.append(
-            EpisodeRecord(status, steps, reward_sum, kicks, kick_powers, dribble_steps, skill_steps)
+            EpisodeRecord(status, steps, reward_sum, kicks, kick_powers, dribble_steps, skill_steps, exit)
         )
         obs, _ = env.reset()
     return records
@@ -366,6 +393,9 @@ def print_table(result: EvaluationResult) -> None:
     table.add_row("mean episode reward", _format(result.mean_episode_reward))
     for status, count in result.status_counts.items():
         table.add_row(f"episodes ending {status}", str(count))
+        if status == OUT_OF_BOUNDS_STATUS:
+            for line, exits in result.out_of_bounds_exits.items():
+                table.add_row(f"  ball out over the {line.replace('_', ' ')}", str(exits))
     table.add_row("kicks per goal", _format(result.kicks_per_goal, 2))
     table.add_row("kicks per episode", _format(result.kicks_per_episode, 2))
     table.add_row("mean kick power", _format(result.mean_kick_power, 1))

@@ -213,6 +213,38 @@ def test_summarize_counts_goals_kicks_and_skills() -> None:
     assert result.status_counts == {"GOAL": 2, "OUT_OF_BOUNDS": 1}
 
 
+@pytest.mark.parametrize(
+    ("player", "ball", "line"),
+    [
+        ((50.0, 20.0, 0.0), (50.5, 20.0), "goal_line"),  # a shot wide of the post
+        ((20.0, 33.0, 90.0), (20.0, 33.5), "side_line"),
+        ((1.0, 0.0, 180.0), (0.5, 0.0), "halfway_line"),
+    ],
+)
+def test_evaluation_names_the_line_an_out_of_bounds_ball_crossed(
+    player: tuple[float, float, float], ball: tuple[float, float], line: str
+) -> None:
+    import gymnasium as gym
+
+    from sb3_hfo.evaluate import run_episodes, summarize
+
+    class PlacedStart(gym.Wrapper):
+        def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
+            return self.env.reset(seed=seed, options={"player": player, "ball": ball})
+
+    class KickStraightAhead:  # full power along the body
+        def predict(self, obs: np.ndarray, deterministic: bool = False) -> tuple[np.ndarray, None]:
+            return np.array([0, 0, 1, 0, 0.5, 0.5, 1.0, 0.5], dtype=np.float32), None
+
+    env = PlacedStart(gym.make("HFO/EmptyGoal-v0"))
+    records = run_episodes(KickStraightAhead(), env, episodes=2, seed=0, deterministic=True, n_skills=1)
+    assert [(r.status, r.exit) for r in records] == [("OUT_OF_BOUNDS", line)] * 2
+    result = summarize(records, model="m", env_id="HFO/EmptyGoal-v0", seed=0, deterministic=True, n_skills=1)
+    assert result.out_of_bounds_exits == {
+        name: 2 * (name == line) for name in ("goal_line", "side_line", "halfway_line")
+    }
+
+
 def test_evaluation_loop_counts_goals_and_kicks_of_a_scoring_policy() -> None:
     import gymnasium as gym
 
