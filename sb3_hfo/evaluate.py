@@ -4,7 +4,8 @@
 
 MODEL is a SkillDDPG ``.zip`` (the suffix may be left out) or an rl-zoo3 run folder such as
 ``logs/skill_ddpg/HFO-EmptyGoal-v0_1`` (its final model ``HFO-EmptyGoal-v0.zip`` is used, else
-``best_model.zip``). With a run folder, ``--env`` and the training ``env_kwargs`` default to the run's own.
+``best_model.zip``). With a run folder, ``--env`` and the training ``env_kwargs`` default to the run's own, less
+training aids (``random_start_fraction``: episodes start as in HFO unless ``--env-kwargs`` says otherwise).
 
 Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" and "avg steps to goal"):
 
@@ -48,6 +49,8 @@ OUT_OF_BOUNDS_STATUS = "OUT_OF_BOUNDS"
 PITCH_HALF_LENGTH = 52.5
 PITCH_HALF_WIDTH = 34.0
 EXIT_LINES: tuple[str, ...] = ("goal_line", "side_line", "halfway_line")
+#: Env kwargs of a training run that evaluation leaves out (they change the start state, not the task).
+TRAINING_ONLY_ENV_KWARGS: tuple[str, ...] = ("random_start_fraction",)
 
 
 def exit_line(ball_x: float, ball_y: float) -> str | None:
@@ -98,6 +101,8 @@ class EpisodeRecord:
     dribble_steps: int
     skill_steps: list[int]
     exit: str | None = None  # OUT_OF_BOUNDS episodes: exit_line() of the ball's final position
+    start_ball: tuple[float, float] | None = None  # (x, y) m at reset, from info["ball"]
+    start_player: tuple[float, float] | None = None  # (x, y) m at reset, from info["player"]
 
 
 @dataclass
@@ -277,6 +282,11 @@ def skill_index(model: Any, obs: Any) -> int:
 # Evaluation loop
 
 
+def _position(state: Sequence[float] | None) -> tuple[float, float] | None:
+    """(x, y) of an ``info["ball"]`` / ``info["player"]`` tuple, or None when the env gives none."""
+    return None if state is None else (float(state[0]), float(state[1]))
+
+
 def run_episodes(
     model: Any, env: Any, episodes: int, seed: int, deterministic: bool, n_skills: int
 ) -> list[EpisodeRecord]:
@@ -288,8 +298,9 @@ def run_episodes(
     import numpy as np
 
     records: list[EpisodeRecord] = []
-    obs, _ = env.reset(seed=seed)
+    obs, info = env.reset(seed=seed)
     for _ in range(episodes):
+        start_ball, start_player = _position(info.get("ball")), _position(info.get("player"))
         steps = kicks = dribble_steps = 0
         reward_sum = 0.0
         kick_powers: list[float] = []
@@ -316,27 +327,41 @@ def run_episodes(
         ball = info.get("ball")
         exit = exit_line(ball[0], ball[1]) if status == OUT_OF_BOUNDS_STATUS and ball is not None else None
         records.append(
-            EpisodeRecord(status, steps, reward_sum, kicks, kick_powers, dribble_steps, skill_steps, exit)
+            EpisodeRecord(
+                status,
+                steps,
+                reward_sum,
+                kicks,
+                kick_powers,
+                dribble_steps,
+                skill_steps,
+                exit,
+                start_ball,
+                start_player,
+            )
         )
-        obs, _ = env.reset()
+        obs, info = env.reset()
     return records
 
 
-def evaluate(
-    model_path: str,
-    env_id: str | None = None,
-    episodes: int = 100,
-    seed: int = 0,
-    deterministic: bool = True,
-    env_kwargs: dict[str, Any] | None = None,
-) -> EvaluationResult:
-    """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors."""
+def load_for_evaluation(
+    model_path: str, env_id: str | None = None, env_kwargs: dict[str, Any] | None = None
+) -> tuple[Any, Any, str, dict[str, Any], Path]:
+    """Load a SkillDDPG model (one torch thread, CPU) and make the env to evaluate it on.
+
+    The env id and ``env_kwargs`` default to the run folder's own, less training aids such as
+    ``random_start_fraction`` (evaluation uses HFO's starts unless ``env_kwargs`` asks otherwise).
+
+    :return: ``(model, env, env_id, env_kwargs used, model path)``; the caller closes the env.
+    :raises EvaluationError: no model there, no or unknown env id, or observations of another shape.
+    """
     resolved = resolve_model(model_path)
     env_id = env_id or resolved.env_id
     if env_id is None:
         raise EvaluationError("--env is required (the model is not inside an rl-zoo3 run folder)")
     check_env_id(env_id)
-    kwargs = {**resolved.env_kwargs, **(env_kwargs or {})}
+    run_kwargs = {k: v for k, v in resolved.env_kwargs.items() if k not in TRAINING_ONLY_ENV_KWARGS}
+    kwargs = {**run_kwargs, **(env_kwargs or {})}
     kwargs.pop("render_mode", None)
 
     import gymnasium as gym
@@ -350,10 +375,24 @@ def evaluate(
     model = skill_ddpg_class().load(str(resolved.path), device="cpu", buffer_size=1)
     env = gym.make(env_id, **kwargs)
     if env.observation_space.shape != model.observation_space.shape:
+        env.close()
         raise EvaluationError(
             f"model expects observations of shape {model.observation_space.shape} but {env_id} gives "
             f"{env.observation_space.shape}: was it trained on another task?"
         )
+    return model, env, env_id, kwargs, resolved.path
+
+
+def evaluate(
+    model_path: str,
+    env_id: str | None = None,
+    episodes: int = 100,
+    seed: int = 0,
+    deterministic: bool = True,
+    env_kwargs: dict[str, Any] | None = None,
+) -> EvaluationResult:
+    """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors."""
+    model, env, env_id, kwargs, path = load_for_evaluation(model_path, env_id, env_kwargs)
     n_skills = model_n_skills(model)
     try:
         records = run_episodes(model, env, episodes, seed, deterministic, n_skills)
@@ -361,7 +400,7 @@ def evaluate(
         env.close()
     return summarize(
         records,
-        model=str(resolved.path),
+        model=str(path),
         env_id=env_id,
         seed=seed,
         deterministic=deterministic,

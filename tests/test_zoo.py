@@ -461,6 +461,31 @@ def test_evaluate_reports_json_for_an_rl_zoo_run_folder(
     assert report["deterministic"] is True  # greedy unless --stochastic
 
 
+def test_evaluation_leaves_out_the_runs_exploring_starts(tmp_path: Path) -> None:
+    import gymnasium as gym
+    import yaml
+
+    import hfo2d  # noqa: F401  (registers the envs)
+    from sb3_hfo import SkillDDPG
+    from sb3_hfo.evaluate import load_for_evaluation
+
+    run = tmp_path / "HFO-EmptyGoal-v0_1"
+    (run / "HFO-EmptyGoal-v0").mkdir(parents=True)
+    (run / "HFO-EmptyGoal-v0" / "args.yml").write_text(yaml.dump({"env": "HFO/EmptyGoal-v0"}))
+    config = {"env_kwargs": {"random_start_fraction": 0.5, "noise": False}}
+    (run / "HFO-EmptyGoal-v0" / "config.yml").write_text(yaml.dump(config))
+    model = SkillDDPG("HFOPolicy", gym.make("HFO/EmptyGoal-v0"), policy_kwargs={"net_arch": [8]}, seed=0)
+    model.save(run / "HFO-EmptyGoal-v0.zip")
+
+    _, env, env_id, kwargs, _ = load_for_evaluation(str(run))
+    assert env_id == "HFO/EmptyGoal-v0" and kwargs == {"noise": False}  # the task's settings stay
+    assert env.unwrapped.random_start_fraction == 0.0 and env.unwrapped.noise is False
+    env.close()
+    _, env, _, kwargs, _ = load_for_evaluation(str(run), env_kwargs={"random_start_fraction": 0.25})
+    assert env.unwrapped.random_start_fraction == 0.25  # unless asked for
+    env.close()
+
+
 def test_evaluate_is_greedy_unless_stochastic() -> None:
     from sb3_hfo.evaluate import build_parser
 
