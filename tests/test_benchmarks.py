@@ -61,3 +61,35 @@ def test_discrete_choice_runs_both_modes_on_the_committed_model(tmp_path: Path) 
     lines = completed.stdout.splitlines()
     assert [line.split()[0] for line in lines] == ["actor", "critic"]
     assert all("scoring rate" in line for line in lines)
+
+
+def test_failure_map_groups_episodes_by_start_and_writes_a_png(tmp_path: Path) -> None:
+    out = tmp_path / "map.png"
+    command = [sys.executable, str(REPO / "benchmarks" / "failure_map.py")]
+    command += [str(REPO / "models" / "e1_empty_goal_fast_seed0"), "--episodes", "6", "--out", str(out)]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = [line for line in completed.stdout.splitlines() if "episodes  goal rate" in line]
+    assert rows[-1].split()[:2] == ["all", "6"]
+    assert (
+        sum(int(row.split("episodes")[0].split()[-1]) for row in rows[:-1]) == 6
+    )  # every episode in a class
+    assert out.stat().st_size > 10_000
+
+
+def test_start_class_bands_the_agents_lead_over_the_ball() -> None:
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        from failure_map import start_class
+    finally:
+        sys.path.pop(0)
+    from sb3_hfo.evaluate import EpisodeRecord
+
+    def record(agent_x: float) -> EpisodeRecord:
+        return EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1], None, (10.0, 0.0), (agent_x, 3.0))
+
+    assert start_class(record(2.0)).startswith("agent > 5 m behind")
+    assert start_class(record(12.0)).startswith("agent within 5 m")
+    assert start_class(record(20.0)).startswith("agent 5-15 m ahead")
+    assert start_class(record(30.0)).startswith("agent > 15 m ahead")
+    assert start_class(EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1])) == "unknown"
