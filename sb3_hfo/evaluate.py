@@ -130,6 +130,7 @@ class EvaluationResult:
     skill_fractions: list[float] | None
     out_of_bounds_exits: dict[str, int] = field(default_factory=dict)
     env_kwargs: dict[str, Any] = field(default_factory=dict)
+    discrete_choice: str = "actor"
 
 
 def summarize(
@@ -141,6 +142,7 @@ def summarize(
     deterministic: bool,
     n_skills: int,
     env_kwargs: dict[str, Any] | None = None,
+    discrete_choice: str = "actor",
 ) -> EvaluationResult:
     """Aggregate per-episode records into an :class:`EvaluationResult`."""
     n = len(records)
@@ -174,6 +176,7 @@ def summarize(
             for line in EXIT_LINES
         },
         env_kwargs=dict(env_kwargs or {}),
+        discrete_choice=discrete_choice,
     )
 
 
@@ -390,9 +393,20 @@ def evaluate(
     seed: int = 0,
     deterministic: bool = True,
     env_kwargs: dict[str, Any] | None = None,
+    discrete_choice: str | None = None,
 ) -> EvaluationResult:
-    """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors."""
+    """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors.
+
+    ``discrete_choice``: ``"actor"`` or ``"critic"`` overrides who picks the discrete action (``HFOPolicy``'s
+    option of that name); ``None`` keeps the model's own.
+    """
     model, env, env_id, kwargs, path = load_for_evaluation(model_path, env_id, env_kwargs)
+    if discrete_choice is not None:
+        try:
+            model.policy.discrete_choice = discrete_choice
+        except ValueError as error:
+            env.close()
+            raise EvaluationError(str(error)) from error
     n_skills = model_n_skills(model)
     try:
         records = run_episodes(model, env, episodes, seed, deterministic, n_skills)
@@ -406,6 +420,7 @@ def evaluate(
         deterministic=deterministic,
         n_skills=n_skills,
         env_kwargs=kwargs,
+        discrete_choice=getattr(model.policy, "discrete_choice", "actor"),
     )
 
 
@@ -445,6 +460,7 @@ def print_table(result: EvaluationResult) -> None:
         for k, fraction in enumerate(result.skill_fractions):
             table.add_row(f"steps with skill {k}", _format(fraction))
     table.add_row("deterministic", str(result.deterministic))
+    table.add_row("discrete action picked by", result.discrete_choice)
     Console().print(table)
 
 
@@ -475,6 +491,12 @@ def build_parser() -> argparse.ArgumentParser:
         help="predict(deterministic=True), the default (kept so that older command lines still run)",
     )
     parser.add_argument("--json", default=None, help="write the result as JSON to this file")
+    parser.add_argument(
+        "--discrete-choice",
+        choices=("actor", "critic"),
+        default=None,
+        help="who picks DASH / TURN / KICK: the actor's preferences (the paper) or the critic (default: the model's)",
+    )
     parser.add_argument(
         "--env-kwargs",
         nargs="+",
@@ -515,6 +537,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             seed=args.seed,
             deterministic=args.deterministic,
             env_kwargs=parse_env_kwargs(args.env_kwargs),
+            discrete_choice=args.discrete_choice,
         )
     except EvaluationError as error:
         print(f"error: {error}", file=sys.stderr)

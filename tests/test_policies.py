@@ -407,3 +407,58 @@ def test_mask_unused_parameters_errors_name_the_problem() -> None:
         make_policy(mask_unused_parameters=(2, -1, 4))
     with pytest.raises(ValueError, match="a bool or a sequence of ints"):
         make_policy(mask_unused_parameters="kick")
+
+
+@pytest.mark.parametrize("mask", [False, True])
+def test_critic_choice_plays_the_best_one_hot_action_at_the_actors_parameters(mask: bool) -> None:
+    # Large initial weights: a critic far from linear, so that rows differ in their best action.
+    policy = make_policy(
+        mask_unused_parameters=mask, discrete_choice="critic", net_arch=[32, 16], weight_init_std=1.0
+    )
+    obs = batch_obs(64)
+    with th.no_grad():
+        actor_actions = policy.actor(obs)
+        chosen = policy._predict(obs)
+        q_each = []
+        for j in range(3):  # the same choice worked out candidate by candidate
+            candidate = actor_actions.clone()
+            candidate[:, :3] = -1.0
+            candidate[:, j] = 1.0
+            q_each.append(policy.critic(obs, policy.critic_action(candidate)).squeeze(1))
+    best = th.stack(q_each, dim=1).argmax(dim=1)
+    assert len(set(best.tolist())) > 1  # the batch exercises more than one choice
+    assert th.equal(chosen[:, :3], 2.0 * nn.functional.one_hot(best, 3).float() - 1.0)
+    assert th.equal(chosen[:, 3:], actor_actions[:, 3:])  # the parameters stay the actor's
+    policy.discrete_choice = "actor"  # switchable on a built policy
+    with th.no_grad():
+        assert th.equal(policy._predict(obs), actor_actions)
+
+
+def test_discrete_choice_errors_and_round_trip(tmp_path) -> None:
+    with pytest.raises(ValueError, match="discrete_choice must be one of"):
+        make_policy(discrete_choice="router")
+    with pytest.raises(ValueError, match="needs to know the discrete actions"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, discrete_choice="critic")
+    policy = HFOPolicy(
+        OBS_SPACE,
+        spaces.Box(0.0, 1.0, (5,)),
+        lambda _: 1e-3,
+        mask_unused_parameters=(0, 3),
+        discrete_choice="critic",
+    )
+    assert policy.n_discrete_actions == 2
+    env = HybridTargetEnv()
+    model = SkillDDPG(
+        "HFOPolicy",
+        env,
+        policy_kwargs=dict(net_arch=[16], mask_unused_parameters=True, discrete_choice="critic"),
+        n_discrete_actions=3,
+        seed=0,
+    )
+    obs = np.random.default_rng(0).uniform(-1, 1, (5, *env.observation_space.shape)).astype(np.float32)
+    model.save(tmp_path / "m.zip")
+    loaded = SkillDDPG.load(tmp_path / "m.zip")
+    assert loaded.policy.discrete_choice == "critic"
+    assert np.array_equal(
+        loaded.predict(obs, deterministic=True)[0], model.predict(obs, deterministic=True)[0]
+    )

@@ -46,6 +46,15 @@ and its target copy (``extra_critics`` / ``extra_critic_targets``), both critics
 with the smaller of the two target critics' values, and the actor follows the first critic only: the clipped
 double Q-learning of TD3 (Fujimoto et al. 2018), against DDPG's overestimation of Q. One Adam
 (``policy.critic_optimizer``) owns every critic's parameters, as in SB3's ``TD3``.
+
+The critic picks the discrete action (an option beyond the paper, off by default): with
+``discrete_choice="critic"`` acting (``predict``, and so SB3's rollouts) keeps the actor's parameters but tries
+each discrete action ``j`` as the one-hot preference vector (+1 for ``j``, -1 for the others: the form in which
+epsilon-greedy exploration with ``exploration_keep_parameters`` stores its steps) and plays the one the first
+critic values most, as P-DQN / MP-DQN choose (Xiong et al. 2018; Bester et al. 2019). The actor's own preferences
+are still trained and are what ``"actor"`` (the paper) plays. The option may be switched on a trained model
+(``model.policy.discrete_choice = "critic"``); it pays off with ``mask_unused_parameters``, whose critic values
+each discrete action by its own parameters (benchmarks/RESULTS.md, session 6).
 """
 
 from __future__ import annotations
@@ -88,6 +97,8 @@ WEIGHT_INIT_STD = 1e-2
 #: Parameters of HFO's DASH (power, direction), TURN (direction) and KICK (power, direction) in its flat action,
 #: after the three preferences (hfo2d's ``action_format="flat"``).
 HFO_ACTION_PARAMETER_SIZES = (2, 1, 2)
+#: Who picks the discrete action when acting: the actor's largest preference (the paper) or the critic.
+DISCRETE_CHOICES: tuple[str, ...] = ("actor", "critic")
 
 
 def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[list[int], list[int]]:
@@ -500,6 +511,9 @@ class HFOPolicy(BasePolicy):
         8-dimensional action) or the number of parameters of each discrete action in order, e.g. ``(2, 1, 2)``:
         the action is then ``[one preference per discrete action, their parameters in the same order]``.
     :param n_critics: number of critics (1: the paper; 2: TD3's clipped double Q, see module doc).
+    :param discrete_choice: who picks the discrete action when acting: ``"actor"`` (the paper: its largest
+        preference) or ``"critic"`` (the best one-hot preference vector by the first critic, see module doc; needs
+        the discrete layout: HFO's 8-dimensional action or ``mask_unused_parameters`` given as sizes).
     :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
     :param optimizer_class: optimiser class for the critic and each skill (default Adam).
     :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
@@ -529,6 +543,7 @@ class HFOPolicy(BasePolicy):
         inverting_gradients: bool = False,
         mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
         n_critics: int = 1,
+        discrete_choice: str = "actor",
         weight_init_std: float = WEIGHT_INIT_STD,
         optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
         optimizer_kwargs: dict[str, Any] | None = None,
@@ -576,6 +591,7 @@ class HFOPolicy(BasePolicy):
         self.action_dim = get_action_dim(action_space)
         self.mask_unused_parameters = mask_unused_parameters
         self.action_parameter_sizes = _parameter_sizes(mask_unused_parameters, self.action_dim)
+        self.discrete_choice = discrete_choice  # validated by the property setter
         self._router_checked = False
         self._build(lr_schedule)
 
@@ -654,6 +670,46 @@ class HFOPolicy(BasePolicy):
             return None
         return masks.index_select(0, actions[:, : masks.shape[0]].argmax(dim=1))
 
+    @property
+    def discrete_choice(self) -> str:
+        """``"actor"`` or ``"critic"``: who picks the discrete action when acting (may be changed at any time)."""
+        return self._discrete_choice
+
+    @discrete_choice.setter
+    def discrete_choice(self, choice: str) -> None:
+        if choice not in DISCRETE_CHOICES:
+            raise ValueError(f"discrete_choice must be one of {DISCRETE_CHOICES}, got {choice!r}")
+        if choice == "critic" and self.n_discrete_actions == 0:
+            raise ValueError(
+                f"discrete_choice='critic' needs to know the discrete actions: HFO's 8-dimensional flat action, or "
+                f"mask_unused_parameters given as per-action parameter counts (action dim {self.action_dim})"
+            )
+        self._discrete_choice = choice
+
+    @property
+    def n_discrete_actions(self) -> int:
+        """Number of discrete actions (leading preferences) of the action layout; 0 when unknown."""
+        if self.action_parameter_sizes is not None:
+            return len(self.action_parameter_sizes)
+        return (
+            len(HFO_ACTION_PARAMETER_SIZES) if self.action_dim == 3 + sum(HFO_ACTION_PARAMETER_SIZES) else 0
+        )
+
+    def critic_choice(self, obs: th.Tensor, actions: th.Tensor) -> th.Tensor:
+        """``actions (B, action_dim)`` in [-1, 1] with their preferences replaced by the one-hot vector (+1 / -1)
+        of the discrete action the first critic values most at the actor's parameters (ties: the first)."""
+        n_discrete = self.n_discrete_actions
+        batch = actions.shape[0]
+        candidates = actions.unsqueeze(1).repeat(1, n_discrete, 1)  # (B, n, action_dim)
+        one_hot = 2.0 * th.eye(n_discrete, dtype=actions.dtype, device=actions.device) - 1.0
+        candidates[:, :, :n_discrete] = one_hot
+        flat = candidates.view(batch * n_discrete, -1)
+        q_values = self.critic.forward(
+            obs.repeat_interleave(n_discrete, dim=0), self.critic_action(flat)
+        ).view(batch, n_discrete)
+        best = q_values.argmax(dim=1)
+        return candidates[th.arange(batch, device=actions.device), best]
+
     def critic_action(self, actions: th.Tensor) -> th.Tensor:
         """``actions (B, action_dim)`` as the critic sees them: unused parameters set to 0 with
         ``mask_unused_parameters``, unchanged otherwise."""
@@ -710,6 +766,7 @@ class HFOPolicy(BasePolicy):
                 inverting_gradients=self.inverting_gradients,
                 mask_unused_parameters=self.mask_unused_parameters,
                 n_critics=self.n_critics,
+                discrete_choice=self.discrete_choice,
                 weight_init_std=self.weight_init_std,
                 lr_schedule=self._dummy_schedule,
                 optimizer_class=self.optimizer_class,
@@ -738,7 +795,9 @@ class HFOPolicy(BasePolicy):
         """Greedy action in [-1, 1] for ``observation (B, obs_dim)`` (DDPG's actor is deterministic)."""
         obs = self._flatten_obs(observation)
         action = self.actor.forward(obs, self.route(obs))  # not actor(...): no hooks to run, ~10 us per step
-        return action.clamp(-1.0, 1.0) if self.inverting_gradients else action
+        if self.inverting_gradients:
+            action = action.clamp(-1.0, 1.0)
+        return self.critic_choice(obs, action) if self._discrete_choice == "critic" else action
 
     def set_training_mode(self, mode: bool) -> None:
         """Set the ``training`` flag of the policy, the actor and the critics (and all their submodules).
