@@ -20,7 +20,9 @@ Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" an
 * ``skill_fractions``: fraction of steps each skill acted, for models with more than one skill;
 * ``out_of_bounds_exits``: OUT_OF_BOUNDS episodes by the line the ball left the HFO half over (from its final
   ``info["ball"]`` position): ``goal_line`` (x > 52.5: a shot wide of the posts), ``side_line`` (|y| > 34) or
-  ``halfway_line`` (x < 0).
+  ``halfway_line`` (x < 0);
+* ``discrete_choice``: who picked DASH / TURN / KICK (``--discrete-choice``: the actor's preferences, the paper,
+  or the critic; default the model's own ``policy.discrete_choice``).
 """
 
 from __future__ import annotations
