@@ -24,6 +24,7 @@ from sb3_hfo.evaluate import (
     run_episodes,
     wilson_interval,
 )
+from sb3_hfo.skill_ddpg.policies import DISCRETE_CHOICES
 
 #: Start classes by the agent's x minus the ball's x (m): the agent behind, level with, or ahead of the ball.
 AHEAD_LIMITS = (-5.0, 5.0, 15.0)
@@ -119,20 +120,34 @@ def main(argv: Sequence[str] | None = None) -> None:
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--out", type=Path, default=None, help="PNG to write (default: none)")
+    parser.add_argument(
+        "--discrete-choice",
+        choices=DISCRETE_CHOICES,
+        default=None,
+        help="actor or critic (default: the model's)",
+    )
     args = parser.parse_args(argv)
     if args.episodes < 1:
         parser.error(f"--episodes must be at least 1, got {args.episodes}")
 
     model, env, env_id, _, path = load_for_evaluation(args.model, args.env or None)
+    if args.discrete_choice is not None:
+        model.policy.discrete_choice = args.discrete_choice
     try:
         records = run_episodes(model, env, args.episodes, args.seed, True, model_n_skills(model))
     finally:
         env.close()
-    print(f"{path} on {env_id}: {args.episodes} greedy episodes, seed {args.seed}")
+    choice = model.policy.discrete_choice
+    print(
+        f"{path} on {env_id}: {args.episodes} greedy episodes, seed {args.seed}, {choice} picks the discrete action"
+    )
     for name, n, rate, low, high, counts in table_rows(records):
         print(f"  {name:<34} {n:>5} episodes  goal rate {rate:.3f} [{low:.3f}, {high:.3f}]  {counts}")
     if args.out is not None:
-        title = f"{Path(str(path)).parent.name}/{Path(str(path)).name}: {args.episodes} episodes, seed {args.seed}"
+        title = (
+            f"{Path(str(path)).parent.name}/{Path(str(path)).name}: {args.episodes} episodes, seed {args.seed}, "
+            f"{choice} picks"
+        )
         plot(records, title, args.out)
         print(f"wrote {args.out}")
 
