@@ -627,8 +627,9 @@ class HFOPolicy(BasePolicy):
         # Empty with one critic, so that the paper's policy has the same state dict as before the option existed.
         self.extra_critics = nn.ModuleList(HFOCritic(**critic_kwargs) for _ in range(self.n_critics - 1))  # type: ignore[arg-type]
         self.extra_critic_targets = nn.ModuleList(
-            HFOCritic(**critic_kwargs) for _ in range(self.n_critics - 1)
-        )  # type: ignore[arg-type]
+            HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
+            for _ in range(self.n_critics - 1)
+        )
         self.extra_critic_targets.load_state_dict(self.extra_critics.state_dict())
         for target in (self.actor_target, self.critic_target, self.extra_critic_targets):
             target.requires_grad_(False)
