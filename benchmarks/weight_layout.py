@@ -12,8 +12,9 @@ forward products 4-36 % faster and the input-gradient products 23-51 % slower, 2
 
 from __future__ import annotations
 
+import argparse
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 
 import torch as th
 from torch.nn import functional as F
@@ -38,17 +39,22 @@ def microseconds(operation: Callable[[], object], calls: int = 2000, rounds: int
 
 
 def layer_times(
-    x: th.Tensor, grad_z: th.Tensor, bias: th.Tensor, weight: th.Tensor
+    x: th.Tensor, grad_z: th.Tensor, bias: th.Tensor, weight: th.Tensor, calls: int
 ) -> tuple[float, float, float]:
     """Microseconds of the forward, weight-gradient and input-gradient products of one layer."""
     grad_weight = th.empty_like(weight)  # keeps the weight's strides
-    forward = microseconds(lambda: F.linear(x, weight, bias))
-    weight_grad = microseconds(lambda: th.mm(grad_z.t(), x, out=grad_weight))
-    input_grad = microseconds(lambda: th.mm(grad_z, weight))
+    forward = microseconds(lambda: F.linear(x, weight, bias), calls)
+    weight_grad = microseconds(lambda: th.mm(grad_z.t(), x, out=grad_weight), calls)
+    input_grad = microseconds(lambda: th.mm(grad_z, weight), calls)
     return forward, weight_grad, input_grad
 
 
-def main() -> None:
+def main(argv: Sequence[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument(
+        "--calls", type=int, default=2000, help="calls per timing round (5 rounds, best kept)"
+    )
+    args = parser.parse_args(argv)
     th.set_num_threads(1)
     totals = {"(out, in)": 0.0, "transposed": 0.0}
     for n_in, n_out in SHAPES:
@@ -57,7 +63,7 @@ def main() -> None:
         layouts = {"(out, in)": weight, "transposed": weight.t().contiguous().t()}
         row = []
         for name, stored in layouts.items():
-            forward, weight_grad, input_grad = layer_times(x, grad_z, bias, stored)
+            forward, weight_grad, input_grad = layer_times(x, grad_z, bias, stored, args.calls)
             totals[name] += forward + weight_grad + input_grad
             row.append(f"{name}: forward {forward:6.1f}  dW {weight_grad:6.1f}  dX {input_grad:6.1f} us")
         print(f"{n_in:>4} -> {n_out:<4} " + " | ".join(row))

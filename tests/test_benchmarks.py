@@ -93,3 +93,12 @@ def test_start_class_bands_the_agents_lead_over_the_ball() -> None:
     assert start_class(record(20.0)).startswith("agent 5-15 m ahead")
     assert start_class(record(30.0)).startswith("agent > 15 m ahead")
     assert start_class(EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1])) == "unknown"
+
+
+def test_weight_layout_times_both_layouts_of_every_shape() -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "weight_layout.py"), "--calls", "2"]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=120)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    lines = completed.stdout.splitlines()
+    assert len(lines) == 7 and all("transposed: forward" in line for line in lines[:6])
+    assert lines[-1].startswith("sum of the three products")
