@@ -97,6 +97,10 @@ WEIGHT_INIT_STD = 1e-2
 #: Parameters of HFO's DASH (power, direction), TURN (direction) and KICK (power, direction) in its flat action,
 #: after the three preferences (hfo2d's ``action_format="flat"``).
 HFO_ACTION_PARAMETER_SIZES = (2, 1, 2)
+#: DASH, TURN, KICK: the discrete actions whose preferences open HFO's flat action.
+HFO_N_DISCRETE_ACTIONS = len(HFO_ACTION_PARAMETER_SIZES)
+#: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
+HFO_FLAT_ACTION_DIM = HFO_N_DISCRETE_ACTIONS + sum(HFO_ACTION_PARAMETER_SIZES)
 #: Who picks the discrete action when acting: the actor's largest preference (the paper) or the critic.
 DISCRETE_CHOICES: tuple[str, ...] = ("actor", "critic")
 
@@ -137,7 +141,7 @@ def _parameter_sizes(option: bool | tuple[int, ...] | list[int], action_dim: int
     if option is False or option is None:
         return None
     if option is True:
-        if action_dim != 3 + sum(HFO_ACTION_PARAMETER_SIZES):
+        if action_dim != HFO_FLAT_ACTION_DIM:
             raise ValueError(
                 f"mask_unused_parameters=True means HFO's flat action (8 entries), but the action has {action_dim}; "
                 "pass the parameter count of each discrete action instead, e.g. (2, 1, 2)"
@@ -692,9 +696,7 @@ class HFOPolicy(BasePolicy):
         """Number of discrete actions (leading preferences) of the action layout; 0 when unknown."""
         if self.action_parameter_sizes is not None:
             return len(self.action_parameter_sizes)
-        return (
-            len(HFO_ACTION_PARAMETER_SIZES) if self.action_dim == 3 + sum(HFO_ACTION_PARAMETER_SIZES) else 0
-        )
+        return HFO_N_DISCRETE_ACTIONS if self.action_dim == HFO_FLAT_ACTION_DIM else 0
 
     def critic_choice(self, obs: th.Tensor, actions: th.Tensor) -> th.Tensor:
         """``actions (B, action_dim)`` in [-1, 1] with their preferences replaced by the one-hot vector (+1 / -1)

@@ -75,16 +75,11 @@ from stable_baselines3.common.utils import (
 )
 
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
-from sb3_hfo.skill_ddpg.policies import HFOPolicy, Segment
+from sb3_hfo.skill_ddpg.policies import HFO_FLAT_ACTION_DIM, HFO_N_DISCRETE_ACTIONS, HFOPolicy, Segment
 
 __all__ = ["HFO_FLAT_ACTION_DIM", "HFO_N_DISCRETE_ACTIONS", "SkillDDPG", "adam_step"]
 
 SelfSkillDDPG = TypeVar("SelfSkillDDPG", bound="SkillDDPG")
-
-#: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
-HFO_FLAT_ACTION_DIM = 8
-#: DASH, TURN, KICK: the discrete actions whose preferences open HFO's flat action.
-HFO_N_DISCRETE_ACTIONS = 3
 
 # Layout of the running sums of training statistics (one row of a tensor, summed over updates).
 _STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3
