@@ -96,6 +96,7 @@ def reference_update(
     tau: float,
     mc_mixing: float = 0.0,
     preactivation_penalty: float = 0.0,
+    discrete_target: str = "actor",
 ) -> None:
     """The update written the straightforward way: losses, autograd, plain Adam, Polyak loop.
 
@@ -103,6 +104,8 @@ def reference_update(
     ``mask_unused_parameters``: the critic sees every action through :func:`masked`.
     ``n_critics > 1``: the target takes the smallest target critic's value, the loss sums every critic's mean
     squared error (one Adam over all of them), and the actor follows the first critic.
+    ``discrete_target="max"``: the next value is the largest, over the three discrete actions, of the target
+    critics' (smallest) value of the target actor's action with its preferences set to that action's one-hot.
     ``preactivation_penalty``: skill ``k``'s loss gains ``lambda * mean over its rows of ||z||^2`` (``z``: its head's
     output before tanh).
 
@@ -115,16 +118,24 @@ def reference_update(
         next_actions = policy.actor_target(batch.next_observations, policy.route(batch.next_observations))
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
-        next_q = (
-            th.stack(
-                [
-                    target(batch.next_observations, masked(policy, next_actions))
-                    for target in policy.critic_targets
-                ]
-            )
-            .min(dim=0)
-            .values
-        )
+        candidates = [next_actions]
+        if discrete_target == "max":
+            candidates = []
+            for k in range(3):
+                candidate = next_actions.clone()
+                candidate[:, :3] = -1.0
+                candidate[:, k] = 1.0
+                candidates.append(candidate)
+        next_q = th.stack(
+            [
+                th.stack(
+                    [target(batch.next_observations, masked(policy, c)) for target in policy.critic_targets]
+                )
+                .min(dim=0)
+                .values
+                for c in candidates
+            ]
+        ).amax(dim=0)
         target = batch.rewards + (1 - batch.dones) * discounts * next_q
         if mc_mixing > 0:
             mixed = (1 - mc_mixing) * target + mc_mixing * batch.mc_returns  # type: ignore[union-attr]
@@ -190,21 +201,24 @@ def reference_update(
         "penalty",
         "mask",
         "n_critics",
+        "discrete_target",
     ),
     [
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
-        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
-        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
-        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
-        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1),
-        (1, False, False, th.nn.ReLU, 0.0, 0.0, False, 1),
-        (2, False, False, th.nn.Tanh, 0.0, 0.0, False, 1),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1),
-        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True, 1),
-        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 2),
-        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
+        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
+        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
+        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
+        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
+        (1, False, False, th.nn.ReLU, 0.0, 0.0, False, 1, "actor"),
+        (2, False, False, th.nn.Tanh, 0.0, 0.0, False, 1, "actor"),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor"),
+        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor"),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True, 1, "actor"),
+        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "actor"),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 2, "actor"),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3, "actor"),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max"),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, False, 2, "max"),
     ],
 )
 def test_update_equals_straightforward_reference(
@@ -216,6 +230,7 @@ def test_update_equals_straightforward_reference(
     penalty: float,
     mask: bool,
     n_critics: int,
+    discrete_target: str,
 ) -> None:
     """Four updates (the first builds Adam's state, the next use the direct fused-kernel path) of the explicit
     forward / backward update against an autograd reference; skills interleaved in the batch, one of them absent
@@ -237,6 +252,7 @@ def test_update_equals_straightforward_reference(
         learning_rate_critic=1e-2,
         mc_mixing=mc_mixing,
         preactivation_penalty=penalty,
+        discrete_target=discrete_target,
         policy_kwargs=policy_kwargs,
     )
     reference = copy.deepcopy(model.policy)
@@ -247,7 +263,9 @@ def test_update_equals_straightforward_reference(
             seed=seed, far_fraction=far_fraction, n_step_discounts=n_step_discounts, mc_returns=mc_mixing > 0
         )
         model._update(batch)
-        reference_update(reference, optimizers, batch, model.gamma, model.tau, mc_mixing, penalty)
+        reference_update(
+            reference, optimizers, batch, model.gamma, model.tau, mc_mixing, penalty, discrete_target
+        )
     after, expected = snapshot(model.policy), snapshot(reference)
     changed = [name for name in after if not th.equal(after[name], before[name])]
     assert len(changed) == len(after)  # every parameter (targets included) moved
@@ -555,6 +573,7 @@ def test_save_load_round_trip(tmp_path: Path) -> None:
     model = make_model(
         2,
         learning_starts=50,
+        discrete_target="max",
         policy_kwargs=dict(skill_router=router, mask_unused_parameters=True, n_critics=2),
     )
     model.learn(150)
@@ -570,6 +589,7 @@ def test_save_load_round_trip(tmp_path: Path) -> None:
     assert loaded.policy.skill_router == router and loaded.policy.n_skills == 2
     assert loaded.policy.action_parameter_sizes == (2, 1, 2)
     assert loaded.policy.n_critics == 2 and len(loaded.policy.extra_critic_targets) == 1
+    assert loaded.discrete_target == "max"
     pairs = [(model.policy.critic_optimizer, loaded.policy.critic_optimizer)]
     pairs += list(zip(model.policy.actor_optimizers, loaded.policy.actor_optimizers, strict=True))
     for original, restored in pairs:
@@ -617,6 +637,10 @@ def test_bad_inputs_raise_clear_errors() -> None:
         make_model(1, learning_rate_critic="fast")
     with pytest.raises(TypeError, match="n_actors"):
         make_model(1, policy_kwargs=dict(n_actors=2))
+    with pytest.raises(ValueError, match="discrete_target must be one of"):
+        make_model(1, discrete_target="mean")
+    with pytest.raises(ValueError, match="discrete_target='max' needs the discrete actions"):
+        SkillDDPG("HFOPolicy", "Pendulum-v1", discrete_target="max")
     model = make_model(2, learning_starts=0, policy_kwargs=dict(skill_router=OutOfRangeRouter()))
     with pytest.raises(ValueError, match=r"skill indices in \[5, 5\]"):
         model.learn(5)

@@ -59,7 +59,7 @@ each discrete action by its own parameters (benchmarks/RESULTS.md, session 6).
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 from typing import Any
 
 import numpy as np
@@ -698,20 +698,38 @@ class HFOPolicy(BasePolicy):
             return len(self.action_parameter_sizes)
         return HFO_N_DISCRETE_ACTIONS if self.action_dim == HFO_FLAT_ACTION_DIM else 0
 
+    def discrete_values(
+        self, obs: th.Tensor, actions: th.Tensor, critics: Sequence[HFOCritic] | None = None
+    ) -> tuple[th.Tensor, th.Tensor]:
+        """Each discrete action at the actor's parameters, and its value.
+
+        :param obs: ``(B, obs_dim)``.
+        :param actions: ``(B, action_dim)`` in [-1, 1].
+        :param critics: critics to ask (default: the first critic); with several, the smallest value counts.
+        :return: ``candidates (B, n, action_dim)``, ``actions`` with the preferences replaced by discrete action
+            ``k``'s one-hot vector (+1 / -1) in row ``k``, and their values ``(B, n)``.
+        """
+        n_discrete = self.n_discrete_actions
+        batch = actions.shape[0]
+        candidates = actions.unsqueeze(1).repeat(1, n_discrete, 1)
+        candidates[:, :, :n_discrete] = (
+            2.0 * th.eye(n_discrete, dtype=actions.dtype, device=actions.device) - 1.0
+        )
+        repeated_obs = obs.repeat_interleave(n_discrete, dim=0)
+        seen = self.critic_action(candidates.view(batch * n_discrete, -1))
+        q_values = None
+        for critic in critics if critics is not None else [self.critic]:
+            values = critic.forward(repeated_obs, seen)
+            q_values = values if q_values is None else th.minimum(q_values, values)
+        assert q_values is not None, "critics must not be empty"
+        return candidates, q_values.view(batch, n_discrete)
+
     def critic_choice(self, obs: th.Tensor, actions: th.Tensor) -> th.Tensor:
         """``actions (B, action_dim)`` in [-1, 1] with their preferences replaced by the one-hot vector (+1 / -1)
         of the discrete action the first critic values most at the actor's parameters (ties: the first)."""
-        n_discrete = self.n_discrete_actions
-        batch = actions.shape[0]
-        candidates = actions.unsqueeze(1).repeat(1, n_discrete, 1)  # (B, n, action_dim)
-        one_hot = 2.0 * th.eye(n_discrete, dtype=actions.dtype, device=actions.device) - 1.0
-        candidates[:, :, :n_discrete] = one_hot
-        flat = candidates.view(batch * n_discrete, -1)
-        q_values = self.critic.forward(
-            obs.repeat_interleave(n_discrete, dim=0), self.critic_action(flat)
-        ).view(batch, n_discrete)
+        candidates, q_values = self.discrete_values(obs, actions)
         best = q_values.argmax(dim=1)
-        return candidates[th.arange(batch, device=actions.device), best]
+        return candidates[th.arange(actions.shape[0], device=actions.device), best]
 
     def critic_action(self, actions: th.Tensor) -> th.Tensor:
         """``actions (B, action_dim)`` as the critic sees them: unused parameters set to 0 with

@@ -7,6 +7,8 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``n_critics=2`` (TD3's clipped double Q, beyond the paper) ``Q'`` in ``y`` is the smaller of the two target
    critics' values, each critic takes the loss ``L`` on its own ``Q`` and one Adam step covers both; the actor
    below follows the first critic (``policy.critic``) only.
+   With ``discrete_target="max"`` (P-DQN, beyond the paper) ``Q'(s', ...)`` is the best of the discrete actions
+   at the target actor's parameters, the value of the policy that ``discrete_choice="critic"`` acts with.
 2. Actor (eq. 7), with the critic just updated: every row's action comes from the head its skill router picks;
    ``g = dQ/da`` at ``a = mu_{skill(s)}(s)`` for the whole minibatch in one critic pass. Skill ``k``'s loss is
    ``-mean over the rows routed to k of Q(s, a)``; its gradient over (trunk + head k) is the back-propagation of
@@ -77,7 +79,10 @@ from stable_baselines3.common.utils import (
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
 from sb3_hfo.skill_ddpg.policies import HFO_FLAT_ACTION_DIM, HFO_N_DISCRETE_ACTIONS, HFOPolicy, Segment
 
-__all__ = ["HFO_FLAT_ACTION_DIM", "HFO_N_DISCRETE_ACTIONS", "SkillDDPG", "adam_step"]
+__all__ = ["DISCRETE_TARGETS", "HFO_FLAT_ACTION_DIM", "HFO_N_DISCRETE_ACTIONS", "SkillDDPG", "adam_step"]
+
+#: Values of ``SkillDDPG(discrete_target=...)``.
+DISCRETE_TARGETS = ("actor", "max")
 
 SelfSkillDDPG = TypeVar("SelfSkillDDPG", bound="SkillDDPG")
 
@@ -243,6 +248,11 @@ class SkillDDPG(OffPolicyAlgorithm):
         ``z`` without bound towards an action bound, where ``tanh`` saturates and passes back no gradient
         (Hausknecht & Stone 2016's motivation for inverting gradients); the penalty holds ``z`` where ``tanh``
         still responds. 0: the paper.
+    :param discrete_target: the next action in the critic's TD target: ``"actor"`` (the paper, DDPG) values the
+        target actor's action as it is, ``Q'(s', mu'(s'))``; ``"max"`` (P-DQN's target, beyond the paper) the best
+        discrete action at the target actor's parameters, ``max_k Q'(s', e_k, x'(s'))`` with ``e_k`` discrete
+        action ``k``'s one-hot preferences (with ``n_critics > 1``: the smaller target value per ``k``). ``"max"``
+        is the target of the policy ``discrete_choice="critic"`` acts with; it needs a known discrete layout.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
     :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
@@ -281,6 +291,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         n_steps: int = 1,
         mc_mixing: float = 0.0,
         preactivation_penalty: float = 0.0,
+        discrete_target: str = "actor",
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -325,6 +336,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.exploration_rate = exploration_initial_eps
         self.mc_mixing = mc_mixing
         self.preactivation_penalty = preactivation_penalty
+        self.discrete_target = discrete_target
         if _init_setup_model:
             self._setup_model()
 
@@ -349,6 +361,10 @@ class SkillDDPG(OffPolicyAlgorithm):
             raise ValueError(f"preactivation_penalty must be >= 0, got {self.preactivation_penalty}")
         if not 0.0 <= self.mc_mixing <= 1.0:
             raise ValueError(f"mc_mixing must lie in [0, 1], got {self.mc_mixing}")
+        if self.discrete_target not in DISCRETE_TARGETS:
+            raise ValueError(
+                f"discrete_target must be one of {DISCRETE_TARGETS}, got {self.discrete_target!r}"
+            )
 
     def _select_replay_buffer(self) -> None:
         """``mc_mixing > 0`` needs the episode returns that only :class:`MonteCarloReplayBuffer` keeps."""
@@ -392,6 +408,11 @@ class SkillDDPG(OffPolicyAlgorithm):
             raise ValueError(f"SkillDDPG needs an HFOPolicy (or subclass), got {type(self.policy).__name__}")
         update_learning_rate(self.policy.critic_optimizer, self.lr_schedule_critic(1.0))
         self._n_discrete = self._resolve_n_discrete_actions()
+        if self.discrete_target == "max" and self.policy.n_discrete_actions == 0:
+            raise ValueError(
+                "discrete_target='max' needs the discrete actions: HFO's 8-dimensional flat action, or the policy's "
+                "mask_unused_parameters given as per-action parameter counts"
+            )
         if self.exploration_fraction > 0:
             self.exploration_schedule: Schedule = LinearSchedule(
                 self.exploration_initial_eps, self.exploration_final_eps, self.exploration_fraction
@@ -593,7 +614,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         return self._skill_layout((batch_size,), like)[4]
 
     def _critic_target(self, batch: ReplayBufferSamples, next_skills: th.Tensor | None = None) -> th.Tensor:
-        """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``gamma^n`` from ``batch.discounts``
+        """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``max_k Q'(s', e_k, x'(s'))`` with
+        ``discrete_target="max"``; ``gamma^n`` from ``batch.discounts``
         with n-step returns; ``Q'`` the smallest of the target critics' values with ``n_critics > 1``), mixed
         with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose return is known when
         ``mc_mixing = beta > 0``. ``next_skills``: the routed skills of the next states
@@ -605,10 +627,14 @@ class SkillDDPG(OffPolicyAlgorithm):
         next_actions = self.actor_target.forward(next_obs, next_skills)
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
-        next_actions = policy.critic_action(next_actions)
-        next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
-        for target in self._critic_targets[1:]:  # clipped double Q: the smallest target value
-            next_q = th.minimum(next_q, target.forward_for_backward(next_obs, next_actions)[0])
+        if self.discrete_target == "max":
+            _, next_values = policy.discrete_values(next_obs, next_actions, self._critic_targets)
+            next_q = next_values.max(dim=1, keepdim=True).values
+        else:
+            next_actions = policy.critic_action(next_actions)
+            next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
+            for target in self._critic_targets[1:]:  # clipped double Q: the smallest target value
+                next_q = th.minimum(next_q, target.forward_for_backward(next_obs, next_actions)[0])
         if batch.discounts is None:
             # (1 - done) is 0 or 1, so this is r + gamma * (1 - done) * Q' with the same rounding, in one kernel.
             target_q = th.addcmul(batch.rewards, 1 - batch.dones, next_q, value=self.gamma)
