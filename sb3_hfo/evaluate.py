@@ -22,7 +22,9 @@ Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" an
   ``info["ball"]`` position): ``goal_line`` (x > 52.5: a shot wide of the posts), ``side_line`` (|y| > 34) or
   ``halfway_line`` (x < 0);
 * ``discrete_choice``: who picked DASH / TURN / KICK (``--discrete-choice``: the actor's preferences, the paper,
-  or the critic; default the model's own ``policy.discrete_choice``).
+  or the critic; default the model's own ``policy.discrete_choice``);
+* ``kick_only_when_kickable``: whether KICK was left out of the greedy choice while the ball was out of reach
+  (``--kick-only-when-kickable on|off``; default the model's own setting).
 """
 
 from __future__ import annotations
@@ -133,6 +135,7 @@ class EvaluationResult:
     out_of_bounds_exits: dict[str, int] = field(default_factory=dict)
     env_kwargs: dict[str, Any] = field(default_factory=dict)
     discrete_choice: str = "actor"
+    kick_only_when_kickable: bool = False
 
 
 def summarize(
@@ -145,6 +148,7 @@ def summarize(
     n_skills: int,
     env_kwargs: dict[str, Any] | None = None,
     discrete_choice: str = "actor",
+    kick_only_when_kickable: bool = False,
 ) -> EvaluationResult:
     """Aggregate per-episode records into an :class:`EvaluationResult`."""
     n = len(records)
@@ -179,6 +183,7 @@ def summarize(
         },
         env_kwargs=dict(env_kwargs or {}),
         discrete_choice=discrete_choice,
+        kick_only_when_kickable=kick_only_when_kickable,
     )
 
 
@@ -396,19 +401,23 @@ def evaluate(
     deterministic: bool = True,
     env_kwargs: dict[str, Any] | None = None,
     discrete_choice: str | None = None,
+    kick_only_when_kickable: bool | None = None,
 ) -> EvaluationResult:
     """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors.
 
     ``discrete_choice``: ``"actor"`` or ``"critic"`` overrides who picks the discrete action (``HFOPolicy``'s
-    option of that name); ``None`` keeps the model's own.
+    option of that name); ``kick_only_when_kickable`` overrides the policy's option of that name; ``None`` keeps
+    the model's own.
     """
     model, env, env_id, kwargs, path = load_for_evaluation(model_path, env_id, env_kwargs)
-    if discrete_choice is not None:
-        try:
+    try:
+        if discrete_choice is not None:
             model.policy.discrete_choice = discrete_choice
-        except ValueError as error:
-            env.close()
-            raise EvaluationError(str(error)) from error
+        if kick_only_when_kickable is not None:
+            model.policy.kick_only_when_kickable = kick_only_when_kickable
+    except ValueError as error:
+        env.close()
+        raise EvaluationError(str(error)) from error
     n_skills = model_n_skills(model)
     try:
         records = run_episodes(model, env, episodes, seed, deterministic, n_skills)
@@ -423,6 +432,7 @@ def evaluate(
         n_skills=n_skills,
         env_kwargs=kwargs,
         discrete_choice=getattr(model.policy, "discrete_choice", "actor"),
+        kick_only_when_kickable=getattr(model.policy, "kick_only_when_kickable", False),
     )
 
 
@@ -463,6 +473,7 @@ def print_table(result: EvaluationResult) -> None:
             table.add_row(f"steps with skill {k}", _format(fraction))
     table.add_row("deterministic", str(result.deterministic))
     table.add_row("discrete action picked by", result.discrete_choice)
+    table.add_row("no KICK without the ball", "on" if result.kick_only_when_kickable else "off")
     Console().print(table)
 
 
@@ -498,6 +509,12 @@ def build_parser() -> argparse.ArgumentParser:
         choices=("actor", "critic"),
         default=None,
         help="who picks DASH / TURN / KICK: the actor's preferences (the paper) or the critic (default: the model's)",
+    )
+    parser.add_argument(
+        "--kick-only-when-kickable",
+        choices=("on", "off"),
+        default=None,
+        help="leave KICK out of the greedy choice while the ball is out of reach (default: the model's setting)",
     )
     parser.add_argument(
         "--env-kwargs",
@@ -540,6 +557,9 @@ def main(argv: Sequence[str] | None = None) -> int:
             deterministic=args.deterministic,
             env_kwargs=parse_env_kwargs(args.env_kwargs),
             discrete_choice=args.discrete_choice,
+            kick_only_when_kickable=None
+            if args.kick_only_when_kickable is None
+            else args.kick_only_when_kickable == "on",
         )
     except EvaluationError as error:
         print(f"error: {error}", file=sys.stderr)

@@ -20,6 +20,7 @@ from sb3_hfo import (
 )
 from sb3_hfo.common.routers import validate_skills
 from sb3_hfo.common.toy_env import HybridTargetEnv
+from sb3_hfo.skill_ddpg.policies import KICKABLE_FEATURE_INDEX
 
 OBS_SPACE = spaces.Box(-1.0, 1.0, (58,), np.float32)
 ACTION_SPACE = spaces.Box(0.0, 1.0, (8,), np.float32)
@@ -462,3 +463,54 @@ def test_discrete_choice_errors_and_round_trip(tmp_path) -> None:
     assert np.array_equal(
         loaded.predict(obs, deterministic=True)[0], model.predict(obs, deterministic=True)[0]
     )
+
+
+def test_kickable_feature_index_is_hfo2ds() -> None:
+    from hfo2d import features
+
+    assert KICKABLE_FEATURE_INDEX == features.KICKABLE
+
+
+@pytest.mark.parametrize("choice", ["actor", "critic"])
+def test_kick_only_when_kickable_never_kicks_at_a_ball_out_of_reach(choice: str) -> None:
+    policy = make_policy(
+        mask_unused_parameters=True, discrete_choice=choice, net_arch=[32, 16], weight_init_std=1.0
+    )
+    obs = batch_obs(256)
+    obs[:, KICKABLE_FEATURE_INDEX] = th.where(obs[:, KICKABLE_FEATURE_INDEX] > 0, 1.0, -1.0)
+    out_of_reach = obs[:, KICKABLE_FEATURE_INDEX] < 0
+    with th.no_grad():
+        free = policy._predict(obs)
+        policy.kick_only_when_kickable = True
+        masked = policy._predict(obs)
+    free_kicks = free[:, :3].argmax(dim=1) == 2
+    assert (free_kicks & out_of_reach).any()  # the batch exercises the rule
+    assert not (masked[:, :3].argmax(dim=1) == 2)[out_of_reach].any()
+    # Where the ball is kickable, or the free choice was not KICK, nothing changes.
+    unchanged = ~out_of_reach | ~free_kicks
+    assert th.equal(masked[unchanged], free[unchanged])
+    # Elsewhere: the one-hot of the better of DASH and TURN (by preference or by Q), parameters kept.
+    changed = ~unchanged
+    assert th.equal(masked[changed][:, 3:], free[changed][:, 3:])
+    if choice == "actor":
+        best = free[changed][:, :2].argmax(dim=1)
+    else:
+        with th.no_grad():
+            _, q_values = policy.discrete_values(obs[changed], free[changed])
+        best = q_values[:, :2].argmax(dim=1)
+    assert th.equal(masked[changed][:, :3], 2.0 * nn.functional.one_hot(best, 3).float() - 1.0)
+
+
+def test_kick_only_when_kickable_errors_and_round_trip(tmp_path) -> None:
+    with pytest.raises(ValueError, match="needs HFO's 8-dimensional flat action"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, kick_only_when_kickable=True)
+    with pytest.raises(ValueError, match="kick_only_when_kickable must be a bool"):
+        make_policy(kick_only_when_kickable="yes")
+    model = SkillDDPG(
+        "HFOPolicy",
+        HybridTargetEnv(),
+        policy_kwargs=dict(net_arch=[16], kick_only_when_kickable=True, discrete_choice="critic"),
+        seed=0,
+    )
+    model.save(tmp_path / "m.zip")
+    assert SkillDDPG.load(tmp_path / "m.zip").policy.kick_only_when_kickable is True

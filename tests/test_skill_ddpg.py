@@ -105,7 +105,8 @@ def reference_update(
     ``n_critics > 1``: the target takes the smallest target critic's value, the loss sums every critic's mean
     squared error (one Adam over all of them), and the actor follows the first critic.
     ``discrete_target="max"``: the next value is the largest, over the three discrete actions, of the target
-    critics' (smallest) value of the target actor's action with its preferences set to that action's one-hot.
+    critics' (smallest) value of the target actor's action with its preferences set to that action's one-hot;
+    with the policy's ``kick_only_when_kickable`` KICK only counts where next-state feature 12 is >= 0.
     ``preactivation_penalty``: skill ``k``'s loss gains ``lambda * mean over its rows of ||z||^2`` (``z``: its head's
     output before tanh).
 
@@ -126,16 +127,16 @@ def reference_update(
                 candidate[:, :3] = -1.0
                 candidate[:, k] = 1.0
                 candidates.append(candidate)
-        next_q = th.stack(
-            [
-                th.stack(
-                    [target(batch.next_observations, masked(policy, c)) for target in policy.critic_targets]
-                )
-                .min(dim=0)
-                .values
-                for c in candidates
-            ]
-        ).amax(dim=0)
+        values = [
+            th.stack([target(batch.next_observations, masked(policy, c)) for target in policy.critic_targets])
+            .min(dim=0)
+            .values
+            for c in candidates
+        ]
+        if discrete_target == "max" and policy.kick_only_when_kickable:
+            out_of_reach = batch.next_observations[:, 12:13] < 0
+            values[2] = th.where(out_of_reach, -th.inf, values[2])
+        next_q = th.stack(values).amax(dim=0)
         target = batch.rewards + (1 - batch.dones) * discounts * next_q
         if mc_mixing > 0:
             mixed = (1 - mc_mixing) * target + mc_mixing * batch.mc_returns  # type: ignore[union-attr]
@@ -219,6 +220,7 @@ def reference_update(
         (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3, "actor"),
         (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max"),
         (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, False, 2, "max"),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 2, "max, no kick without the ball"),
     ],
 )
 def test_update_equals_straightforward_reference(
@@ -240,7 +242,9 @@ def test_update_equals_straightforward_reference(
         activation_fn=activation_fn,
         mask_unused_parameters=mask,
         n_critics=n_critics,
+        kick_only_when_kickable=discrete_target.endswith("no kick without the ball"),
     )
+    discrete_target = discrete_target.split(",")[0]
     if n_skills == 3:
         policy_kwargs["skill_router"] = ThreeBandRouter()
     if mask:  # actions far from 0, so that masking changes what the critic sees

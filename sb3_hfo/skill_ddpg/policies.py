@@ -55,6 +55,15 @@ critic values most, as P-DQN / MP-DQN choose (Xiong et al. 2018; Bester et al. 2
 are still trained and are what ``"actor"`` (the paper) plays. The option may be switched on a trained model
 (``model.policy.discrete_choice = "critic"``); it pays off with ``mask_unused_parameters``, whose critic values
 each discrete action by its own parameters (benchmarks/RESULTS.md, session 6).
+
+No kick without the ball (an option beyond the paper, off by default): rcssserver ignores a kick while the ball is
+out of the kickable area, so the state does not change and a deterministic policy that picks KICK there repeats
+it until HFO's 100-cycle limit (most of the OUT_OF_TIME episodes of the critic's-choice E1 agents,
+benchmarks/RESULTS.md, session 7). With ``kick_only_when_kickable=True`` KICK is never the greedy choice while the
+observation's "able to kick" feature (:data:`KICKABLE_FEATURE_INDEX`) is -1: the critic's choice and SkillDDPG's
+``discrete_target="max"`` leave it out of their maximum, and the actor's choice falls to the larger of the DASH
+and TURN preferences (as a one-hot vector) where KICK was the largest. Invalid-action masking, as in
+sb3-contrib's MaskablePPO; exploration (epsilon-greedy, SB3's warm-up) may still try such kicks.
 """
 
 from __future__ import annotations
@@ -101,6 +110,11 @@ HFO_ACTION_PARAMETER_SIZES = (2, 1, 2)
 HFO_N_DISCRETE_ACTIONS = len(HFO_ACTION_PARAMETER_SIZES)
 #: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
 HFO_FLAT_ACTION_DIM = HFO_N_DISCRETE_ACTIONS + sum(HFO_ACTION_PARAMETER_SIZES)
+#: Index of KICK among HFO's discrete actions (DASH, TURN, KICK: the flat action's first three preferences).
+HFO_KICK_ACTION = 2
+#: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise).
+#: Source: HFO's LowLevelFeatureExtractor via the project contract (hfo2d.features owns the layout: KICKABLE).
+KICKABLE_FEATURE_INDEX = 12
 #: Who picks the discrete action when acting: the actor's largest preference (the paper) or the critic.
 DISCRETE_CHOICES: tuple[str, ...] = ("actor", "critic")
 
@@ -518,6 +532,9 @@ class HFOPolicy(BasePolicy):
     :param discrete_choice: who picks the discrete action when acting: ``"actor"`` (the paper: its largest
         preference) or ``"critic"`` (the best one-hot preference vector by the first critic, see module doc; needs
         the discrete layout: HFO's 8-dimensional action or ``mask_unused_parameters`` given as sizes).
+    :param kick_only_when_kickable: KICK is never the greedy choice while the ball is out of reach (observation
+        feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs HFO's 8-dimensional action and
+        low-level features. Can be switched on a trained model.
     :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
     :param optimizer_class: optimiser class for the critic and each skill (default Adam).
     :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
@@ -548,6 +565,7 @@ class HFOPolicy(BasePolicy):
         mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
         n_critics: int = 1,
         discrete_choice: str = "actor",
+        kick_only_when_kickable: bool = False,
         weight_init_std: float = WEIGHT_INIT_STD,
         optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
         optimizer_kwargs: dict[str, Any] | None = None,
@@ -596,6 +614,7 @@ class HFOPolicy(BasePolicy):
         self.mask_unused_parameters = mask_unused_parameters
         self.action_parameter_sizes = _parameter_sizes(mask_unused_parameters, self.action_dim)
         self.discrete_choice = discrete_choice  # validated by the property setter
+        self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
         self._router_checked = False
         self._build(lr_schedule)
 
@@ -692,6 +711,29 @@ class HFOPolicy(BasePolicy):
         self._discrete_choice = choice
 
     @property
+    def kick_only_when_kickable(self) -> bool:
+        """Whether KICK is left out of the greedy choice while the ball is out of reach (see module doc)."""
+        return self._kick_only_when_kickable
+
+    @kick_only_when_kickable.setter
+    def kick_only_when_kickable(self, value: bool) -> None:
+        if not isinstance(value, (bool, np.bool_)):
+            raise ValueError(f"kick_only_when_kickable must be a bool, got {value!r}")
+        if value and (self.action_dim != HFO_FLAT_ACTION_DIM or self.obs_dim <= KICKABLE_FEATURE_INDEX):
+            raise ValueError(
+                f"kick_only_when_kickable needs HFO's {HFO_FLAT_ACTION_DIM}-dimensional flat action and its "
+                f"low-level features (at least {KICKABLE_FEATURE_INDEX + 1}), got action dim {self.action_dim} and "
+                f"{self.obs_dim} features"
+            )
+        self._kick_only_when_kickable = bool(value)
+
+    def kick_unavailable(self, obs: th.Tensor) -> th.Tensor | None:
+        """``(B,)`` bool, True where KICK is left out (ball out of reach); ``None`` when the option is off."""
+        if not self._kick_only_when_kickable:
+            return None
+        return obs[:, KICKABLE_FEATURE_INDEX] < 0
+
+    @property
     def n_discrete_actions(self) -> int:
         """Number of discrete actions (leading preferences) of the action layout; 0 when unknown."""
         if self.action_parameter_sizes is not None:
@@ -707,7 +749,8 @@ class HFOPolicy(BasePolicy):
         :param actions: ``(B, action_dim)`` in [-1, 1].
         :param critics: critics to ask (default: the first critic); with several, the smallest value counts.
         :return: ``candidates (B, n, action_dim)``, ``actions`` with the preferences replaced by discrete action
-            ``k``'s one-hot vector (+1 / -1) in row ``k``, and their values ``(B, n)``.
+            ``k``'s one-hot vector (+1 / -1) in row ``k``, and their values ``(B, n)`` (``-inf`` for KICK where
+            :meth:`kick_unavailable`).
         """
         n_discrete = self.n_discrete_actions
         batch = actions.shape[0]
@@ -722,7 +765,11 @@ class HFOPolicy(BasePolicy):
             values = critic.forward(repeated_obs, seen)
             q_values = values if q_values is None else th.minimum(q_values, values)
         assert q_values is not None, "critics must not be empty"
-        return candidates, q_values.view(batch, n_discrete)
+        q_values = q_values.view(batch, n_discrete)
+        no_kick = self.kick_unavailable(obs)
+        if no_kick is not None:
+            q_values[:, HFO_KICK_ACTION].masked_fill_(no_kick, -th.inf)
+        return candidates, q_values
 
     def critic_choice(self, obs: th.Tensor, actions: th.Tensor) -> th.Tensor:
         """``actions (B, action_dim)`` in [-1, 1] with their preferences replaced by the one-hot vector (+1 / -1)
@@ -788,6 +835,7 @@ class HFOPolicy(BasePolicy):
                 mask_unused_parameters=self.mask_unused_parameters,
                 n_critics=self.n_critics,
                 discrete_choice=self.discrete_choice,
+                kick_only_when_kickable=self.kick_only_when_kickable,
                 weight_init_std=self.weight_init_std,
                 lr_schedule=self._dummy_schedule,
                 optimizer_class=self.optimizer_class,
@@ -818,7 +866,18 @@ class HFOPolicy(BasePolicy):
         action = self.actor.forward(obs, self.route(obs))  # not actor(...): no hooks to run, ~10 us per step
         if self.inverting_gradients:
             action = action.clamp(-1.0, 1.0)
-        return self.critic_choice(obs, action) if self._discrete_choice == "critic" else action
+        if self._discrete_choice == "critic":
+            return self.critic_choice(obs, action)
+        no_kick = self.kick_unavailable(obs)
+        if no_kick is not None:
+            preferences = action[:, :HFO_N_DISCRETE_ACTIONS]
+            replace = no_kick & (preferences.argmax(dim=1) == HFO_KICK_ACTION)
+            if replace.any():
+                best = preferences[:, :HFO_KICK_ACTION].argmax(dim=1)  # DASH or TURN
+                one_hot = 2.0 * nn.functional.one_hot(best, HFO_N_DISCRETE_ACTIONS).to(action.dtype) - 1.0
+                action = action.clone()
+                action[:, :HFO_N_DISCRETE_ACTIONS] = th.where(replace.unsqueeze(1), one_hot, preferences)
+        return action
 
     def set_training_mode(self, mode: bool) -> None:
         """Set the ``training`` flag of the policy, the actor and the critics (and all their submodules).
