@@ -507,6 +507,22 @@ def test_evaluate_unknown_env_id_lists_hfo_ids(trained_runs: tuple[Path, dict[st
     assert "Traceback" not in result.stderr
 
 
+COMMITTED_MODELS = sorted(path for path in (REPO / "models").iterdir() if path.is_dir())
+
+
+@pytest.mark.parametrize("model_dir", COMMITTED_MODELS, ids=lambda path: path.name)
+def test_committed_model_evaluates_on_a_fresh_clone(model_dir: Path) -> None:
+    """Each model under models/ is named ``<config>_seed<N>`` after a config of zoo_configs/, and evaluates on that
+    config's env from its folder alone (env id and settings read from the run files committed beside it)."""
+    from sb3_hfo.evaluate import evaluate
+
+    config_name, _, seed = model_dir.name.rpartition("_seed")
+    assert seed.isdigit() and (CONFIG_DIR / f"{config_name}.yml").is_file(), model_dir.name
+    env_id, _ = _load_config(CONFIG_DIR / f"{config_name}.yml")
+    result = evaluate(str(model_dir), episodes=2, seed=0)
+    assert result.env_id == env_id and result.episodes == 2
+
+
 def test_evaluate_missing_model_is_a_clear_error(tmp_path: Path) -> None:
     result = _run(
         ["-m", "sb3_hfo.evaluate", str(tmp_path / "nope.zip"), "--env", "HFO/EmptyGoal-v0"], cwd=tmp_path
