@@ -58,8 +58,8 @@ each discrete action by its own parameters (benchmarks/RESULTS.md, session 6).
 
 No kick without the ball (an option beyond the paper, off by default): rcssserver ignores a kick while the ball is
 out of the kickable area, so the state does not change and a deterministic policy that picks KICK there repeats
-it until HFO's 100-cycle limit (most of the OUT_OF_TIME episodes of the critic's-choice E1 agents,
-benchmarks/RESULTS.md, session 7). With ``kick_only_when_kickable=True`` KICK is never the greedy choice while the
+it until HFO's 100-cycle limit (9 of the 17 OUT_OF_TIME episodes in a 300-episode trace of a critic's-choice
+E1 agent, session 7). With ``kick_only_when_kickable=True`` KICK is never the greedy choice while the
 observation's "able to kick" feature (:data:`KICKABLE_FEATURE_INDEX`) is -1: the critic's choice and SkillDDPG's
 ``discrete_target="max"`` leave it out of their maximum, and the actor's choice falls to the larger of the DASH
 and TURN preferences (as a one-hot vector) where KICK was the largest. Invalid-action masking, as in
@@ -81,6 +81,8 @@ from stable_baselines3.common.type_aliases import PyTorchObs, Schedule
 from torch import nn
 from torch.nn import functional as F
 
+from hfo2d.features import KICKABLE
+from hfo2d.hfo_env import KICK
 from sb3_hfo.common.routers import SkillRouter, make_router, validate_skills
 
 __all__ = [
@@ -111,10 +113,10 @@ HFO_N_DISCRETE_ACTIONS = len(HFO_ACTION_PARAMETER_SIZES)
 #: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
 HFO_FLAT_ACTION_DIM = HFO_N_DISCRETE_ACTIONS + sum(HFO_ACTION_PARAMETER_SIZES)
 #: Index of KICK among HFO's discrete actions (DASH, TURN, KICK: the flat action's first three preferences).
-HFO_KICK_ACTION = 2
-#: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise).
-#: Source: HFO's LowLevelFeatureExtractor via the project contract (hfo2d.features owns the layout: KICKABLE).
-KICKABLE_FEATURE_INDEX = 12
+HFO_KICK_ACTION = KICK
+#: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise); hfo2d
+#: owns the layout (HFO's LowLevelFeatureExtractor).
+KICKABLE_FEATURE_INDEX = KICKABLE
 #: Who picks the discrete action when acting: the actor's largest preference (the paper) or the critic.
 DISCRETE_CHOICES: tuple[str, ...] = ("actor", "critic")
 
