@@ -514,3 +514,56 @@ def test_kick_only_when_kickable_errors_and_round_trip(tmp_path) -> None:
     )
     model.save(tmp_path / "m.zip")
     assert SkillDDPG.load(tmp_path / "m.zip").policy.kick_only_when_kickable is True
+
+
+# ----------------------------------------------------------------------------------------------------------
+# Fourier features of the directions for the critic (beyond the paper)
+
+
+def test_critic_direction_features_are_off_by_default_and_encode_each_direction() -> None:
+    assert make_policy(net_arch=[16, 8]).critic.action_layer.in_features == 16 + 8
+    policy = make_policy(net_arch=[16, 8], critic_direction_frequencies=[1, 4])
+    critic = policy.critic
+    assert policy.critic_direction_frequencies == (1.0, 4.0)
+    assert critic.action_layer.in_features == 16 + 8 + 2 * 3 * 2  # sin and cos, 3 directions, 2 frequencies
+    action = th.zeros(1, 8)
+    action[0, 4], action[0, 5], action[0, 7] = 0.5, -0.25, 1.0  # dash 90, turn -45, kick 180 degrees
+    seen = critic.encode_action(action)
+    th.testing.assert_close(seen[:, :8], action)
+    degrees = th.tensor([90.0, -45.0, 180.0, 4 * 90.0, 4 * -45.0, 4 * 180.0])
+    th.testing.assert_close(seen[0, 8:14], th.sin(th.deg2rad(degrees)), atol=1e-6, rtol=0)
+    th.testing.assert_close(seen[0, 14:], th.cos(th.deg2rad(degrees)), atol=1e-6, rtol=0)
+
+
+@pytest.mark.parametrize("critic_arch", [[16], [16, 8], [16, 8, 4]])
+def test_critic_action_gradient_through_direction_features_equals_autograd(critic_arch: list[int]) -> None:
+    policy = make_policy(net_arch=dict(pi=[8], qf=critic_arch), critic_direction_frequencies=[1, 2, 8, 32])
+    critic = policy.critic
+    obs = batch_obs(16)
+    action = th.empty(16, 8).uniform_(-1, 1, generator=th.Generator().manual_seed(1)).requires_grad_(True)
+    critic(obs, action).sum().backward()
+    q, inputs = critic.forward_for_backward(obs, action.detach())
+    th.testing.assert_close(q, critic(obs, action).detach())
+    th.testing.assert_close(critic.action_gradient(inputs), action.grad, atol=1e-6, rtol=1e-5)
+    assert action.grad is not None and action.grad[:, [4, 5, 7]].abs().min() > 0
+
+
+def test_critic_direction_frequencies_errors_and_round_trip(tmp_path) -> None:
+    for bad in ([0], [-1.0], [float("nan")], "1, 2", [True], 4):
+        with pytest.raises(ValueError, match="critic_direction_frequencies must be"):
+            make_policy(critic_direction_frequencies=bad)
+    with pytest.raises(ValueError, match="needs HFO's 8-dimensional flat action"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, critic_direction_frequencies=[1])
+    model = SkillDDPG(
+        "HFOPolicy",
+        HybridTargetEnv(),
+        policy_kwargs=dict(net_arch=[16], critic_direction_frequencies=[1, 16]),
+        seed=0,
+    )
+    obs = batch_obs(4)
+    action = th.rand(4, 8) * 2 - 1
+    model.save(tmp_path / "m.zip")
+    loaded = SkillDDPG.load(tmp_path / "m.zip")
+    assert loaded.policy.critic_direction_frequencies == (1.0, 16.0)
+    with th.no_grad():
+        th.testing.assert_close(loaded.policy.critic(obs, action), model.policy.critic(obs, action))

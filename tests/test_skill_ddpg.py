@@ -203,24 +203,28 @@ def reference_update(
         "mask",
         "n_critics",
         "discrete_target",
+        "direction_frequencies",
     ),
     [
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
-        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
-        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
-        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
-        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor"),
-        (1, False, False, th.nn.ReLU, 0.0, 0.0, False, 1, "actor"),
-        (2, False, False, th.nn.Tanh, 0.0, 0.0, False, 1, "actor"),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor"),
-        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor"),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True, 1, "actor"),
-        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "actor"),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 2, "actor"),
-        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3, "actor"),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max"),
-        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, False, 2, "max"),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 2, "max, no kick without the ball"),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
+        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
+        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
+        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
+        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
+        (1, False, False, th.nn.ReLU, 0.0, 0.0, False, 1, "actor", ()),
+        (2, False, False, th.nn.Tanh, 0.0, 0.0, False, 1, "actor", ()),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor", ()),
+        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor", ()),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True, 1, "actor", ()),
+        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "actor", ()),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 2, "actor", ()),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3, "actor", ()),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max", ()),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, False, 2, "max", ()),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 2, "max, no kick without the ball", ()),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max, no kick without the ball", (1, 8)),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.3, False, 2, "actor", (2, 32)),
+        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (1,)),
     ],
 )
 def test_update_equals_straightforward_reference(
@@ -233,6 +237,7 @@ def test_update_equals_straightforward_reference(
     mask: bool,
     n_critics: int,
     discrete_target: str,
+    direction_frequencies: tuple[float, ...],
 ) -> None:
     """Four updates (the first builds Adam's state, the next use the direct fused-kernel path) of the explicit
     forward / backward update against an autograd reference; skills interleaved in the batch, one of them absent
@@ -243,6 +248,7 @@ def test_update_equals_straightforward_reference(
         mask_unused_parameters=mask,
         n_critics=n_critics,
         kick_only_when_kickable=discrete_target.endswith("no kick without the ball"),
+        critic_direction_frequencies=direction_frequencies,
     )
     discrete_target = discrete_target.split(",")[0]
     if n_skills == 3:
@@ -281,7 +287,8 @@ def test_update_equals_straightforward_reference(
         ):
             state_ours, state_theirs = ours.state[param_ours], theirs.state[param_theirs]
             assert int(state_ours["step"]) == int(state_theirs["step"])
-            th.testing.assert_close(state_ours["exp_avg"], state_theirs["exp_avg"], atol=1e-7, rtol=1e-4)
+            # atol: the chain rule through direction features sums in another order than autograd (3e-7 seen).
+            th.testing.assert_close(state_ours["exp_avg"], state_theirs["exp_avg"], atol=1e-6, rtol=1e-4)
 
 
 class ThreeBandRouter(SkillRouter):

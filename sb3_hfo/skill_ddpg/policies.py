@@ -64,6 +64,15 @@ observation's "able to kick" feature (:data:`KICKABLE_FEATURE_INDEX`) is -1: the
 ``discrete_target="max"`` leave it out of their maximum, and the actor's choice falls to the larger of the DASH
 and TURN preferences (as a one-hot vector) where KICK was the largest. Invalid-action masking, as in
 sb3-contrib's MaskablePPO; exploration (epsilon-greedy, SB3's warm-up) may still try such kicks.
+
+Fourier features of the directions for the critic (an option beyond the paper, off by default): on the [-1, 1]
+scale a 5-degree change of the kick direction moves the critic's input by 0.028, and a static keeper blocks only
+a few degrees of the goal from a shot taken 30 m away; a session-8 trace of the static-keeper agent found its
+critic flat over +-12 degrees around the keeper, so the actor shot at it. With
+``critic_direction_frequencies=(k1, k2, ...)`` the critic also sees ``sin(k * theta)`` and ``cos(k * theta)`` of
+each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions of
+its input (Tancik et al. 2020), used on value networks by Yang et al. 2022. The actor is unchanged; dQ/da goes
+through the features by the chain rule.
 """
 
 from __future__ import annotations
@@ -112,6 +121,8 @@ HFO_ACTION_PARAMETER_SIZES = (2, 1, 2)
 HFO_N_DISCRETE_ACTIONS = len(HFO_ACTION_PARAMETER_SIZES)
 #: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
 HFO_FLAT_ACTION_DIM = HFO_N_DISCRETE_ACTIONS + sum(HFO_ACTION_PARAMETER_SIZES)
+# Where the three direction parameters (dash, turn, kick; [-1, 1] for [-180, 180] degrees) sit in the flat action.
+HFO_DIRECTION_PARAMETER_INDICES = (4, 5, 7)
 #: Index of KICK among HFO's discrete actions (DASH, TURN, KICK: the flat action's first three preferences).
 HFO_KICK_ACTION = KICK
 #: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise); hfo2d
@@ -150,6 +161,24 @@ def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[l
         ):
             raise ValueError(f"net_arch[{name!r}] must be a non-empty list of positive ints, got {arch!r}")
     return [int(n) for n in actor_arch], [int(n) for n in critic_arch]
+
+
+def _direction_frequencies(frequencies: Sequence[float], action_dim: int) -> tuple[float, ...]:
+    """Validated ``critic_direction_frequencies`` as a tuple of floats (YAML gives a list)."""
+    if isinstance(frequencies, (str, bytes)) or not isinstance(frequencies, Iterable):
+        raise ValueError(f"critic_direction_frequencies must be a sequence of numbers, got {frequencies!r}")
+    values = tuple(frequencies)
+    if not all(
+        isinstance(k, (int, float, np.integer, np.floating)) and not isinstance(k, bool) and np.isfinite(k) and k > 0
+        for k in values
+    ):
+        raise ValueError(f"critic_direction_frequencies must be finite numbers > 0, got {frequencies!r}")
+    if values and action_dim != HFO_FLAT_ACTION_DIM:
+        raise ValueError(
+            f"critic_direction_frequencies needs HFO's {HFO_FLAT_ACTION_DIM}-dimensional flat action (directions at "
+            f"{HFO_DIRECTION_PARAMETER_INDICES}), got action dim {action_dim}"
+        )
+    return tuple(float(k) for k in values)
 
 
 def _parameter_sizes(option: bool | tuple[int, ...] | list[int], action_dim: int) -> tuple[int, ...] | None:
@@ -419,6 +448,9 @@ class HFOCritic(nn.Module):
     :param net_arch: hidden layer sizes, e.g. ``[400, 300, 200]``.
     :param activation_fn: activation class after each hidden layer.
     :param weight_init_std: standard deviation of the truncated-normal weight initialisation.
+    :param direction_indices: action dimensions that are directions ([-1, 1] for [-180, 180] degrees) ...
+    :param direction_frequencies: ... and the frequencies ``k`` whose ``sin(k * theta)``, ``cos(k * theta)`` are
+        appended to the action the critic sees (:meth:`encode_action`; none by default).
     """
 
     def __init__(
@@ -428,11 +460,30 @@ class HFOCritic(nn.Module):
         net_arch: list[int],
         activation_fn: type[nn.Module] = nn.LeakyReLU,
         weight_init_std: float = WEIGHT_INIT_STD,
+        direction_indices: Sequence[int] = (),
+        direction_frequencies: Sequence[float] = (),
     ) -> None:
         super().__init__()
+        self.action_dim = action_dim
+        n_frequencies = len(direction_frequencies) if len(direction_indices) > 0 else 0
+        self.n_encoded = len(direction_indices) * n_frequencies
+        # Column c of the sin (and of the cos) block is direction_indices[c % n] at frequency c // n.
+        self.encoded_index: th.Tensor
+        self.encoded_scale: th.Tensor
+        self.register_buffer(
+            "encoded_index", th.tensor(list(direction_indices) * n_frequencies, dtype=th.long), persistent=False
+        )
+        self.register_buffer(
+            "encoded_scale",
+            th.tensor(
+                [np.pi * k for k in direction_frequencies for _ in direction_indices][: self.n_encoded],
+                dtype=th.float32,
+            ),
+            persistent=False,
+        )
         self.obs_net = nn.Sequential(nn.Linear(obs_dim, net_arch[0]), _make_activation(activation_fn))
         layers: list[nn.Module] = []
-        in_features = net_arch[0] + action_dim
+        in_features = net_arch[0] + action_dim + 2 * self.n_encoded
         for width in net_arch[1:]:
             layers += [nn.Linear(in_features, width), _make_activation(activation_fn)]
             in_features = width
@@ -452,21 +503,40 @@ class HFOCritic(nn.Module):
         assert isinstance(first, nn.Linear)
         return first
 
+    def encode_action(self, action: th.Tensor) -> th.Tensor:
+        """``action (B, action_dim)`` -> what the critic's second layer sees: ``(B, action_dim + 2 * n_encoded)``,
+        the action followed by the sines, then the cosines, of its directions at each frequency (no copy when
+        there are none)."""
+        if self.n_encoded == 0:
+            return action
+        angles = action.index_select(1, self.encoded_index) * self.encoded_scale.to(action.dtype)
+        return th.cat((action, th.sin(angles), th.cos(angles)), dim=1)
+
+    def _encoded_gradient_to_action(self, grad_seen: th.Tensor, seen: th.Tensor) -> th.Tensor:
+        """Chain rule through :meth:`encode_action`: ``grad_seen``, d/d(its output) ``(B, action_dim + 2 * n)``,
+        and that output ``seen`` -> d/d(action) ``(B, action_dim)``."""
+        if self.n_encoded == 0:
+            return grad_seen
+        dim, n = self.action_dim, self.n_encoded
+        sines, cosines = seen[:, dim : dim + n], seen[:, dim + n :]
+        grad_angles = (grad_seen[:, dim : dim + n] * cosines - grad_seen[:, dim + n :] * sines) * self.encoded_scale
+        return grad_seen[:, :dim].index_add(1, self.encoded_index, grad_angles)
+
     def forward(self, obs: th.Tensor, action: th.Tensor) -> th.Tensor:
         """``obs (B, obs_dim)``, ``action (B, action_dim)`` in the buffer scale -> ``Q (B, 1)``."""
-        return self.joint_net(th.cat((self.obs_net(obs), action), dim=1))
+        return self.joint_net(th.cat((self.obs_net(obs), self.encode_action(action)), dim=1))
 
     def forward_for_backward(self, obs: th.Tensor, action: th.Tensor) -> tuple[th.Tensor, list[th.Tensor]]:
         """:meth:`forward` (same numbers) keeping every layer's input for :meth:`output_gradients` /
         :meth:`action_gradient`.
 
-        :return: ``(Q (B, 1), layer_inputs)``: ``obs``, ``[obs features, action] (B, qf[0] + action_dim)``, then
-            each later hidden activation ``(B, qf[i])``.
+        :return: ``(Q (B, 1), layer_inputs)``: ``obs``, ``[obs features, encoded action]
+            (B, qf[0] + action_dim + 2 * n_encoded)``, then each later hidden activation ``(B, qf[i])``.
         """
         layers = self.layers
         weight, bias = layers[0]
         features = self.activation.forward(F.linear(obs, weight, bias))
-        inputs = [obs, th.cat((features, action), dim=1)]
+        inputs = [obs, th.cat((features, self.encode_action(action)), dim=1)]
         for weight, bias in layers[1:-1]:
             inputs.append(self.activation.forward(F.linear(inputs[-1], weight, bias)))
         weight, bias = layers[-1]
@@ -502,14 +572,15 @@ class HFOCritic(nn.Module):
         n_features = self.n_features
         # d(sum Q)/d(last layer's input) is the output layer's weight row, for every row of the batch.
         grad_input = layers[-1][0].expand(inputs[0].shape[0], -1)
-        if len(layers) == 2:  # qf = [n]: the action enters the output layer
-            return grad_input[:, n_features:]
-        for index in range(len(layers) - 2, 0, -1):
-            grad_z = self.activation.backward(grad_input, inputs[index + 1])
-            weight = layers[index][0]
-            # At the action layer only the action's columns: a (B, action_dim) product, not (B, qf[0] + action_dim).
-            grad_input = grad_z.mm(weight if index > 1 else weight[:, n_features:])
-        return grad_input
+        if len(layers) > 2:  # otherwise (qf = [n]) the action enters the output layer
+            for index in range(len(layers) - 2, 0, -1):
+                grad_z = self.activation.backward(grad_input, inputs[index + 1])
+                weight = layers[index][0]
+                # At the action layer only the action's columns: a (B, action_dim) product, not (B, qf[0] + ...).
+                grad_input = grad_z.mm(weight if index > 1 else weight[:, n_features:])
+        else:
+            grad_input = grad_input[:, n_features:]
+        return self._encoded_gradient_to_action(grad_input, inputs[1][:, n_features:])
 
 
 class HFOPolicy(BasePolicy):
@@ -537,6 +608,9 @@ class HFOPolicy(BasePolicy):
     :param kick_only_when_kickable: KICK is never the greedy choice while the ball is out of reach (observation
         feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs HFO's 8-dimensional action and
         low-level features. Can be switched on a trained model.
+    :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
+        ``cos(k * theta)`` of the dash, turn and kick directions that the critic sees besides the action (see
+        module doc); ``()`` (default, the paper): none. Needs HFO's 8-dimensional flat action.
     :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
     :param optimizer_class: optimiser class for the critic and each skill (default Adam).
     :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
@@ -568,6 +642,7 @@ class HFOPolicy(BasePolicy):
         n_critics: int = 1,
         discrete_choice: str = "actor",
         kick_only_when_kickable: bool = False,
+        critic_direction_frequencies: Sequence[float] = (),
         weight_init_std: float = WEIGHT_INIT_STD,
         optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
         optimizer_kwargs: dict[str, Any] | None = None,
@@ -617,6 +692,7 @@ class HFOPolicy(BasePolicy):
         self.action_parameter_sizes = _parameter_sizes(mask_unused_parameters, self.action_dim)
         self.discrete_choice = discrete_choice  # validated by the property setter
         self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
+        self.critic_direction_frequencies = _direction_frequencies(critic_direction_frequencies, self.action_dim)
         self._router_checked = False
         self._build(lr_schedule)
 
@@ -642,6 +718,8 @@ class HFOPolicy(BasePolicy):
             net_arch=self.critic_arch,
             activation_fn=self.activation_fn,
             weight_init_std=self.weight_init_std,
+            direction_indices=HFO_DIRECTION_PARAMETER_INDICES if self.critic_direction_frequencies else (),
+            direction_frequencies=self.critic_direction_frequencies,
         )
         self.actor = HFOActor(**actor_kwargs)  # type: ignore[arg-type]
         self.actor_target = HFOActor(**actor_kwargs)  # type: ignore[arg-type]
@@ -838,6 +916,7 @@ class HFOPolicy(BasePolicy):
                 n_critics=self.n_critics,
                 discrete_choice=self.discrete_choice,
                 kick_only_when_kickable=self.kick_only_when_kickable,
+                critic_direction_frequencies=self.critic_direction_frequencies,
                 weight_init_std=self.weight_init_std,
                 lr_schedule=self._dummy_schedule,
                 optimizer_class=self.optimizer_class,
