@@ -102,3 +102,47 @@ def test_weight_layout_times_both_layouts_of_every_shape() -> None:
     lines = completed.stdout.splitlines()
     assert len(lines) == 7 and all("transposed: forward" in line for line in lines[:6])
     assert lines[-1].startswith("sum of the three products")
+
+
+def test_critic_kick_scan_reports_both_outcomes_and_writes_a_png(tmp_path: Path) -> None:
+    out = tmp_path / "scan.png"
+    model = REPO / "models" / "x3_static_keeper_critic_choice_fast_seed0" / "HFO-StaticKeeper-v0.zip"
+    command = [sys.executable, str(REPO / "benchmarks" / "critic_kick_scan.py"), str(model), "--labels", "x3"]
+    command += ["--episodes", "8", "--out", str(out)]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = {line.split()[0]: line.split() for line in completed.stdout.splitlines() if line.startswith("  ")}
+    assert {"GOAL", "CAPTURED_BY_DEFENSE"} <= set(rows)
+    assert sum(int(rows[outcome][1]) for outcome in ("GOAL", "CAPTURED_BY_DEFENSE")) <= 8
+    assert out.stat().st_size > 10_000
+
+
+def test_critic_kick_scan_asks_the_critic_at_goalie_bearing_plus_offset() -> None:
+    import gymnasium as gym
+    import numpy as np
+    import torch as th
+
+    from sb3_hfo import SkillDDPG
+
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        import critic_kick_scan as scan
+    finally:
+        sys.path.pop(0)
+    model = SkillDDPG("HFOPolicy", gym.make("HFO/StaticKeeper-v0"), policy_kwargs=dict(net_arch=[8]), seed=0)
+    seen: list[th.Tensor] = []
+    original = model.policy.critic.forward
+
+    def recording_forward(obs: th.Tensor, action: th.Tensor) -> th.Tensor:
+        seen.append(action.clone())
+        return original(obs, action)
+
+    model.policy.critic.forward = recording_forward  # type: ignore[method-assign]
+    obs = np.zeros(66, dtype=np.float32)
+    obs[scan.GOALIE_BEARING_SIN], obs[scan.GOALIE_BEARING_COS] = np.sin(np.radians(170)), np.cos(np.radians(170))
+    profile, _ = scan.scan_shot(model, obs)
+    (kicks,) = seen
+    assert profile.shape == scan.OFFSETS_DEG.shape and profile.max() == 0.0
+    assert th.equal(kicks[:, :3], th.tensor([[-1.0, -1.0, 1.0]]).expand(len(kicks), 3))
+    expected = (170 + scan.OFFSETS_DEG + 180) % 360 - 180  # wraps past +180 degrees
+    np.testing.assert_allclose(kicks[:, scan.KICK_DIRECTION_INDEX].numpy() * 180, expected, atol=1e-4)
