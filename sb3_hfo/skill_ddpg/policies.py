@@ -67,8 +67,9 @@ sb3-contrib's MaskablePPO; exploration (epsilon-greedy, SB3's warm-up) may still
 
 Fourier features of the directions for the critic (an option beyond the paper, off by default): on the [-1, 1]
 scale a 5-degree change of the kick direction moves the critic's input by 0.028, and a static keeper blocks only
-a few degrees of the goal from a shot taken 30 m away; a session-8 trace of the static-keeper agent found its
-critic flat over +-12 degrees around the keeper, so the actor shot at it. With
+a few degrees of the goal from a shot taken 30 m away. On the shots that x3's static-keeper agent had caught, its
+critic valued kicking 0-5 degrees from the keeper's bearing highest, changing by less than 0.3 over +-10 degrees
+(``benchmarks/critic_kick_scan.py``, session 8), so the actor shot at the keeper. With
 ``critic_direction_frequencies=(k1, k2, ...)`` the critic also sees ``sin(k * theta)`` and ``cos(k * theta)`` of
 each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions of
 its input (Tancik et al. 2020), used on value networks by Yang et al. 2022. The actor is unchanged; dQ/da goes
