@@ -24,11 +24,14 @@ import numpy as np
 import torch as th
 
 import hfo2d  # noqa: F401  (registers the HFO/* environments)
+from hfo2d.features import feature_names
 from hfo2d.hfo_env import KICK
 from sb3_hfo import SkillDDPG
+from sb3_hfo.skill_ddpg.policies import HFO_DIRECTION_PARAMETER_INDICES
 
-GOALIE_BEARING_SIN, GOALIE_BEARING_COS = 58, 59  # hfo2d's 66-feature vector (hfo_env docstring)
-KICK_POWER_INDEX, KICK_DIRECTION_INDEX = 6, 7  # flat action: [3 preferences, dash p/d, turn d, kick p/d]
+_FEATURES = feature_names(num_opponents=1)
+GOALIE_BEARING_SIN, GOALIE_BEARING_COS = _FEATURES.index("goalie_angle_sin"), _FEATURES.index("goalie_angle_cos")
+KICK_DIRECTION_INDEX = HFO_DIRECTION_PARAMETER_INDICES[KICK]  # dash, turn, kick directions in the flat action
 OFFSETS_DEG = np.arange(-30, 31, 1)
 OUTCOMES = ("GOAL", "CAPTURED_BY_DEFENSE")
 
