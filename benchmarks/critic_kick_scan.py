@@ -30,7 +30,10 @@ from sb3_hfo import SkillDDPG
 from sb3_hfo.skill_ddpg.policies import HFO_DIRECTION_PARAMETER_INDICES
 
 _FEATURES = feature_names(num_opponents=1)
-GOALIE_BEARING_SIN, GOALIE_BEARING_COS = _FEATURES.index("goalie_angle_sin"), _FEATURES.index("goalie_angle_cos")
+GOALIE_BEARING_SIN, GOALIE_BEARING_COS = (
+    _FEATURES.index("goalie_angle_sin"),
+    _FEATURES.index("goalie_angle_cos"),
+)
 KICK_DIRECTION_INDEX = HFO_DIRECTION_PARAMETER_INDICES[KICK]  # dash, turn, kick directions in the flat action
 OFFSETS_DEG = np.arange(-30, 31, 1)
 OUTCOMES = ("GOAL", "CAPTURED_BY_DEFENSE")
@@ -92,7 +95,10 @@ def collect(model_path: str, env_id: str, episodes: int, seed: int) -> Shots:
 def report(label: str, shots: Shots) -> None:
     shown = OFFSETS_DEG[::5]
     print(f"\n{label}")
-    print("  outcome               shots  |actor offset| median  mean Q - max Q at offset " + " ".join(f"{d:+d}" for d in shown))
+    print(
+        "  outcome               shots  |actor offset| median  mean Q - max Q at offset "
+        + " ".join(f"{d:+d}" for d in shown)
+    )
     for outcome in OUTCOMES:
         profiles, offsets = shots.profiles[outcome], np.abs(shots.actor_offsets[outcome])
         if not profiles:
@@ -113,18 +119,31 @@ def plot(results: list[tuple[str, Shots]], out: Path) -> None:
 
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4))
     bins = np.arange(-30, 31, 2.5)
-    for (label, shots), color in zip(results, ("tab:blue", "tab:orange", "tab:green", "tab:red"), strict=False):
+    for (label, shots), color in zip(
+        results, ("tab:blue", "tab:orange", "tab:green", "tab:red"), strict=False
+    ):
         for outcome, style in zip(OUTCOMES, ("-", "--"), strict=True):
             if shots.profiles[outcome]:
                 name = f"{label}, {outcome.lower().replace('_', ' ')} ({len(shots.profiles[outcome])})"
-                left.plot(OFFSETS_DEG, np.mean(shots.profiles[outcome], axis=0), style, color=color, label=name)
-                right.hist(
-                    np.clip(shots.actor_offsets[outcome], -30, 30), bins=bins, histtype="step",
-                    linestyle=style, color=color, label=name,
+                left.plot(
+                    OFFSETS_DEG, np.mean(shots.profiles[outcome], axis=0), style, color=color, label=name
                 )
-    left.set(xlabel="kick direction - goalie bearing (deg)", ylabel="critic: Q - max over offsets",
-             title="critic's value of the shot by direction")
-    right.set(xlabel="actor's kick direction - goalie bearing (deg)", ylabel="shots", title="where the actor aims")
+                right.hist(
+                    np.clip(shots.actor_offsets[outcome], -30, 30),
+                    bins=bins,
+                    histtype="step",
+                    linestyle=style,
+                    color=color,
+                    label=name,
+                )
+    left.set(
+        xlabel="kick direction - goalie bearing (deg)",
+        ylabel="critic: Q - max over offsets",
+        title="critic's value of the shot by direction",
+    )
+    right.set(
+        xlabel="actor's kick direction - goalie bearing (deg)", ylabel="shots", title="where the actor aims"
+    )
     left.legend(fontsize=7)
     right.legend(fontsize=7)
     fig.tight_layout()
@@ -145,7 +164,10 @@ def main() -> None:
     labels = args.labels or [Path(m).parent.name for m in args.models]
     if len(labels) != len(args.models):
         parser.error(f"--labels: {len(labels)} labels for {len(args.models)} models")
-    results = [(label, collect(m, args.env, args.episodes, args.seed)) for label, m in zip(labels, args.models, strict=True)]
+    results = [
+        (label, collect(m, args.env, args.episodes, args.seed))
+        for label, m in zip(labels, args.models, strict=True)
+    ]
     for label, shots in results:
         report(label, shots)
     if args.out is not None:

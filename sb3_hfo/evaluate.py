@@ -17,6 +17,10 @@ Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" an
   executed kicks (rcssserver power units, [0, 100]);
 * ``dribble_fraction``: fraction of all steps in which the ball is kickable (``info["kickable"]``) while the
   player moves faster than :data:`DRIBBLE_MIN_SPEED` (speed from ``info["player"]`` vx, vy);
+* ``mean_shot_distance``: mean distance (m) from the ball to the goal centre (52.5, 0) just before each
+  episode's last executed kick (episodes with at least one kick), and ``shots_by_distance``: those episodes
+  binned by that distance (edges :data:`SHOT_DISTANCE_EDGES`) with their goals - whether misses come from long
+  shots, where ball_rand's drift spreads the ball most;
 * ``skill_fractions``: fraction of steps each skill acted, for models with more than one skill;
 * ``out_of_bounds_exits``: OUT_OF_BOUNDS episodes by the line the ball left the HFO half over (from its final
   ``info["ball"]`` position): ``goal_line`` (x > 52.5: a shot wide of the posts), ``side_line`` (|y| > 34) or
@@ -44,6 +48,11 @@ from typing import Any
 #: excludes standing at the ball and slow turning while keeping any purposeful run with the ball.
 DRIBBLE_MIN_SPEED = 0.2
 
+#: Bin edges (m from the goal centre) of ``shots_by_distance``. A 2.8 m/cycle shot drifts sideways under ball_rand
+#: 0.05 by ~0.7 m (std) over 20 m, ~1.3 m over 30 m and ~2.1 m over 40 m (session-9 Monte Carlo of the server's
+#: ball noise), against a 7.01 m goal half-width and a 1.085 m keeper capture radius.
+SHOT_DISTANCE_EDGES: tuple[float, ...] = (20.0, 30.0, 40.0)
+
 #: Two-sided 95% standard normal quantile, for the Wilson score interval.
 Z_95 = 1.959963984540054
 
@@ -52,6 +61,7 @@ OUT_OF_BOUNDS_STATUS = "OUT_OF_BOUNDS"
 #: The HFO half the ball must stay in (hfo_reference §1, ``HFORef::inHFOArea``): x in [0, 52.5], |y| <= 34 (m).
 PITCH_HALF_LENGTH = 52.5
 PITCH_HALF_WIDTH = 34.0
+GOAL_CENTRE = (PITCH_HALF_LENGTH, 0.0)
 EXIT_LINES: tuple[str, ...] = ("goal_line", "side_line", "halfway_line")
 #: Env kwargs of a training run that evaluation leaves out (they change the start state, not the task).
 TRAINING_ONLY_ENV_KWARGS: tuple[str, ...] = ("random_start_fraction",)
@@ -107,6 +117,7 @@ class EpisodeRecord:
     exit: str | None = None  # OUT_OF_BOUNDS episodes: exit_line() of the ball's final position
     start_ball: tuple[float, float] | None = None  # (x, y) m at reset, from info["ball"]
     start_player: tuple[float, float] | None = None  # (x, y) m at reset, from info["player"]
+    shot_distance: float | None = None  # m from the goal centre to the ball before the last executed kick
 
 
 @dataclass
@@ -136,6 +147,31 @@ class EvaluationResult:
     env_kwargs: dict[str, Any] = field(default_factory=dict)
     discrete_choice: str = "actor"
     kick_only_when_kickable: bool = False
+    mean_shot_distance: float | None = None
+    shots_by_distance: dict[str, dict[str, int]] = field(default_factory=dict)
+
+
+def shot_distance_labels() -> list[str]:
+    """Names of the ``shots_by_distance`` bins, nearest first: "0-20 m", ..., ">= 40 m"."""
+    lowers = (0.0, *SHOT_DISTANCE_EDGES[:-1])
+    labels = [f"{low:g}-{high:g} m" for low, high in zip(lowers, SHOT_DISTANCE_EDGES, strict=True)]
+    return [*labels, f">= {SHOT_DISTANCE_EDGES[-1]:g} m"]
+
+
+def shot_distance_label(distance: float) -> str:
+    """The ``shots_by_distance`` bin of a shot taken ``distance`` m from the goal centre."""
+    below = sum(distance >= edge for edge in SHOT_DISTANCE_EDGES)
+    return shot_distance_labels()[below]
+
+
+def _shots_by_distance(records: Sequence[EpisodeRecord]) -> dict[str, dict[str, int]]:
+    bins = {label: {"episodes": 0, "goals": 0} for label in shot_distance_labels()}
+    for record in records:
+        if record.shot_distance is not None:
+            counts = bins[shot_distance_label(record.shot_distance)]
+            counts["episodes"] += 1
+            counts["goals"] += record.status == GOAL_STATUS
+    return bins
 
 
 def summarize(
@@ -157,6 +193,7 @@ def summarize(
     total_steps = sum(r.steps for r in records)
     kick_powers = [power for r in records for power in r.kick_powers]
     skill_totals = [sum(r.skill_steps[k] for r in records) for k in range(n_skills)]
+    shot_distances = [r.shot_distance for r in records if r.shot_distance is not None]
     return EvaluationResult(
         model=model,
         env_id=env_id,
@@ -184,6 +221,8 @@ def summarize(
         env_kwargs=dict(env_kwargs or {}),
         discrete_choice=discrete_choice,
         kick_only_when_kickable=kick_only_when_kickable,
+        mean_shot_distance=sum(shot_distances) / len(shot_distances) if shot_distances else None,
+        shots_by_distance=_shots_by_distance(records),
     )
 
 
@@ -314,6 +353,7 @@ def run_episodes(
         steps = kicks = dribble_steps = 0
         reward_sum = 0.0
         kick_powers: list[float] = []
+        shot_distance: float | None = None
         skill_steps = [0] * n_skills
         status = "IN_GAME"
         done = False
@@ -321,6 +361,7 @@ def run_episodes(
             if n_skills > 1:
                 skill_steps[skill_index(model, obs)] += 1
             action, _ = model.predict(obs, deterministic=deterministic)
+            ball_before = info.get("ball")
             obs, reward, terminated, truncated, info = env.step(action)
             steps += 1
             reward_sum += float(reward)
@@ -328,6 +369,8 @@ def run_episodes(
             if info.get("action") == "KICK" and info.get("action_success"):
                 kicks += 1
                 kick_powers.append(float(info.get("kick_power", 0.0)))
+                if ball_before is not None:
+                    shot_distance = math.dist(GOAL_CENTRE, (ball_before[0], ball_before[1]))
             player = info.get("player")
             if info.get("kickable") and player is not None:
                 speed = float(np.hypot(player[2], player[3]))
@@ -348,6 +391,7 @@ def run_episodes(
                 exit,
                 start_ball,
                 start_player,
+                shot_distance,
             )
         )
         obs, info = env.reset()
@@ -468,6 +512,10 @@ def print_table(result: EvaluationResult) -> None:
     table.add_row(
         f"dribble fraction (speed > {result.dribble_min_speed} m/cycle)", _format(result.dribble_fraction)
     )
+    table.add_row("mean shot distance (m, last kick)", _format(result.mean_shot_distance, 1))
+    for label, counts in result.shots_by_distance.items():
+        if counts["episodes"]:
+            table.add_row(f"  goals / last kicks from {label}", f"{counts['goals']} / {counts['episodes']}")
     if result.skill_fractions is not None:
         for k, fraction in enumerate(result.skill_fractions):
             table.add_row(f"steps with skill {k}", _format(fraction))

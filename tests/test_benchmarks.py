@@ -139,7 +139,10 @@ def test_critic_kick_scan_asks_the_critic_at_goalie_bearing_plus_offset() -> Non
 
     model.policy.critic.forward = recording_forward  # type: ignore[method-assign]
     obs = np.zeros(66, dtype=np.float32)
-    obs[scan.GOALIE_BEARING_SIN], obs[scan.GOALIE_BEARING_COS] = np.sin(np.radians(170)), np.cos(np.radians(170))
+    obs[scan.GOALIE_BEARING_SIN], obs[scan.GOALIE_BEARING_COS] = (
+        np.sin(np.radians(170)),
+        np.cos(np.radians(170)),
+    )
     profile, _ = scan.scan_shot(model, obs)
     (kicks,) = seen
     assert profile.shape == scan.OFFSETS_DEG.shape and profile.max() == 0.0

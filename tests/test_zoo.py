@@ -215,6 +215,57 @@ def test_summarize_counts_goals_kicks_and_skills() -> None:
     assert result.dribble_fraction == pytest.approx(15 / 250)
     assert result.skill_fractions == pytest.approx([210 / 250, 40 / 250])
     assert result.status_counts == {"GOAL": 2, "OUT_OF_BOUNDS": 1}
+    assert result.mean_shot_distance is None  # no record says where its last kick was taken
+    assert all(counts == {"episodes": 0, "goals": 0} for counts in result.shots_by_distance.values())
+
+
+def test_summarize_bins_last_kicks_by_distance_to_goal() -> None:
+    from sb3_hfo.evaluate import EpisodeRecord, shot_distance_label, summarize
+
+    def record(status: str, shot_distance: float | None) -> EpisodeRecord:
+        return EpisodeRecord(status, 10, 0.0, 1, [100.0], 0, [10], shot_distance=shot_distance)
+
+    records = [
+        record("GOAL", 12.0),
+        record("GOAL", 25.0),
+        record("CAPTURED_BY_DEFENSE", 28.0),
+        record("OUT_OF_BOUNDS", 45.0),
+        record("GOAL", 45.0),
+        record("OUT_OF_TIME", None),  # never kicked: in no bin and not in the mean
+    ]
+    result = summarize(
+        records, model="m", env_id="HFO/StaticKeeper-v0", seed=0, deterministic=True, n_skills=1
+    )
+    assert result.mean_shot_distance == pytest.approx((12 + 25 + 28 + 45 + 45) / 5)
+    assert result.shots_by_distance == {
+        "0-20 m": {"episodes": 1, "goals": 1},
+        "20-30 m": {"episodes": 2, "goals": 1},
+        "30-40 m": {"episodes": 0, "goals": 0},
+        ">= 40 m": {"episodes": 2, "goals": 1},
+    }
+    assert shot_distance_label(20.0) == "20-30 m" and shot_distance_label(39.99) == "30-40 m"
+
+
+def test_evaluation_measures_the_shot_from_where_the_ball_was_kicked() -> None:
+    import gymnasium as gym
+
+    from sb3_hfo.evaluate import run_episodes, summarize
+
+    class PlacedStart(gym.Wrapper):  # facing the goal centre, ball 0.5 m ahead: 22 m out
+        def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
+            return self.env.reset(seed=seed, options={"player": (30.0, 0.0, 0.0), "ball": (30.5, 0.0)})
+
+    class KickStraightAhead:
+        def predict(self, obs: np.ndarray, deterministic: bool = False) -> tuple[np.ndarray, None]:
+            return np.array([0, 0, 1, 0, 0.5, 0.5, 1.0, 0.5], dtype=np.float32), None
+
+    env = PlacedStart(gym.make("HFO/EmptyGoal-v0"))
+    records = run_episodes(KickStraightAhead(), env, episodes=3, seed=0, deterministic=True, n_skills=1)
+    assert [r.kicks for r in records] == [1, 1, 1]  # later KICKs miss the ball that has left
+    assert [r.shot_distance for r in records] == pytest.approx([22.0] * 3)
+    result = summarize(records, model="m", env_id="HFO/EmptyGoal-v0", seed=0, deterministic=True, n_skills=1)
+    assert result.shots_by_distance["20-30 m"]["episodes"] == 3
+    assert result.shots_by_distance["20-30 m"]["goals"] == result.goals
 
 
 @pytest.mark.parametrize(

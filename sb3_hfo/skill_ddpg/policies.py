@@ -170,7 +170,10 @@ def _direction_frequencies(frequencies: Sequence[float], action_dim: int) -> tup
         raise ValueError(f"critic_direction_frequencies must be a sequence of numbers, got {frequencies!r}")
     values = tuple(frequencies)
     if not all(
-        isinstance(k, (int, float, np.integer, np.floating)) and not isinstance(k, bool) and np.isfinite(k) and k > 0
+        isinstance(k, (int, float, np.integer, np.floating))
+        and not isinstance(k, bool)
+        and np.isfinite(k)
+        and k > 0
         for k in values
     ):
         raise ValueError(f"critic_direction_frequencies must be finite numbers > 0, got {frequencies!r}")
@@ -472,7 +475,9 @@ class HFOCritic(nn.Module):
         self.encoded_index: th.Tensor
         self.encoded_scale: th.Tensor
         self.register_buffer(
-            "encoded_index", th.tensor(list(direction_indices) * n_frequencies, dtype=th.long), persistent=False
+            "encoded_index",
+            th.tensor(list(direction_indices) * n_frequencies, dtype=th.long),
+            persistent=False,
         )
         self.register_buffer(
             "encoded_scale",
@@ -520,7 +525,9 @@ class HFOCritic(nn.Module):
             return grad_seen
         dim, n = self.action_dim, self.n_encoded
         sines, cosines = seen[:, dim : dim + n], seen[:, dim + n :]
-        grad_angles = (grad_seen[:, dim : dim + n] * cosines - grad_seen[:, dim + n :] * sines) * self.encoded_scale
+        grad_angles = (
+            grad_seen[:, dim : dim + n] * cosines - grad_seen[:, dim + n :] * sines
+        ) * self.encoded_scale
         return grad_seen[:, :dim].index_add(1, self.encoded_index, grad_angles)
 
     def forward(self, obs: th.Tensor, action: th.Tensor) -> th.Tensor:
@@ -693,7 +700,9 @@ class HFOPolicy(BasePolicy):
         self.action_parameter_sizes = _parameter_sizes(mask_unused_parameters, self.action_dim)
         self.discrete_choice = discrete_choice  # validated by the property setter
         self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
-        self.critic_direction_frequencies = _direction_frequencies(critic_direction_frequencies, self.action_dim)
+        self.critic_direction_frequencies = _direction_frequencies(
+            critic_direction_frequencies, self.action_dim
+        )
         self._router_checked = False
         self._build(lr_schedule)
 
