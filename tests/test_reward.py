@@ -1,4 +1,4 @@
-"""Hausknecht & Stone's shaped reward (DQNHFO computation) and the sparse reward."""
+"""Hausknecht & Stone's shaped reward (DQNHFO computation), its goalie-gap variant and the sparse reward."""
 
 from __future__ import annotations
 
@@ -9,7 +9,14 @@ import pytest
 
 from hfo2d import features as F
 from hfo2d.hfo_env import HFOEnv
-from hfo2d.reward import ShapedReward, SparseReward, ball_to_goal_distance, make_reward
+from hfo2d.reward import (
+    GapShapedReward,
+    ShapedReward,
+    SparseReward,
+    ball_to_gap_distance,
+    ball_to_goal_distance,
+    make_reward,
+)
 
 MAX_DIST = math.hypot(52.5, 34.0)
 DASH_AHEAD = np.array([1, 0, 0, 1.0, 0.5, 0.5, 0, 0.5], dtype=np.float32)  # power 100, direction 0
@@ -44,6 +51,55 @@ def test_ball_to_goal_distance_matches_geometry_in_feature_units() -> None:
     assert ball_to_goal_distance(obs.astype(np.float64)) == pytest.approx(
         2.0 * true_metres / MAX_DIST, abs=1e-5
     )
+
+
+@pytest.mark.parametrize(
+    ("player", "ball", "keeper_y", "target_y"),
+    [
+        # keeper at the centre: equal gaps, the target is the middle of the gap on the ball's side
+        ((20.0, -5.0, 37.0), (30.0, 12.0), 0.0, 3.505),
+        ((40.0, 10.0, -120.0), (45.0, -3.0), 0.0, -3.505),
+        # keeper moved toward the top post (y < 0): the wider gap is the bottom one, whatever side the ball is on
+        ((30.0, 0.0, 90.0), (44.0, -9.0), -3.0, 2.005),
+        # keeper beyond the bottom post: clipped to it, the whole mouth is the gap
+        ((30.0, 0.0, 0.0), (40.0, 1.0), 9.0, 0.0),
+    ],
+)
+def test_ball_to_gap_distance_matches_geometry(
+    player: tuple[float, float, float], ball: tuple[float, float], keeper_y: float, target_y: float
+) -> None:
+    env = HFOEnv(task="static_keeper", reward="shaped_gap")
+    obs, _ = env.reset(seed=0, options={"player": player, "ball": ball, "keeper": (52.5, keeper_y, 180.0)})
+    true_metres = math.hypot(52.5 - ball[0], target_y - ball[1])
+    assert ball_to_gap_distance(obs.astype(np.float64)) == pytest.approx(
+        2.0 * true_metres / MAX_DIST, abs=1e-4
+    )
+
+
+def test_gap_reward_equals_the_shaped_reward_without_a_goalie() -> None:
+    env = HFOEnv(reward="shaped_gap")
+    obs, _ = env.reset(seed=0, options={"player": (20.0, -5.0, 37.0), "ball": (30.0, 12.0)})
+    assert ball_to_gap_distance(obs) == pytest.approx(ball_to_goal_distance(obs), abs=1e-6)
+    assert isinstance(make_reward("shaped_gap"), GapShapedReward)
+
+
+def test_gap_reward_pays_for_a_shot_past_the_keeper_not_at_him() -> None:
+    # The same 2 m/cycle shot from 15 m, once at the keeper and once at the gap's middle: the goal-centre reward
+    # pays more for the first, the gap reward for the second.
+    def second_step_progress(reward: str, ball_velocity: tuple[float, float]) -> float:
+        env = HFOEnv(task="static_keeper", reward=reward, noise=False)
+        env.reset(seed=0, options={"player": (20.0, 20.0, 0.0), "ball": (37.5, 0.0, *ball_velocity)})
+        env.step(TURN_NONE)
+        _, _, terminated, _, info = env.step(TURN_NONE)
+        assert not terminated
+        return info["reward_terms"]["ball_to_goal"]
+
+    speed = 2.0
+    at_keeper = (speed, 0.0)
+    angle = math.atan2(3.505, 15.0)
+    at_gap = (speed * math.cos(angle), speed * math.sin(angle))
+    assert second_step_progress("shaped", at_keeper) > second_step_progress("shaped", at_gap)
+    assert second_step_progress("shaped_gap", at_gap) > second_step_progress("shaped_gap", at_keeper)
 
 
 def test_first_step_deltas_are_zero_then_move_to_ball_is_the_proximity_rise() -> None:
@@ -107,7 +163,7 @@ def shot_at_goal_env(reward: str) -> HFOEnv:
     return env
 
 
-@pytest.mark.parametrize(("reward_name", "goal_reward"), [("shaped", 5.0), ("sparse", 1.0)])
+@pytest.mark.parametrize(("reward_name", "goal_reward"), [("shaped", 5.0), ("shaped_gap", 5.0), ("sparse", 1.0)])
 def test_goal_step_reward_in_env(reward_name: str, goal_reward: float) -> None:
     env = shot_at_goal_env(reward_name)
     _, first, terminated, _, info = env.step(TURN_NONE)  # ball reaches x = 52.0, still in play

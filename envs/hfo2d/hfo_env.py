@@ -144,7 +144,9 @@ class HFOEnv(gym.Env):
     Reward (``reward``):
         ``"shaped"`` (default): Hausknecht & Stone's, computed as DQNHFO does from the features (see
         :mod:`hfo2d.reward`): Δ ball proximity + 1 on the first kickable step + 3 × ball-to-goal progress + 5 on a
-        goal, deltas zero on the first and last step of an episode. ``"sparse"``: 1 for a goal, else 0.
+        goal, deltas zero on the first and last step of an episode. ``"shaped_gap"`` (not HFO's): the same with the
+        ball's progress measured toward the middle of the wider goalie-post gap (the goal centre without a goalie).
+        ``"sparse"``: 1 for a goal, else 0.
         ``info["reward_terms"]`` holds each term.
 
     Episode end (HFO's referee, checked after each cycle in this order):
@@ -176,7 +178,7 @@ class HFOEnv(gym.Env):
         task: one of TASKS.
         render_mode: None, "human" (pygame window, drawn every step) or "rgb_array".
         action_format: "flat" or "parameterized".
-        reward: "shaped" or "sparse".
+        reward: "shaped", "shaped_gap" or "sparse".
         noise: False turns off player, ball and kick noise (HFO's --deterministic).
         server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}``.
         keeper_skill: goalie quality for task "keeper", in [0, 1].

@@ -22,6 +22,14 @@ the server's "player on ball"; with a single offense player this changes the rew
 player on ball, and that ends the episode at once (CAPTURED_BY_DEFENSE), so the extra machinery would buy nothing.
 The Oct-2015 quirk of computing deltas from the state before the action (lagging one step) is not reproduced.
 
+Shaped toward the gap (``"shaped_gap"``; not HFO's, an option of this package): the shaped reward with
+``ball_to_goal`` measured to the middle of the wider gap between the goalie and a goal post instead of to the goal
+centre, i.e. 3.5 m beside a goalie standing at the centre, on the ball's side when the gaps are equal (within
+``GAP_TIE_TOLERANCE``). Without a goalie (or with its slot empty) it equals ``"shaped"``. Why: the goal-centre term
+pays for moving the ball straight at a goalie on the goal line, and agents trained with it against the static
+keeper shoot at him from close range (benchmarks/RESULTS.md, sessions 8-9). The target is computed from the
+features alone (goal centre, posts, ball and goalie landmarks, all in the agent's body frame).
+
 Sparse: 1 on GOAL, else 0 (gym-soccer's Soccer-v0, hfo_reference §6.3).
 """
 
@@ -38,10 +46,21 @@ from hfo2d.features import (
     GOAL_CENTER_COS,
     GOAL_CENTER_PROXIMITY,
     GOAL_CENTER_SIN,
+    GOAL_HALF_WIDTH,
+    GOAL_POST_BOTTOM_COS,
+    GOAL_POST_BOTTOM_PROXIMITY,
+    GOAL_POST_BOTTOM_SIN,
+    GOAL_POST_TOP_COS,
+    GOAL_POST_TOP_PROXIMITY,
+    GOAL_POST_TOP_SIN,
+    GOALIE_ANGLE_COS,
+    GOALIE_ANGLE_SIN,
+    GOALIE_PROXIMITY,
     KICKABLE,
+    MAX_HFO_DIST,
 )
 
-REWARD_NAMES: tuple[str, ...] = ("shaped", "sparse")
+REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "sparse")
 STATUS_IN_GAME = "IN_GAME"
 STATUS_GOAL = "GOAL"
 
@@ -50,6 +69,9 @@ KICK_BONUS = 1.0  # first time kickable in an episode
 BALL_TO_GOAL_WEIGHT = 3.0  # outweighs the negative move-to-ball term once the kicked ball runs away
 KICKABLE_JUMP = 1.0  # DQNHFO awards the bonus when the kickable feature rises by at least this much
 SPARSE_GOAL_REWARD = 1.0
+GAP_TIE_TOLERANCE = (
+    0.5  # m; gaps closer than this in width count as equal and the ball's side picks the target
+)
 
 REWARD_TERM_NAMES: tuple[str, ...] = ("move_to_ball", "kick_bonus", "ball_to_goal", "goal")
 
@@ -78,8 +100,65 @@ def ball_to_goal_distance(features: Sequence[float]) -> float:
     return math.sqrt(squared) if squared > 0.0 else 0.0
 
 
+def _landmark(
+    features: Sequence[float], sin_index: int, cos_index: int, proximity_index: int
+) -> tuple[float, float]:
+    """A landmark's (x, y) in metres in the agent's body frame, from its (sin, cos, proximity) features."""
+    distance = 0.5 * (1.0 - features[proximity_index]) * MAX_HFO_DIST
+    return distance * features[cos_index], distance * features[sin_index]
+
+
+def gap_target(features: Sequence[float]) -> tuple[float, float]:
+    """Middle of the wider gap between the goalie and a goal post, in metres in the agent's body frame.
+
+    The goal centre when there is no goalie slot (58 features) or the slot is empty (goalie at x <= 0).
+    The goalie's offset along the goal mouth is clipped to the posts; equal gaps (within GAP_TIE_TOLERANCE) go to
+    the ball's side.
+    """
+    centre_x, centre_y = _landmark(features, GOAL_CENTER_SIN, GOAL_CENTER_COS, GOAL_CENTER_PROXIMITY)
+    if len(features) <= GOALIE_PROXIMITY:
+        return centre_x, centre_y
+    goalie_sin, goalie_cos = features[GOALIE_ANGLE_SIN], features[GOALIE_ANGLE_COS]
+    if goalie_sin * goalie_sin + goalie_cos * goalie_cos < 0.5:  # empty slot: all zeros
+        return centre_x, centre_y
+    top_x, top_y = _landmark(features, GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS, GOAL_POST_TOP_PROXIMITY)
+    bottom_x, bottom_y = _landmark(
+        features, GOAL_POST_BOTTOM_SIN, GOAL_POST_BOTTOM_COS, GOAL_POST_BOTTOM_PROXIMITY
+    )
+    mouth_length = math.hypot(bottom_x - top_x, bottom_y - top_y)
+    if mouth_length == 0.0:
+        return centre_x, centre_y
+    # unit vector along the goal mouth, top post -> bottom post
+    along_x, along_y = (bottom_x - top_x) / mouth_length, (bottom_y - top_y) / mouth_length
+    goalie_x, goalie_y = _landmark(features, GOALIE_ANGLE_SIN, GOALIE_ANGLE_COS, GOALIE_PROXIMITY)
+    goalie_offset = (goalie_x - centre_x) * along_x + (goalie_y - centre_y) * along_y
+    goalie_offset = min(max(goalie_offset, -GOAL_HALF_WIDTH), GOAL_HALF_WIDTH)
+    top_gap = goalie_offset + GOAL_HALF_WIDTH
+    bottom_gap = GOAL_HALF_WIDTH - goalie_offset
+    if abs(top_gap - bottom_gap) < GAP_TIE_TOLERANCE:
+        ball_x, ball_y = _landmark(features, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
+        ball_offset = (ball_x - centre_x) * along_x + (ball_y - centre_y) * along_y
+        towards_bottom = ball_offset >= 0.0
+    else:
+        towards_bottom = bottom_gap > top_gap
+    if towards_bottom:
+        target_offset = 0.5 * (goalie_offset + GOAL_HALF_WIDTH)
+    else:
+        target_offset = 0.5 * (goalie_offset - GOAL_HALF_WIDTH)
+    return centre_x + target_offset * along_x, centre_y + target_offset * along_y
+
+
+def ball_to_gap_distance(features: Sequence[float]) -> float:
+    """Ball-to-``gap_target`` distance in normalised feature units (2 units = 62.55 m)."""
+    ball_x, ball_y = _landmark(features, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
+    target_x, target_y = gap_target(features)
+    return 2.0 * math.hypot(ball_x - target_x, ball_y - target_y) / MAX_HFO_DIST
+
+
 class ShapedReward:
     """Hausknecht & Stone's shaped reward, DQNHFO's 2016 computation (see the module docstring)."""
+
+    distance_to_target = staticmethod(ball_to_goal_distance)
 
     def __init__(self) -> None:
         self._previous_ball_proximity = 0.0
@@ -105,7 +184,7 @@ class ShapedReward:
         """
         ball_proximity = float(features[BALL_PROXIMITY])
         kickable = float(features[KICKABLE])
-        ball_to_goal = ball_to_goal_distance(features)
+        ball_to_goal = self.distance_to_target(features)
 
         move_to_ball = 0.0
         kick_bonus = 0.0
@@ -131,6 +210,12 @@ class ShapedReward:
         return move_to_ball + kick_bonus + ball_to_goal_term + goal, terms
 
 
+class GapShapedReward(ShapedReward):
+    """The shaped reward with ball progress measured toward ``gap_target`` (see the module docstring)."""
+
+    distance_to_target = staticmethod(ball_to_gap_distance)
+
+
 class SparseReward:
     """1 on GOAL, 0 otherwise."""
 
@@ -144,9 +229,11 @@ class SparseReward:
 
 
 def make_reward(name: str) -> RewardFunction:
-    """The reward called ``name`` ("shaped" or "sparse"); ValueError naming the choices otherwise."""
+    """The reward called ``name`` (one of REWARD_NAMES); ValueError naming the choices otherwise."""
     if name == "shaped":
         return ShapedReward()
+    if name == "shaped_gap":
+        return GapShapedReward()
     if name == "sparse":
         return SparseReward()
     raise ValueError(f"unknown reward {name!r}; choose one of {REWARD_NAMES}")
