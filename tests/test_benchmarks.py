@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 REPO = Path(__file__).resolve().parents[1]
 
 
@@ -149,3 +151,25 @@ def test_critic_kick_scan_asks_the_critic_at_goalie_bearing_plus_offset() -> Non
     assert th.equal(kicks[:, :3], th.tensor([[-1.0, -1.0, 1.0]]).expand(len(kicks), 3))
     expected = (170 + scan.OFFSETS_DEG + 180) % 360 - 180  # wraps past +180 degrees
     np.testing.assert_allclose(kicks[:, scan.KICK_DIRECTION_INDEX].numpy() * 180, expected, atol=1e-4)
+
+
+def test_shot_aim_projects_kicks_onto_the_goal_line_and_reports_outcomes() -> None:
+    import math
+
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        import shot_aim
+    finally:
+        sys.path.pop(0)
+    assert shot_aim.goal_line_y(40.0, 0.0, math.atan2(3.0, 12.5)) == pytest.approx(3.0)
+    assert shot_aim.goal_line_y(40.0, -2.0, 0.0) == pytest.approx(-2.0)
+    assert math.isnan(shot_aim.goal_line_y(40.0, 0.0, math.pi))  # away from the goal
+
+    model = REPO / "models" / "x3_static_keeper_critic_choice_fast_seed0" / "HFO-StaticKeeper-v0.zip"
+    command = [sys.executable, str(REPO / "benchmarks" / "shot_aim.py"), str(model), "--episodes", "10"]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=REPO)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    outcome_lines = [line for line in completed.stdout.splitlines() if line.startswith(("GOAL:", "CAPTURED"))]
+    assert len(outcome_lines) == 2, completed.stdout
+    counts = [int(line.split()[1]) for line in outcome_lines if "episodes" in line]
+    assert counts and sum(counts) <= 10
