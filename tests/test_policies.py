@@ -548,6 +548,87 @@ def test_critic_action_gradient_through_direction_features_equals_autograd(criti
     assert action.grad is not None and action.grad[:, [4, 5, 7]].abs().min() > 0
 
 
+GOALIE_OBS_SPACE = spaces.Box(-1.0, 1.0, (66,), np.float32)
+
+
+def make_goalie_policy(**kwargs: object) -> HFOPolicy:
+    th.manual_seed(0)
+    return HFOPolicy(GOALIE_OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **kwargs)  # type: ignore[arg-type]
+
+
+def test_critic_sees_the_kick_direction_relative_to_the_goalie_bearing() -> None:
+    policy = make_goalie_policy(
+        net_arch=[16, 8], critic_direction_frequencies=[1, 4], critic_kick_relative_to=["goalie"]
+    )
+    critic = policy.critic
+    assert policy.critic_kick_relative_to == ("goalie",)
+    assert (
+        critic.action_layer.in_features == 16 + 8 + 2 * (3 + 1) * 2
+    )  # 3 absolute + 1 relative, 2 frequencies
+    obs = th.zeros(2, 66)
+    obs[:, 58], obs[:, 59] = (
+        np.sin(np.radians(30.0)),
+        np.cos(np.radians(30.0)),
+    )  # goalie 30 degrees to the right
+    action = th.zeros(2, 8)
+    action[0, 7], action[1, 7] = 30.0 / 180.0, 40.0 / 180.0  # kick at him, and 10 degrees past him
+    seen = critic.encode_action(action, obs)
+    n = 8
+    # sines: the 6 absolute columns (3 directions x 2 frequencies), then the relative one at each frequency
+    relative_sin = seen[:, [n + 6, n + 7]]
+    relative_cos = seen[:, [n + 8 + 6, n + 8 + 7]]
+    expected = th.deg2rad(th.tensor([[0.0, 0.0], [10.0, 40.0]]))  # (kick - bearing) at frequencies 1 and 4
+    th.testing.assert_close(relative_sin, th.sin(expected), atol=1e-6, rtol=0)
+    th.testing.assert_close(relative_cos, th.cos(expected), atol=1e-6, rtol=0)
+    with pytest.raises(ValueError, match="pass obs"):
+        critic.encode_action(action)
+
+
+@pytest.mark.parametrize("critic_arch", [[16], [16, 8, 4]])
+def test_critic_action_gradient_through_relative_kick_features_equals_autograd(
+    critic_arch: list[int],
+) -> None:
+    policy = make_goalie_policy(
+        net_arch=dict(pi=[8], qf=critic_arch),
+        critic_direction_frequencies=[1, 8, 32],
+        critic_kick_relative_to=["goalie", "goal_post_top", "goal_post_bottom"],
+    )
+    critic = policy.critic
+    obs = th.as_tensor(np.random.default_rng(0).uniform(-1, 1, (16, 66)), dtype=th.float32)
+    action = th.empty(16, 8).uniform_(-1, 1, generator=th.Generator().manual_seed(1)).requires_grad_(True)
+    critic(obs, action).sum().backward()
+    q, inputs = critic.forward_for_backward(obs, action.detach())
+    th.testing.assert_close(q, critic(obs, action).detach())
+    th.testing.assert_close(critic.action_gradient(inputs), action.grad, atol=1e-5, rtol=1e-5)
+
+
+def test_critic_kick_relative_to_errors_and_round_trip(tmp_path) -> None:
+    with pytest.raises(ValueError, match="unknown landmark"):
+        make_goalie_policy(critic_direction_frequencies=[1], critic_kick_relative_to=["keeper"])
+    with pytest.raises(ValueError, match="needs critic_direction_frequencies"):
+        make_goalie_policy(critic_kick_relative_to=["goalie"])
+    with pytest.raises(ValueError, match="goalie tasks"):
+        make_policy(critic_direction_frequencies=[1], critic_kick_relative_to=["goalie"])  # 58 features
+    with pytest.raises(ValueError, match="sequence of landmark names"):
+        make_goalie_policy(critic_direction_frequencies=[1], critic_kick_relative_to="goalie")
+    model = SkillDDPG(
+        "HFOPolicy",
+        gym.make("HFO/StaticKeeper-v0"),
+        policy_kwargs=dict(
+            net_arch=[16], critic_direction_frequencies=[1, 16], critic_kick_relative_to=["goalie"]
+        ),
+        seed=0,
+    )
+    obs = th.as_tensor(np.random.default_rng(2).uniform(-1, 1, (4, 66)), dtype=th.float32)
+    action = th.rand(4, 8) * 2 - 1
+    model.save(tmp_path / "m.zip")
+    loaded = SkillDDPG.load(tmp_path / "m.zip")
+    assert loaded.policy.critic_kick_relative_to == ("goalie",)
+    with th.no_grad():
+        th.testing.assert_close(loaded.policy.critic(obs, action), model.policy.critic(obs, action))
+    model.learn(300)  # the update path (explicit backward, target critic) runs with the relative features
+
+
 def test_critic_direction_frequencies_errors_and_round_trip(tmp_path) -> None:
     for bad in ([0], [-1.0], [float("nan")], "1, 2", [True], 4):
         with pytest.raises(ValueError, match="critic_direction_frequencies must be"):

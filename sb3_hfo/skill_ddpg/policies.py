@@ -74,6 +74,15 @@ critic valued kicking 0-5 degrees from the keeper's bearing highest, changing by
 each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions of
 its input (Tancik et al. 2020), used on value networks by Yang et al. 2022. The actor is unchanged; dQ/da goes
 through the features by the chain rule.
+
+Kick direction relative to landmarks for the critic (beyond the paper, off by default; needs the Fourier features
+above): with ``critic_kick_relative_to=("goalie", ...)`` the critic also sees ``sin(k * (kick - bearing))`` and
+``cos(k * (kick - bearing))`` for each named landmark's bearing (from the observation's (sin, cos) pair; both angles
+are relative to the body, as rcssserver's kick direction and HFO's bearings are). Why: with the absolute features
+alone, x11's and x12's critics still valued a shot at the static keeper within 0.1 of the best shot past him
+(``benchmarks/critic_kick_scan.py``, session 10): "kick minus keeper bearing" is a difference of two inputs that
+the network has to form itself, and at frequency 32 a product of sines it rarely learns. Given directly, a
+keeper-width dip in Q needs one unit.
 """
 
 from __future__ import annotations
@@ -91,7 +100,17 @@ from stable_baselines3.common.type_aliases import PyTorchObs, Schedule
 from torch import nn
 from torch.nn import functional as F
 
-from hfo2d.features import KICKABLE
+from hfo2d.features import (
+    GOAL_CENTER_COS,
+    GOAL_CENTER_SIN,
+    GOAL_POST_BOTTOM_COS,
+    GOAL_POST_BOTTOM_SIN,
+    GOAL_POST_TOP_COS,
+    GOAL_POST_TOP_SIN,
+    GOALIE_ANGLE_COS,
+    GOALIE_ANGLE_SIN,
+    KICKABLE,
+)
 from hfo2d.hfo_env import KICK
 from sb3_hfo.common.routers import SkillRouter, make_router, validate_skills
 
@@ -183,6 +202,43 @@ def _direction_frequencies(frequencies: Sequence[float], action_dim: int) -> tup
             f"{HFO_DIRECTION_PARAMETER_INDICES}), got action dim {action_dim}"
         )
     return tuple(float(k) for k in values)
+
+
+#: Landmarks whose bearing ``critic_kick_relative_to`` accepts: name -> (sin, cos) columns of HFO's features.
+KICK_REFERENCE_BEARINGS: dict[str, tuple[int, int]] = {
+    "goalie": (GOALIE_ANGLE_SIN, GOALIE_ANGLE_COS),
+    "goal_center": (GOAL_CENTER_SIN, GOAL_CENTER_COS),
+    "goal_post_top": (GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS),
+    "goal_post_bottom": (GOAL_POST_BOTTOM_SIN, GOAL_POST_BOTTOM_COS),
+}
+
+
+def _kick_references(
+    names: Sequence[str], frequencies: tuple[float, ...], obs_dim: int
+) -> tuple[tuple[int, int, int], ...]:
+    """Validated ``critic_kick_relative_to`` as (kick action index, bearing sin column, bearing cos column) triples."""
+    if isinstance(names, (str, bytes)) or not isinstance(names, Iterable):
+        raise ValueError(f"critic_kick_relative_to must be a sequence of landmark names, got {names!r}")
+    names = tuple(names)
+    unknown = [name for name in names if name not in KICK_REFERENCE_BEARINGS]
+    if unknown:
+        raise ValueError(
+            f"critic_kick_relative_to: unknown landmark(s) {unknown}; choose from {tuple(KICK_REFERENCE_BEARINGS)}"
+        )
+    if names and not frequencies:
+        raise ValueError(
+            "critic_kick_relative_to needs critic_direction_frequencies (it uses the same frequencies)"
+        )
+    triples = []
+    for name in names:
+        sin_column, cos_column = KICK_REFERENCE_BEARINGS[name]
+        if max(sin_column, cos_column) >= obs_dim:
+            raise ValueError(
+                f"critic_kick_relative_to: {name!r} needs observation column {max(sin_column, cos_column)}, but the "
+                f"observation has {obs_dim} features (the goalie's bearing exists only on goalie tasks)"
+            )
+        triples.append((HFO_DIRECTION_PARAMETER_INDICES[KICK], sin_column, cos_column))
+    return tuple(triples)
 
 
 def _parameter_sizes(option: bool | tuple[int, ...] | list[int], action_dim: int) -> tuple[int, ...] | None:
@@ -455,6 +511,8 @@ class HFOCritic(nn.Module):
     :param direction_indices: action dimensions that are directions ([-1, 1] for [-180, 180] degrees) ...
     :param direction_frequencies: ... and the frequencies ``k`` whose ``sin(k * theta)``, ``cos(k * theta)`` are
         appended to the action the critic sees (:meth:`encode_action`; none by default).
+    :param relative_directions: ``(action index, obs sin column, obs cos column)`` triples: that direction is also
+        encoded, at the same frequencies, relative to the bearing ``atan2(obs[sin column], obs[cos column])``.
     """
 
     def __init__(
@@ -466,27 +524,47 @@ class HFOCritic(nn.Module):
         weight_init_std: float = WEIGHT_INIT_STD,
         direction_indices: Sequence[int] = (),
         direction_frequencies: Sequence[float] = (),
+        relative_directions: Sequence[tuple[int, int, int]] = (),
     ) -> None:
         super().__init__()
         self.action_dim = action_dim
-        n_frequencies = len(direction_frequencies) if len(direction_indices) > 0 else 0
-        self.n_encoded = len(direction_indices) * n_frequencies
-        # Column c of the sin (and of the cos) block is direction_indices[c % n] at frequency c // n.
+        frequencies = (
+            list(direction_frequencies) if len(direction_indices) + len(relative_directions) > 0 else []
+        )
+        n_absolute = len(direction_indices) * len(frequencies)
+        self.n_relative = len(relative_directions) * len(frequencies)
+        self.n_encoded = n_absolute + self.n_relative
+        # Column c of the sin (and of the cos) block: first the absolute directions, direction_indices[c % n] at
+        # frequency c // n; then the relative ones in the same order, relative_directions[...][0] minus a bearing.
+        relative_indices = [triple[0] for triple in relative_directions]
         self.encoded_index: th.Tensor
         self.encoded_scale: th.Tensor
+        self.bearing_sin_column: th.Tensor
+        self.bearing_cos_column: th.Tensor
+        self.bearing_frequency: th.Tensor
         self.register_buffer(
             "encoded_index",
-            th.tensor(list(direction_indices) * n_frequencies, dtype=th.long),
+            th.tensor(
+                list(direction_indices) * len(frequencies) + relative_indices * len(frequencies),
+                dtype=th.long,
+            ),
             persistent=False,
         )
         self.register_buffer(
             "encoded_scale",
             th.tensor(
-                [np.pi * k for k in direction_frequencies for _ in direction_indices][: self.n_encoded],
+                [np.pi * k for k in frequencies for _ in direction_indices]
+                + [np.pi * k for k in frequencies for _ in relative_directions],
                 dtype=th.float32,
             ),
             persistent=False,
         )
+        for name, values, dtype in (
+            ("bearing_sin_column", [t[1] for t in relative_directions] * len(frequencies), th.long),
+            ("bearing_cos_column", [t[2] for t in relative_directions] * len(frequencies), th.long),
+            ("bearing_frequency", [k for k in frequencies for _ in relative_directions], th.float32),
+        ):
+            self.register_buffer(name, th.tensor(values, dtype=dtype), persistent=False)
         self.obs_net = nn.Sequential(nn.Linear(obs_dim, net_arch[0]), _make_activation(activation_fn))
         layers: list[nn.Module] = []
         in_features = net_arch[0] + action_dim + 2 * self.n_encoded
@@ -509,13 +587,29 @@ class HFOCritic(nn.Module):
         assert isinstance(first, nn.Linear)
         return first
 
-    def encode_action(self, action: th.Tensor) -> th.Tensor:
+    def encode_action(self, action: th.Tensor, obs: th.Tensor | None = None) -> th.Tensor:
         """``action (B, action_dim)`` -> what the critic's second layer sees: ``(B, action_dim + 2 * n_encoded)``,
         the action followed by the sines, then the cosines, of its directions at each frequency (no copy when
-        there are none)."""
+        there are none). ``obs (B, obs_dim)`` supplies the bearings of ``relative_directions`` (needed then)."""
         if self.n_encoded == 0:
             return action
         angles = action.index_select(1, self.encoded_index) * self.encoded_scale.to(action.dtype)
+        if self.n_relative:
+            if obs is None:
+                raise ValueError(
+                    "this critic encodes directions relative to bearings in the observation: pass obs"
+                )
+            bearings = th.atan2(
+                obs.index_select(1, self.bearing_sin_column), obs.index_select(1, self.bearing_cos_column)
+            )
+            n_absolute = self.n_encoded - self.n_relative
+            angles = th.cat(
+                (
+                    angles[:, :n_absolute],
+                    angles[:, n_absolute:] - bearings * self.bearing_frequency.to(action.dtype),
+                ),
+                dim=1,
+            )
         return th.cat((action, th.sin(angles), th.cos(angles)), dim=1)
 
     def _encoded_gradient_to_action(self, grad_seen: th.Tensor, seen: th.Tensor) -> th.Tensor:
@@ -532,7 +626,7 @@ class HFOCritic(nn.Module):
 
     def forward(self, obs: th.Tensor, action: th.Tensor) -> th.Tensor:
         """``obs (B, obs_dim)``, ``action (B, action_dim)`` in the buffer scale -> ``Q (B, 1)``."""
-        return self.joint_net(th.cat((self.obs_net(obs), self.encode_action(action)), dim=1))
+        return self.joint_net(th.cat((self.obs_net(obs), self.encode_action(action, obs)), dim=1))
 
     def forward_for_backward(self, obs: th.Tensor, action: th.Tensor) -> tuple[th.Tensor, list[th.Tensor]]:
         """:meth:`forward` (same numbers) keeping every layer's input for :meth:`output_gradients` /
@@ -544,7 +638,7 @@ class HFOCritic(nn.Module):
         layers = self.layers
         weight, bias = layers[0]
         features = self.activation.forward(F.linear(obs, weight, bias))
-        inputs = [obs, th.cat((features, self.encode_action(action)), dim=1)]
+        inputs = [obs, th.cat((features, self.encode_action(action, obs)), dim=1)]
         for weight, bias in layers[1:-1]:
             inputs.append(self.activation.forward(F.linear(inputs[-1], weight, bias)))
         weight, bias = layers[-1]
@@ -619,6 +713,9 @@ class HFOPolicy(BasePolicy):
     :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
         ``cos(k * theta)`` of the dash, turn and kick directions that the critic sees besides the action (see
         module doc); ``()`` (default, the paper): none. Needs HFO's 8-dimensional flat action.
+    :param critic_kick_relative_to: landmark names (:data:`KICK_REFERENCE_BEARINGS`: ``"goalie"``,
+        ``"goal_center"``, ``"goal_post_top"``, ``"goal_post_bottom"``) whose bearing the kick direction is also
+        encoded relative to, at ``critic_direction_frequencies`` (see module doc); ``()`` (default): none.
     :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
     :param optimizer_class: optimiser class for the critic and each skill (default Adam).
     :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
@@ -651,6 +748,7 @@ class HFOPolicy(BasePolicy):
         discrete_choice: str = "actor",
         kick_only_when_kickable: bool = False,
         critic_direction_frequencies: Sequence[float] = (),
+        critic_kick_relative_to: Sequence[str] = (),
         weight_init_std: float = WEIGHT_INIT_STD,
         optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
         optimizer_kwargs: dict[str, Any] | None = None,
@@ -703,6 +801,10 @@ class HFOPolicy(BasePolicy):
         self.critic_direction_frequencies = _direction_frequencies(
             critic_direction_frequencies, self.action_dim
         )
+        self.kick_references = _kick_references(
+            critic_kick_relative_to, self.critic_direction_frequencies, self.obs_dim
+        )
+        self.critic_kick_relative_to = tuple(critic_kick_relative_to)
         self._router_checked = False
         self._build(lr_schedule)
 
@@ -730,6 +832,7 @@ class HFOPolicy(BasePolicy):
             weight_init_std=self.weight_init_std,
             direction_indices=HFO_DIRECTION_PARAMETER_INDICES if self.critic_direction_frequencies else (),
             direction_frequencies=self.critic_direction_frequencies,
+            relative_directions=self.kick_references,
         )
         self.actor = HFOActor(**actor_kwargs)  # type: ignore[arg-type]
         self.actor_target = HFOActor(**actor_kwargs)  # type: ignore[arg-type]
@@ -927,6 +1030,7 @@ class HFOPolicy(BasePolicy):
                 discrete_choice=self.discrete_choice,
                 kick_only_when_kickable=self.kick_only_when_kickable,
                 critic_direction_frequencies=self.critic_direction_frequencies,
+                critic_kick_relative_to=self.critic_kick_relative_to,
                 weight_init_std=self.weight_init_std,
                 lr_schedule=self._dummy_schedule,
                 optimizer_class=self.optimizer_class,
