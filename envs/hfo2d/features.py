@@ -28,6 +28,7 @@ few dozen tiny numpy operations would cost more than the whole computation.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -371,6 +372,19 @@ def low_level_feature_list(
                 listed += 1
         features += [0.0] * (FEATURES_PER_PLAYER * (len(group) - listed))
     return features
+
+
+def landmark_position(
+    features: Sequence[float], sin_index: int, cos_index: int, proximity_index: int
+) -> tuple[float, float]:
+    """Body-frame position (x ahead, y to the right; metres) of a landmark encoded as (sin, cos, proximity).
+
+    Inverts the landmark encoding above (proximity with ``dmax = MAX_HFO_DIST``); exact up to the float32 rounding
+    of the observation. Used by the scripted striker (hfo2d.heuristic) and the gap reward (hfo2d.reward).
+    """
+    bearing = math.atan2(float(features[sin_index]), float(features[cos_index]))
+    distance = (1.0 - float(features[proximity_index])) * 0.5 * MAX_HFO_DIST
+    return distance * math.cos(bearing), distance * math.sin(bearing)
 
 
 def kickable_distance(world: World) -> float:

@@ -45,10 +45,10 @@ from hfo2d.features import (
     GOALIE_ANGLE_SIN,
     GOALIE_PROXIMITY,
     KICKABLE,
-    MAX_HFO_DIST,
     NUM_BASIC_FEATURES,
     SELF_BODY_COS,
     SELF_BODY_SIN,
+    landmark_position,
 )
 
 # rcssserver defaults used by the kick solver (rcssserver 15.2.2 serverparam.cpp, via hfo_reference §4).
@@ -75,21 +75,14 @@ MAX_PREDICTION_CYCLES = 20
 DASH, TURN, KICK = 0, 1, 2
 
 
-def _landmark(obs: np.ndarray, sin_index: int, cos_index: int, proximity_index: int) -> tuple[float, float]:
-    """Body-frame position (x ahead, y right; metres) of a landmark encoded as (sin, cos, proximity)."""
-    bearing = math.atan2(float(obs[sin_index]), float(obs[cos_index]))
-    dist = (1.0 - float(obs[proximity_index])) * 0.5 * MAX_HFO_DIST
-    return dist * math.cos(bearing), dist * math.sin(bearing)
-
-
 def _aim_point(obs: np.ndarray) -> tuple[float, float]:
     """Body-frame point to shoot at: goal centre, or inside the post farther from an observed goalie."""
-    goal = _landmark(obs, GOAL_CENTER_SIN, GOAL_CENTER_COS, GOAL_CENTER_PROXIMITY)
+    goal = landmark_position(obs, GOAL_CENTER_SIN, GOAL_CENTER_COS, GOAL_CENTER_PROXIMITY)
     if obs.shape[0] <= NUM_BASIC_FEATURES or (obs[GOALIE_ANGLE_SIN] == 0.0 and obs[GOALIE_ANGLE_COS] == 0.0):
         return goal
-    goalie = _landmark(obs, GOALIE_ANGLE_SIN, GOALIE_ANGLE_COS, GOALIE_PROXIMITY)
-    top = _landmark(obs, GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS, GOAL_POST_TOP_PROXIMITY)
-    bottom = _landmark(obs, GOAL_POST_BOTTOM_SIN, GOAL_POST_BOTTOM_COS, GOAL_POST_BOTTOM_PROXIMITY)
+    goalie = landmark_position(obs, GOALIE_ANGLE_SIN, GOALIE_ANGLE_COS, GOALIE_PROXIMITY)
+    top = landmark_position(obs, GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS, GOAL_POST_TOP_PROXIMITY)
+    bottom = landmark_position(obs, GOAL_POST_BOTTOM_SIN, GOAL_POST_BOTTOM_COS, GOAL_POST_BOTTOM_PROXIMITY)
     far_post = max(top, bottom, key=lambda post: math.hypot(post[0] - goalie[0], post[1] - goalie[1]))
     to_centre_x, to_centre_y = goal[0] - far_post[0], goal[1] - far_post[1]
     half_width = math.hypot(to_centre_x, to_centre_y)
@@ -146,7 +139,7 @@ def heuristic_command(obs: np.ndarray) -> tuple[int, float, float]:
         (DASH, power [0, 100], direction_deg), (TURN, direction_deg, 0) or (KICK, power [0, 100], direction_deg),
         directions relative to the body in [-180, 180].
     """
-    ball_x, ball_y = _landmark(obs, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
+    ball_x, ball_y = landmark_position(obs, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
     body = math.atan2(float(obs[SELF_BODY_SIN]), float(obs[SELF_BODY_COS]))
     ball_speed = (float(obs[BALL_SPEED]) + 1.0) * 0.5 * BALL_SPEED_MAX
     ball_heading = math.atan2(float(obs[BALL_VEL_ANGLE_SIN]), float(obs[BALL_VEL_ANGLE_COS])) - body

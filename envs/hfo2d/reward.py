@@ -58,6 +58,7 @@ from hfo2d.features import (
     GOALIE_PROXIMITY,
     KICKABLE,
     MAX_HFO_DIST,
+    landmark_position,
 )
 
 REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "sparse")
@@ -100,14 +101,6 @@ def ball_to_goal_distance(features: Sequence[float]) -> float:
     return math.sqrt(squared) if squared > 0.0 else 0.0
 
 
-def _landmark(
-    features: Sequence[float], sin_index: int, cos_index: int, proximity_index: int
-) -> tuple[float, float]:
-    """A landmark's (x, y) in metres in the agent's body frame, from its (sin, cos, proximity) features."""
-    distance = 0.5 * (1.0 - features[proximity_index]) * MAX_HFO_DIST
-    return distance * features[cos_index], distance * features[sin_index]
-
-
 def gap_target(features: Sequence[float]) -> tuple[float, float]:
     """Middle of the wider gap between the goalie and a goal post, in metres in the agent's body frame.
 
@@ -115,14 +108,14 @@ def gap_target(features: Sequence[float]) -> tuple[float, float]:
     The goalie's offset along the goal mouth is clipped to the posts; equal gaps (within GAP_TIE_TOLERANCE) go to
     the ball's side.
     """
-    centre_x, centre_y = _landmark(features, GOAL_CENTER_SIN, GOAL_CENTER_COS, GOAL_CENTER_PROXIMITY)
+    centre_x, centre_y = landmark_position(features, GOAL_CENTER_SIN, GOAL_CENTER_COS, GOAL_CENTER_PROXIMITY)
     if len(features) <= GOALIE_PROXIMITY:
         return centre_x, centre_y
     goalie_sin, goalie_cos = features[GOALIE_ANGLE_SIN], features[GOALIE_ANGLE_COS]
     if goalie_sin * goalie_sin + goalie_cos * goalie_cos < 0.5:  # empty slot: all zeros
         return centre_x, centre_y
-    top_x, top_y = _landmark(features, GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS, GOAL_POST_TOP_PROXIMITY)
-    bottom_x, bottom_y = _landmark(
+    top_x, top_y = landmark_position(features, GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS, GOAL_POST_TOP_PROXIMITY)
+    bottom_x, bottom_y = landmark_position(
         features, GOAL_POST_BOTTOM_SIN, GOAL_POST_BOTTOM_COS, GOAL_POST_BOTTOM_PROXIMITY
     )
     mouth_length = math.hypot(bottom_x - top_x, bottom_y - top_y)
@@ -130,13 +123,13 @@ def gap_target(features: Sequence[float]) -> tuple[float, float]:
         return centre_x, centre_y
     # unit vector along the goal mouth, top post -> bottom post
     along_x, along_y = (bottom_x - top_x) / mouth_length, (bottom_y - top_y) / mouth_length
-    goalie_x, goalie_y = _landmark(features, GOALIE_ANGLE_SIN, GOALIE_ANGLE_COS, GOALIE_PROXIMITY)
+    goalie_x, goalie_y = landmark_position(features, GOALIE_ANGLE_SIN, GOALIE_ANGLE_COS, GOALIE_PROXIMITY)
     goalie_offset = (goalie_x - centre_x) * along_x + (goalie_y - centre_y) * along_y
     goalie_offset = min(max(goalie_offset, -GOAL_HALF_WIDTH), GOAL_HALF_WIDTH)
     top_gap = goalie_offset + GOAL_HALF_WIDTH
     bottom_gap = GOAL_HALF_WIDTH - goalie_offset
     if abs(top_gap - bottom_gap) < GAP_TIE_TOLERANCE:
-        ball_x, ball_y = _landmark(features, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
+        ball_x, ball_y = landmark_position(features, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
         ball_offset = (ball_x - centre_x) * along_x + (ball_y - centre_y) * along_y
         towards_bottom = ball_offset >= 0.0
     else:
@@ -150,7 +143,7 @@ def gap_target(features: Sequence[float]) -> tuple[float, float]:
 
 def ball_to_gap_distance(features: Sequence[float]) -> float:
     """Ball-to-``gap_target`` distance in normalised feature units (2 units = 62.55 m)."""
-    ball_x, ball_y = _landmark(features, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
+    ball_x, ball_y = landmark_position(features, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
     target_x, target_y = gap_target(features)
     return 2.0 * math.hypot(ball_x - target_x, ball_y - target_y) / MAX_HFO_DIST
 
