@@ -70,9 +70,8 @@ KICK_BONUS = 1.0  # first time kickable in an episode
 BALL_TO_GOAL_WEIGHT = 3.0  # outweighs the negative move-to-ball term once the kicked ball runs away
 KICKABLE_JUMP = 1.0  # DQNHFO awards the bonus when the kickable feature rises by at least this much
 SPARSE_GOAL_REWARD = 1.0
-GAP_TIE_TOLERANCE = (
-    0.5  # m; gaps closer than this in width count as equal and the ball's side picks the target
-)
+# m; gaps whose widths differ by less than this count as equal, and the ball's side picks the target
+GAP_TIE_TOLERANCE = 0.5
 
 REWARD_TERM_NAMES: tuple[str, ...] = ("move_to_ball", "kick_bonus", "ball_to_goal", "goal")
 
