@@ -163,7 +163,9 @@ def shot_at_goal_env(reward: str) -> HFOEnv:
     return env
 
 
-@pytest.mark.parametrize(("reward_name", "goal_reward"), [("shaped", 5.0), ("shaped_gap", 5.0), ("sparse", 1.0)])
+@pytest.mark.parametrize(
+    ("reward_name", "goal_reward"), [("shaped", 5.0), ("shaped_gap", 5.0), ("sparse", 1.0)]
+)
 def test_goal_step_reward_in_env(reward_name: str, goal_reward: float) -> None:
     env = shot_at_goal_env(reward_name)
     _, first, terminated, _, info = env.step(TURN_NONE)  # ball reaches x = 52.0, still in play
