@@ -114,7 +114,8 @@ def time_to_targets(run: Run, targets: Sequence[float]) -> dict[str, Any]:
     seconds = run.wall_clock[EVAL_SUCCESS_TAG]
     summary.update(last=float(rates[-1]), best=float(rates.max()), last_step=int(steps[-1]))
     for target in targets:
-        reached = np.flatnonzero(rates >= target - 1e-9)
+        # TensorBoard stores float32: 0.9 comes back as 0.89999998
+        reached = np.flatnonzero(rates >= target - 1e-6)
         first = int(reached[0]) if reached.size else None
         summary[f"first_{target:g}"] = None if first is None else (int(steps[first]), float(seconds[first]))
     return summary

@@ -415,6 +415,10 @@ def test_time_to_targets_reads_the_first_evaluation_at_each_rate() -> None:
     assert summary["first_1"] is None
     assert summary["last"] == pytest.approx(0.99) and summary["best"] == pytest.approx(0.99)
     assert time_to_targets(Run("no eval"), [0.95])["first_0.95"] is None
+    # TensorBoard keeps float32: an evaluation of exactly 45 / 50 comes back as 0.89999998 and still counts as 90 %
+    stored = Run("tb", {EVAL_SUCCESS_TAG: (steps[:2], np.array([0.5, 0.9], dtype=np.float32).astype(float))})
+    stored.wall_clock[EVAL_SUCCESS_TAG] = np.array([60.0, 120.0])
+    assert time_to_targets(stored, [0.9])["first_0.9"] == (20_000, 120.0)
 
 
 def test_episode_stats_callback_logs_goal_rate() -> None:
