@@ -83,7 +83,7 @@ alone, x11's and x12's critics still valued a shot at the static keeper within 0
 (``benchmarks/critic_kick_scan.py``, session 10): "kick minus keeper bearing" is a difference of two inputs that
 the network has to form itself, and at frequency 32 a product of sines. With the relative features x15's critic
 shows a notch at the keeper's bearing (Q - max Q -1.27 there against -0.61 / -0.74 at -10 / +10 degrees) and x15
-scores 96.2 % against the static keeper, x12 79.7-89.4 % (benchmarks/RESULTS.md, session 10).
+scores 96.2 / 89.9 % against the static keeper (two seeds), x12 79.7-89.4 % (benchmarks/RESULTS.md, session 10).
 """
 
 from __future__ import annotations
