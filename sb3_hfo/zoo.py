@@ -5,7 +5,7 @@ rl-zoo3 keeps its algorithms and Optuna samplers in module-level tables (``rl_zo
 from ``ALGOS`` *before* it imports ``--gym-packages``. So ``python -m sb3_hfo.train`` (and ``enjoy``,
 ``record_video``) call :func:`register_with_rl_zoo` first and then hand over to rl-zoo3's own entry points.
 
-Two rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimentManager`:
+Three rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimentManager`:
 
 * rl-zoo3 turns ``"lin_<x>"`` strings into linear schedules only for the key ``learning_rate``; SkillDDPG has
   two learning rates (``learning_rate_actor``, ``learning_rate_critic``), so the same conversion is applied to
@@ -13,6 +13,10 @@ Two rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperiment
 * During ``-optimize`` rl-zoo3 replaces the config's ``policy_kwargs`` wholesale by the sampled one, which would
   drop the experiment-defining keys (``n_skills``, ``skill_router``, ``inverting_gradients``); the sampled
   ``policy_kwargs`` are merged on top of the config's instead.
+* rl-zoo3 (2.9) hands a config's ``env_kwargs`` (e.g. ``reward: shaped_gap``) to the training envs but builds the
+  evaluation env with the command line's ``--env-kwargs`` only, so ``--eval-freq`` evaluations would report a
+  different reward and pick ``best_model.zip`` by it. Unless ``--eval-env-kwargs`` is given, the evaluation env
+  gets the same ``env_kwargs`` as the training envs, which is what rl-zoo3 documents as its default.
 
 :class:`HFOEpisodeStatsCallback` logs ``rollout/episodes`` (SB3 excludes ``time/episodes`` from TensorBoard, and
 the paper's figures are plotted against episodes) and ``rollout/goal_rate`` (which SkillDDPG logs itself too,
@@ -83,7 +87,13 @@ def _experiment_manager_class() -> type:
     from rl_zoo3.hyperparams_opt import HYPERPARAMS_SAMPLER
 
     class HFOExperimentManager(ExperimentManager):
-        """rl-zoo3's ExperimentManager with SkillDDPG's two learning rates and policy_kwargs merging."""
+        """rl-zoo3's ExperimentManager with SkillDDPG's two learning rates, policy_kwargs merging and eval env_kwargs."""
+
+        def _preprocess_hyperparams(self, hyperparams: dict[str, Any]) -> Any:
+            processed = super()._preprocess_hyperparams(hyperparams)
+            if self._eval_env_kwargs_args is None:
+                self.eval_env_kwargs = dict(self.env_kwargs)
+            return processed
 
         @staticmethod
         def _preprocess_schedules(hyperparams: dict[str, Any]) -> dict[str, Any]:

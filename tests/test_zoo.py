@@ -384,6 +384,44 @@ def test_train_reports_unknown_env_and_missing_config_in_one_line() -> None:
         main(["--env", "HFO/EmptyGoal-v0"])
 
 
+@pytest.mark.parametrize(
+    ("cli_env_kwargs", "cli_eval_env_kwargs", "expected_train", "expected_eval"),
+    [
+        (None, None, "shaped_gap", "shaped_gap"),
+        ({"reward": "sparse"}, None, "sparse", "sparse"),
+        (None, {"reward": "shaped"}, "shaped_gap", "shaped"),
+    ],
+)
+def test_evaluation_env_gets_the_configs_env_kwargs(
+    tmp_path: Path,
+    cli_env_kwargs: dict[str, str] | None,
+    cli_eval_env_kwargs: dict[str, str] | None,
+    expected_train: str,
+    expected_eval: str,
+) -> None:
+    from sb3_hfo.zoo import _experiment_manager_class, register_with_rl_zoo
+
+    register_with_rl_zoo()
+    config = tmp_path / "gap.yml"
+    config.write_text(
+        "HFO/StaticKeeper-v0:\n  env_kwargs:\n    reward: shaped_gap\n  n_timesteps: 100\n  policy: MlpPolicy\n"
+    )
+    manager = _experiment_manager_class()(
+        SimpleNamespace(),
+        "skill_ddpg",
+        "HFO/StaticKeeper-v0",
+        str(tmp_path),
+        env_kwargs=cli_env_kwargs,
+        eval_env_kwargs=cli_eval_env_kwargs,
+        config=str(config),
+        verbose=0,
+    )
+    hyperparams, _ = manager.read_hyperparameters()
+    manager._preprocess_hyperparams(hyperparams)
+    assert manager.env_kwargs == {"reward": expected_train}
+    assert manager.eval_env_kwargs == {"reward": expected_eval}
+
+
 def test_merge_policy_kwargs_keeps_the_experiment_keys() -> None:
     from sb3_hfo.zoo import merge_policy_kwargs
 
