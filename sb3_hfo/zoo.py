@@ -288,3 +288,71 @@ class ActionNoiseDecayCallback(BaseCallback):
             noise._sigma = initial + progress * (self.final_std - initial)
         self.logger.record("rollout/action_noise_std", float(np.mean(self._noises()[0]._sigma)))
         return True
+
+
+class KeeperSkillCurriculumCallback(BaseCallback):
+    """Raise the scripted goalie's skill of the training envs from ``initial_skill`` to ``final_skill``.
+
+    A curriculum for ``HFO/Keeper-v0`` (E6, which the paper could not solve): against the full keeper a random
+    policy almost never scores, so the shaped reward's goal bonus is rarely seen. The skill moves linearly over the
+    first ``ramp_fraction`` of each ``learn`` call in steps of ``skill_step`` (each change rebuilds the keeper at
+    the envs' next reset), then holds; it is logged as ``rollout/keeper_skill``. Only the training envs are
+    changed: rl-zoo3's evaluation env, and ``python -m sb3_hfo.evaluate``, keep the env's own ``keeper_skill``
+    (1.0 for ``HFO/Keeper-v0``), so evaluations measure E6's task.
+
+    :param initial_skill: keeper skill at the start, in [0, 1] (0: a keeper that only turns to face the ball).
+    :param final_skill: keeper skill at the end of the ramp, in [0, 1].
+    :param ramp_fraction: fraction of the ``learn`` call's ``total_timesteps`` over which to ramp, in (0, 1].
+    :param skill_step: the skill changes in steps of this size, in (0, 1].
+    """
+
+    def __init__(
+        self,
+        initial_skill: float = 0.0,
+        final_skill: float = 1.0,
+        ramp_fraction: float = 0.5,
+        skill_step: float = 0.05,
+        verbose: int = 0,
+    ) -> None:
+        super().__init__(verbose)
+        for name, value in (("initial_skill", initial_skill), ("final_skill", final_skill)):
+            if not 0.0 <= value <= 1.0:  # also rejects NaN
+                raise ValueError(f"{name} must be in [0, 1], got {value!r}")
+        if not 0 < ramp_fraction <= 1:
+            raise ValueError(f"ramp_fraction must be in (0, 1], got {ramp_fraction!r}")
+        if not 0 < skill_step <= 1:
+            raise ValueError(f"skill_step must be in (0, 1], got {skill_step!r}")
+        self.initial_skill = float(initial_skill)
+        self.final_skill = float(final_skill)
+        self.ramp_fraction = float(ramp_fraction)
+        self.skill_step = float(skill_step)
+        self.skill = self.initial_skill
+        self._start_timesteps = 0
+
+    def _init_callback(self) -> None:
+        try:
+            self.training_env.env_method("set_keeper_skill", self.initial_skill)
+        except (AttributeError, ValueError) as error:
+            raise ValueError(
+                f"KeeperSkillCurriculumCallback needs HFO/Keeper-v0 training envs (set_keeper_skill): {error}"
+            ) from error
+
+    def _on_training_start(self) -> None:
+        self._start_timesteps = self.num_timesteps
+        self._set_skill(self.initial_skill)
+
+    def _set_skill(self, skill: float) -> None:
+        self.skill = skill
+        self.training_env.env_method("set_keeper_skill", skill)
+
+    def _on_step(self) -> bool:
+        total = max(int(getattr(self.model, "_total_timesteps", 0)) - self._start_timesteps, 1)
+        progress = min((self.num_timesteps - self._start_timesteps) / (self.ramp_fraction * total), 1.0)
+        target = self.initial_skill + progress * (self.final_skill - self.initial_skill)
+        # Rounded to the nearest skill_step, so that each env's keeper is rebuilt a few dozen times, not every step.
+        quantised = self.final_skill if progress >= 1.0 else self.skill_step * round(target / self.skill_step)
+        quantised = min(max(quantised, 0.0), 1.0)
+        if quantised != self.skill:
+            self._set_skill(quantised)
+        self.logger.record("rollout/keeper_skill", self.skill)
+        return True

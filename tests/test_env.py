@@ -476,6 +476,32 @@ def test_keeper_option_places_the_keeper() -> None:
 
 
 # --- rendering ---------------------------------------------------------------------------------------------------
+def test_set_keeper_skill_takes_effect_at_the_next_reset() -> None:
+    def keeper_travel(env: HFOEnv) -> float:
+        env.reset(seed=3, options={"ball": (40.0, 10.0), "player": (30.0, 0.0, 0.0)})
+        start = (env.keeper.x, env.keeper.y)
+        for _ in range(15):
+            env.step(
+                np.array([0.0, 1.0, 0.0, 0.0, 0.0, 0.5, 0.0, 0.0], dtype=np.float32)
+            )  # turn by 0 degrees
+        return math.dist(start, (env.keeper.x, env.keeper.y))
+
+    env = HFOEnv(task="keeper")
+    assert keeper_travel(env) > 1.0  # the full keeper moves toward the ball's side
+    env.set_keeper_skill(0.0)
+    assert env._keeper_policy.skill == 1.0  # the episode in progress keeps its keeper
+    assert keeper_travel(env) < 0.05  # skill 0 only turns to face the ball
+    env.set_keeper_skill(1.0)
+    assert keeper_travel(env) > 1.0
+    with pytest.raises(ValueError, match="keeper_skill must lie in"):
+        env.set_keeper_skill(1.5)
+    with pytest.raises(ValueError, match="keeper_skill must lie in"):
+        env.set_keeper_skill(float("nan"))
+    assert env.keeper_skill == 1.0
+    with pytest.raises(ValueError, match="needs task 'keeper'"):
+        HFOEnv(task="static_keeper").set_keeper_skill(0.5)
+
+
 def test_render_modes() -> None:
     env = HFOEnv()
     env.reset(seed=0)

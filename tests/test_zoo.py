@@ -478,6 +478,48 @@ def test_episode_stats_callback_logs_goal_rate() -> None:
     assert recorder.values == {"rollout/goal_rate": 0.5, "rollout/episodes": 3}
 
 
+def test_keeper_skill_curriculum_ramps_the_training_envs_only() -> None:
+    from stable_baselines3.common.callbacks import BaseCallback
+    from stable_baselines3.common.env_util import make_vec_env
+
+    from sb3_hfo import SkillDDPG
+    from sb3_hfo.zoo import KeeperSkillCurriculumCallback
+
+    class SkillRecorder(BaseCallback):
+        def __init__(self) -> None:
+            super().__init__()
+            self.skills: list[list[float]] = []
+
+        def _on_step(self) -> bool:
+            self.skills.append(self.training_env.get_attr("keeper_skill"))
+            return True
+
+    env = make_vec_env("HFO/Keeper-v0", n_envs=2, seed=0)
+    # learning_starts beyond the budget: only the rollout runs, no gradient step.
+    model = SkillDDPG("HFOPolicy", env, learning_starts=10_000, seed=0)
+    curriculum = KeeperSkillCurriculumCallback(
+        initial_skill=0.0, final_skill=1.0, ramp_fraction=0.5, skill_step=0.25
+    )
+    recorder = SkillRecorder()
+    model.learn(400, callback=[curriculum, recorder])  # 200 calls of 2 envs; the ramp spans the first 100
+    per_call = [skills[0] for skills in recorder.skills]
+    assert all(skills[0] == skills[1] for skills in recorder.skills)
+    assert per_call[0] == 0.0
+    assert per_call == sorted(per_call)
+    assert set(per_call) == {0.0, 0.25, 0.5, 0.75, 1.0}
+    # rounded to the nearest step: 1.0 from 87.5 % of the ramp (176 of its 200 steps), held to the end
+    assert per_call.index(1.0) == 87
+    assert per_call.index(0.25) == 12
+    with pytest.raises(ValueError, match="needs HFO/Keeper-v0 training envs"):
+        SkillDDPG("HFOPolicy", "HFO/EmptyGoal-v0", learning_starts=10_000).learn(
+            2, callback=curriculum.__class__()
+        )
+    with pytest.raises(ValueError, match="ramp_fraction"):
+        KeeperSkillCurriculumCallback(ramp_fraction=0.0)
+    with pytest.raises(ValueError, match="initial_skill"):
+        KeeperSkillCurriculumCallback(initial_skill=float("nan"))
+
+
 def test_action_noise_decay_callback_anneals_sigma_per_env() -> None:
     from stable_baselines3 import TD3
     from stable_baselines3.common.callbacks import BaseCallback

@@ -212,10 +212,7 @@ class HFOEnv(gym.Env):
             raise ValueError(
                 f"unknown render_mode {render_mode!r}; choose None or one of {self.metadata['render_modes']}"
             )
-        if isinstance(keeper_skill, bool) or not isinstance(keeper_skill, (int, float, np.number)):
-            raise ValueError(f"keeper_skill must be a number in [0, 1], got {keeper_skill!r}")
-        if not 0.0 <= float(keeper_skill) <= 1.0:
-            raise ValueError(f"keeper_skill must lie in [0, 1], got {keeper_skill!r}")
+        _check_keeper_skill(keeper_skill)
         if isinstance(random_start_fraction, bool) or not isinstance(
             random_start_fraction, (int, float, np.number)
         ):
@@ -341,6 +338,10 @@ class HFOEnv(gym.Env):
             placed.collided_ball = placed.collided_player = placed.collided_post = False
         world.ball.collided_post = False
         if self._keeper_policy is not None:
+            if self._keeper_policy.skill != self.keeper_skill:  # set_keeper_skill() was called
+                from hfo2d.keeper import ScriptedKeeper
+
+                self._keeper_policy = ScriptedKeeper(self.params, rng, skill=self.keeper_skill)
             self._keeper_policy.reset()
         self._reward_fn.reset()
 
@@ -401,6 +402,19 @@ class HFOEnv(gym.Env):
         if self.render_mode == "human":
             self.render()
         return np.array(features, dtype=np.float32), reward, terminated, truncated, info
+
+    def set_keeper_skill(self, skill: float) -> None:
+        """Change the scripted goalie's quality (task "keeper" only), in [0, 1]; effective from the next reset.
+
+        For training curricula (``sb3_hfo.zoo.KeeperSkillCurriculumCallback`` calls it through the VecEnv's
+        ``env_method``); an episode in progress keeps the keeper it started with.
+        """
+        if self.task != "keeper":
+            raise ValueError(
+                f"set_keeper_skill needs task 'keeper' (HFO/Keeper-v0), this env's task is {self.task!r}"
+            )
+        _check_keeper_skill(skill)
+        self.keeper_skill = float(skill)
 
     def render(self) -> np.ndarray | None:
         """Draw the current state: a pygame window ("human") or an RGB array (H, W, 3) uint8 ("rgb_array")."""
@@ -585,6 +599,13 @@ class HFOEnv(gym.Env):
             # a placement without velocity starts at rest
             placements[key] = tuple(values) + (0.0,) * (max(lengths) - len(values))
         return placements
+
+
+def _check_keeper_skill(skill: Any) -> None:
+    if isinstance(skill, bool) or not isinstance(skill, (int, float, np.number)):
+        raise ValueError(f"keeper_skill must be a number in [0, 1], got {skill!r}")
+    if not 0.0 <= float(skill) <= 1.0:  # also rejects NaN
+        raise ValueError(f"keeper_skill must lie in [0, 1], got {skill!r}")
 
 
 def _as_float_list(raw: Any, what: str) -> list[float]:
