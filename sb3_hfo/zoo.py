@@ -234,6 +234,12 @@ class HFOEpisodeStatsCallback(BaseCallback):
         return True
 
 
+def _ramp_progress(callback: BaseCallback, start_timesteps: int, ramp_fraction: float) -> float:
+    """Progress in [0, 1] of a ramp over the first ``ramp_fraction`` of the current ``learn`` call's steps."""
+    total = max(int(getattr(callback.model, "_total_timesteps", 0)) - start_timesteps, 1)
+    return min((callback.num_timesteps - start_timesteps) / (ramp_fraction * total), 1.0)
+
+
 class ActionNoiseDecayCallback(BaseCallback):
     """Anneal the standard deviation of the model's Gaussian (or Ornstein-Uhlenbeck) action noise linearly.
 
@@ -282,8 +288,7 @@ class ActionNoiseDecayCallback(BaseCallback):
         self._start_timesteps = self.num_timesteps
 
     def _on_step(self) -> bool:
-        total = max(int(getattr(self.model, "_total_timesteps", 0)) - self._start_timesteps, 1)
-        progress = min((self.num_timesteps - self._start_timesteps) / (self.decay_fraction * total), 1.0)
+        progress = _ramp_progress(self, self._start_timesteps, self.decay_fraction)
         for noise, initial in zip(self._noises(), self.initial_sigmas, strict=True):
             noise._sigma = initial + progress * (self.final_std - initial)
         self.logger.record("rollout/action_noise_std", float(np.mean(self._noises()[0]._sigma)))
@@ -298,7 +303,8 @@ class KeeperSkillCurriculumCallback(BaseCallback):
     first ``ramp_fraction`` of each ``learn`` call in steps of ``skill_step`` (each change rebuilds the keeper at
     the envs' next reset), then holds; it is logged as ``rollout/keeper_skill``. Only the training envs are
     changed: rl-zoo3's evaluation env, and ``python -m sb3_hfo.evaluate``, keep the env's own ``keeper_skill``
-    (1.0 for ``HFO/Keeper-v0``), so evaluations measure E6's task.
+    (1.0 for ``HFO/Keeper-v0``), so evaluations measure E6's task. SB3 resets the envs before callbacks start, so
+    each env's first episode keeps the keeper it was made with.
 
     :param initial_skill: keeper skill at the start, in [0, 1] (0: a keeper that only turns to face the ball).
     :param final_skill: keeper skill at the end of the ramp, in [0, 1].
@@ -346,8 +352,7 @@ class KeeperSkillCurriculumCallback(BaseCallback):
         self.training_env.env_method("set_keeper_skill", skill)
 
     def _on_step(self) -> bool:
-        total = max(int(getattr(self.model, "_total_timesteps", 0)) - self._start_timesteps, 1)
-        progress = min((self.num_timesteps - self._start_timesteps) / (self.ramp_fraction * total), 1.0)
+        progress = _ramp_progress(self, self._start_timesteps, self.ramp_fraction)
         target = self.initial_skill + progress * (self.final_skill - self.initial_skill)
         # Rounded to the nearest skill_step, so that each env's keeper is rebuilt a few dozen times, not every step.
         quantised = self.final_skill if progress >= 1.0 else self.skill_step * round(target / self.skill_step)
