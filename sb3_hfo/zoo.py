@@ -335,9 +335,9 @@ class KeeperSkillCurriculumCallback(BaseCallback):
         self.skill = self.initial_skill
         self._start_timesteps = 0
 
-    def _init_callback(self) -> None:
+    def _init_callback(self) -> None:  # SB3 calls it at the start of every learn()
         try:
-            self.training_env.env_method("set_keeper_skill", self.initial_skill)
+            self._set_skill(self.initial_skill)
         except (AttributeError, ValueError) as error:
             raise ValueError(
                 f"KeeperSkillCurriculumCallback needs HFO/Keeper-v0 training envs (set_keeper_skill): {error}"
@@ -345,7 +345,6 @@ class KeeperSkillCurriculumCallback(BaseCallback):
 
     def _on_training_start(self) -> None:
         self._start_timesteps = self.num_timesteps
-        self._set_skill(self.initial_skill)
 
     def _set_skill(self, skill: float) -> None:
         self.skill = skill
