@@ -278,9 +278,7 @@ class HFOEnv(gym.Env):
         if self.has_keeper:
             self.keeper = self.world.add_player(KEEPER_SIDE, KEEPER_UNUM, goalie=True)
             if task == "keeper":
-                from hfo2d.keeper import ScriptedKeeper
-
-                self._keeper_policy = ScriptedKeeper(self.params, rng, skill=self.keeper_skill)
+                self._keeper_policy = self._make_scripted_keeper(rng)
         self._opponents: tuple[PlayerState, ...] = (self.keeper,) if self.keeper is not None else ()
         self._rng_in_use = rng
         self._renderer: Any = None
@@ -339,9 +337,7 @@ class HFOEnv(gym.Env):
         world.ball.collided_post = False
         if self._keeper_policy is not None:
             if self._keeper_policy.skill != self.keeper_skill:  # set_keeper_skill() was called
-                from hfo2d.keeper import ScriptedKeeper
-
-                self._keeper_policy = ScriptedKeeper(self.params, rng, skill=self.keeper_skill)
+                self._keeper_policy = self._make_scripted_keeper(rng)
             self._keeper_policy.reset()
         self._reward_fn.reset()
 
@@ -402,6 +398,11 @@ class HFOEnv(gym.Env):
         if self.render_mode == "human":
             self.render()
         return np.array(features, dtype=np.float32), reward, terminated, truncated, info
+
+    def _make_scripted_keeper(self, rng: np.random.Generator) -> Any:
+        from hfo2d.keeper import ScriptedKeeper  # only task "keeper" needs it
+
+        return ScriptedKeeper(self.params, rng, skill=self.keeper_skill)
 
     def set_keeper_skill(self, skill: float) -> None:
         """Change the scripted goalie's quality (task "keeper" only), in [0, 1]; effective from the next reset.
