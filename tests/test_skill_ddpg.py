@@ -97,6 +97,7 @@ def reference_update(
     mc_mixing: float = 0.0,
     preactivation_penalty: float = 0.0,
     discrete_target: str = "actor",
+    parameter_loss: str = "chosen",
 ) -> None:
     """The update written the straightforward way: losses, autograd, plain Adam, Polyak loop.
 
@@ -109,6 +110,9 @@ def reference_update(
     with the policy's ``kick_only_when_kickable`` KICK only counts where next-state feature 12 is >= 0.
     ``preactivation_penalty``: skill ``k``'s loss gains ``lambda * mean over its rows of ||z||^2`` (``z``: its head's
     output before tanh).
+    ``parameter_loss="each_action"``: the actor's value is ``Q`` of its own action with only the preferences
+    differentiable, plus, for each discrete action ``k``, ``Q`` of its parameters played with ``k``'s one-hot
+    preferences (KICK left out where feature 12 is < 0 with ``kick_only_when_kickable``).
 
     With ``inverting_gradients``: target actions clamped to [-1, 1], and skill ``k``'s gradient is the actor's
     vector-Jacobian product with ``-invert(dQ/da) / n_k`` on its rows (Hausknecht & Stone's rescaled dQ/da).
@@ -152,7 +156,20 @@ def reference_update(
     if skills is None:
         skills = th.zeros(len(batch.observations), dtype=th.long)
     actions = policy.actor(batch.observations, skills)
-    q = policy.critic(batch.observations, masked(policy, actions))
+    if parameter_loss == "chosen":
+        q = policy.critic(batch.observations, masked(policy, actions))
+    else:
+        own = th.cat((actions[:, :3], actions[:, 3:].detach()), dim=1)
+        q = policy.critic(batch.observations, masked(policy, own))
+        for k in range(3):
+            preferences = -th.ones_like(actions[:, :3])
+            preferences[:, k] = 1.0
+            q_k = policy.critic(
+                batch.observations, masked(policy, th.cat((preferences, actions[:, 3:]), dim=1))
+            )
+            if k == 2 and policy.kick_only_when_kickable:
+                q_k = th.where(batch.observations[:, 12:13] < 0, 0.0, q_k)
+            q = q + q_k
     features = policy.actor.trunk(batch.observations)
     preactivations = th.stack([head(features) for head in policy.actor.heads], dim=1)[
         th.arange(len(skills)), skills
@@ -204,27 +221,55 @@ def reference_update(
         "n_critics",
         "discrete_target",
         "direction_frequencies",
+        "parameter_loss",
     ),
     [
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
-        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
-        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
-        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
-        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", ()),
-        (1, False, False, th.nn.ReLU, 0.0, 0.0, False, 1, "actor", ()),
-        (2, False, False, th.nn.Tanh, 0.0, 0.0, False, 1, "actor", ()),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor", ()),
-        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor", ()),
-        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True, 1, "actor", ()),
-        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "actor", ()),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 2, "actor", ()),
-        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3, "actor", ()),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max", ()),
-        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, False, 2, "max", ()),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 2, "max, no kick without the ball", ()),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max, no kick without the ball", (1, 8)),
-        (2, False, True, th.nn.LeakyReLU, 0.25, 0.3, False, 2, "actor", (2, 32)),
-        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (1,)),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (), "chosen"),
+        (2, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (), "chosen"),
+        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (), "chosen"),
+        (2, True, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (), "chosen"),
+        (3, False, True, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (), "chosen"),
+        (1, False, False, th.nn.ReLU, 0.0, 0.0, False, 1, "actor", (), "chosen"),
+        (2, False, False, th.nn.Tanh, 0.0, 0.0, False, 1, "actor", (), "chosen"),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor", (), "chosen"),
+        (2, False, False, th.nn.LeakyReLU, 0.25, 0.3, False, 1, "actor", (), "chosen"),
+        (1, False, False, th.nn.LeakyReLU, 0.25, 0.0, True, 1, "actor", (), "chosen"),
+        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "actor", (), "chosen"),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, False, 2, "actor", (), "chosen"),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3, "actor", (), "chosen"),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max", (), "chosen"),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, False, 2, "max", (), "chosen"),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 2, "max, no kick without the ball", (), "chosen"),
+        (
+            1,
+            False,
+            False,
+            th.nn.LeakyReLU,
+            0.0,
+            0.0,
+            True,
+            1,
+            "max, no kick without the ball",
+            (1, 8),
+            "chosen",
+        ),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.3, False, 2, "actor", (2, 32), "chosen"),
+        (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (1,), "chosen"),
+        (
+            1,
+            False,
+            False,
+            th.nn.LeakyReLU,
+            0.0,
+            0.0,
+            True,
+            1,
+            "max, no kick without the ball",
+            (1, 8),
+            "each_action",
+        ),
+        (2, False, True, th.nn.LeakyReLU, 0.25, 0.3, True, 2, "actor", (), "each_action"),
+        (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "actor", (), "each_action"),
     ],
 )
 def test_update_equals_straightforward_reference(
@@ -238,6 +283,7 @@ def test_update_equals_straightforward_reference(
     n_critics: int,
     discrete_target: str,
     direction_frequencies: tuple[float, ...],
+    parameter_loss: str,
 ) -> None:
     """Four updates (the first builds Adam's state, the next use the direct fused-kernel path) of the explicit
     forward / backward update against an autograd reference; skills interleaved in the batch, one of them absent
@@ -263,6 +309,7 @@ def test_update_equals_straightforward_reference(
         mc_mixing=mc_mixing,
         preactivation_penalty=penalty,
         discrete_target=discrete_target,
+        parameter_loss=parameter_loss,
         policy_kwargs=policy_kwargs,
     )
     reference = copy.deepcopy(model.policy)
@@ -274,7 +321,15 @@ def test_update_equals_straightforward_reference(
         )
         model._update(batch)
         reference_update(
-            reference, optimizers, batch, model.gamma, model.tau, mc_mixing, penalty, discrete_target
+            reference,
+            optimizers,
+            batch,
+            model.gamma,
+            model.tau,
+            mc_mixing,
+            penalty,
+            discrete_target,
+            parameter_loss,
         )
     after, expected = snapshot(model.policy), snapshot(reference)
     changed = [name for name in after if not th.equal(after[name], before[name])]
@@ -652,6 +707,12 @@ def test_bad_inputs_raise_clear_errors() -> None:
         make_model(1, discrete_target="mean")
     with pytest.raises(ValueError, match="discrete_target='max' needs the discrete actions"):
         SkillDDPG("HFOPolicy", "Pendulum-v1", discrete_target="max")
+    with pytest.raises(ValueError, match="parameter_loss must be one of"):
+        make_model(1, parameter_loss="all")
+    with pytest.raises(
+        ValueError, match="parameter_loss='each_action' needs the policy's mask_unused_parameters"
+    ):
+        make_model(1, parameter_loss="each_action")
     model = make_model(2, learning_starts=0, policy_kwargs=dict(skill_router=OutOfRangeRouter()))
     with pytest.raises(ValueError, match=r"skill indices in \[5, 5\]"):
         model.learn(5)

@@ -497,6 +497,12 @@ class HFOActor(nn.Module):
         return grad_zs[::-1]
 
 
+def one_hot_preferences(n_discrete: int, like: th.Tensor) -> th.Tensor:
+    """``(n, n)`` in ``like``'s dtype and device: row ``k`` is discrete action ``k``'s preferences, +1 for ``k`` and
+    -1 for the others (the form epsilon-greedy exploration stores and the critic's choice tries)."""
+    return 2.0 * th.eye(n_discrete, dtype=like.dtype, device=like.device) - 1.0
+
+
 class HFOCritic(nn.Module):
     """Q(s, a) with the action entering at the second layer (seed paper, Figure 1).
 
@@ -949,9 +955,7 @@ class HFOPolicy(BasePolicy):
         n_discrete = self.n_discrete_actions
         batch = actions.shape[0]
         candidates = actions.unsqueeze(1).repeat(1, n_discrete, 1)
-        candidates[:, :, :n_discrete] = (
-            2.0 * th.eye(n_discrete, dtype=actions.dtype, device=actions.device) - 1.0
-        )
+        candidates[:, :, :n_discrete] = one_hot_preferences(n_discrete, actions)
         repeated_obs = obs.repeat_interleave(n_discrete, dim=0)
         seen = self.critic_action(candidates.view(batch * n_discrete, -1))
         q_values = None

@@ -21,6 +21,11 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``g * (1 - a) / 2`` where ``g > 0`` (the update would increase ``a``) and ``g * (a + 1) / 2`` elsewhere.
    With the policy's ``mask_unused_parameters`` the critic sees every action (replayed, the actor's and the target
    actor's) with the parameters of the discrete actions not chosen set to 0, and ``g`` is zero on them.
+   With ``parameter_loss="each_action"`` (P-DQN's parameter loss, beyond the paper; needs that mask) the actor's
+   loss is ``-Q(s, mu(s))`` for the preferences only plus ``-sum_k Q(s, e_k, x_k(s))`` for the parameters: each
+   discrete action ``k``'s parameters ``x_k`` are trained by the value of ``k`` played with them (``e_k``: its
+   one-hot preferences), in every state, whichever action the preferences favour (KICK's not where
+   ``kick_only_when_kickable`` leaves it out); one extra critic pass over ``n_discrete * B`` rows.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
 Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on a quiet 2-core VM: 2.1-2.2x
@@ -77,12 +82,28 @@ from stable_baselines3.common.utils import (
 )
 
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
-from sb3_hfo.skill_ddpg.policies import HFO_FLAT_ACTION_DIM, HFO_N_DISCRETE_ACTIONS, HFOPolicy, Segment
+from sb3_hfo.skill_ddpg.policies import (
+    HFO_FLAT_ACTION_DIM,
+    HFO_KICK_ACTION,
+    HFO_N_DISCRETE_ACTIONS,
+    HFOPolicy,
+    Segment,
+    one_hot_preferences,
+)
 
-__all__ = ["DISCRETE_TARGETS", "HFO_FLAT_ACTION_DIM", "HFO_N_DISCRETE_ACTIONS", "SkillDDPG", "adam_step"]
+__all__ = [
+    "DISCRETE_TARGETS",
+    "PARAMETER_LOSSES",
+    "HFO_FLAT_ACTION_DIM",
+    "HFO_N_DISCRETE_ACTIONS",
+    "SkillDDPG",
+    "adam_step",
+]
 
 #: Values of ``SkillDDPG(discrete_target=...)``.
 DISCRETE_TARGETS = ("actor", "max")
+#: Values of ``SkillDDPG(parameter_loss=...)``.
+PARAMETER_LOSSES = ("chosen", "each_action")
 
 SelfSkillDDPG = TypeVar("SelfSkillDDPG", bound="SkillDDPG")
 
@@ -253,6 +274,13 @@ class SkillDDPG(OffPolicyAlgorithm):
         discrete action at the target actor's parameters, ``max_k Q'(s', e_k, x'(s'))`` with ``e_k`` discrete
         action ``k``'s one-hot preferences (with ``n_critics > 1``: the smaller target value per ``k``). ``"max"``
         is the target of the policy ``discrete_choice="critic"`` acts with; it needs a known discrete layout.
+    :param parameter_loss: which continuous parameters the actor trains in a state: ``"chosen"`` (the paper, DDPG
+        with the policy's ``mask_unused_parameters``) those of the discrete action its own preferences pick;
+        ``"each_action"`` (P-DQN's loss, beyond the paper) every discrete action's, each by the critic's value of
+        that action played with them. With the policy's ``discrete_choice="critic"`` the preferences never pick
+        what is played, so under ``"chosen"`` the parameters played were left untrained in a third or more of the
+        greedy steps of the session-7 to session-10 agents (benchmarks/RESULTS.md, session 12). Needs
+        ``mask_unused_parameters``.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
     :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
@@ -292,6 +320,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         mc_mixing: float = 0.0,
         preactivation_penalty: float = 0.0,
         discrete_target: str = "actor",
+        parameter_loss: str = "chosen",
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -337,6 +366,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.mc_mixing = mc_mixing
         self.preactivation_penalty = preactivation_penalty
         self.discrete_target = discrete_target
+        self.parameter_loss = parameter_loss
         if _init_setup_model:
             self._setup_model()
 
@@ -365,6 +395,8 @@ class SkillDDPG(OffPolicyAlgorithm):
             raise ValueError(
                 f"discrete_target must be one of {DISCRETE_TARGETS}, got {self.discrete_target!r}"
             )
+        if self.parameter_loss not in PARAMETER_LOSSES:
+            raise ValueError(f"parameter_loss must be one of {PARAMETER_LOSSES}, got {self.parameter_loss!r}")
 
     def _select_replay_buffer(self) -> None:
         """``mc_mixing > 0`` needs the episode returns that only :class:`MonteCarloReplayBuffer` keeps."""
@@ -412,6 +444,11 @@ class SkillDDPG(OffPolicyAlgorithm):
             raise ValueError(
                 "discrete_target='max' needs the discrete actions: HFO's 8-dimensional flat action, or the policy's "
                 "mask_unused_parameters given as per-action parameter counts"
+            )
+        if self.parameter_loss == "each_action" and self.policy.parameter_masks is None:
+            raise ValueError(
+                "parameter_loss='each_action' needs the policy's mask_unused_parameters: each discrete action's "
+                "parameters are valued with the others' set to 0"
             )
         if self.exploration_fraction > 0:
             self.exploration_schedule: Schedule = LinearSchedule(
@@ -535,6 +572,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         else:  # Q sees a * mask, so dQ/da = mask * dQ/d(a * mask): no gradient for parameters the env ignores
             actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions * parameter_mask)
             dq_da = critic.action_gradient(q_inputs) * parameter_mask
+            if self.parameter_loss == "each_action":
+                dq_da = self._each_action_gradient(obs, actor_actions, dq_da)
         if policy.inverting_gradients:
             dq_da = self._invert_gradients(dq_da, actor_actions)
         # d(lambda * mean_k ||z||^2)/dz = 2 lambda z / n_k = -2 lambda z * row_weight.
@@ -577,6 +616,34 @@ class SkillDDPG(OffPolicyAlgorithm):
         mean_q.addmm_(current_q.t(), mean_weight)
         skill_losses.addmm_(skill_weight, actor_q)
         self._stat_updates += 1
+
+    def _each_action_gradient(self, obs: th.Tensor, actor_actions: th.Tensor, dq_da: th.Tensor) -> th.Tensor:
+        """``parameter_loss="each_action"``: ``dq_da (B, A)``'s preference columns (the actor's own action) with
+        every discrete action ``k``'s parameter columns replaced by ``dQ(s, e_k, x_k)/dx_k``, the gradient of ``k``
+        played with the actor's parameters (preferences ``e_k``: +1 for ``k``, -1 for the others; the other
+        actions' parameters at 0). Zero for KICK's parameters where :meth:`HFOPolicy.kick_unavailable`."""
+        policy = self.policy
+        masks = policy.parameter_masks
+        assert masks is not None
+        n_discrete, batch_size = masks.shape[0], obs.shape[0]
+        # (n, B, A): block k is the actor's action played as discrete action k, as the critic sees it; the n * B
+        # rows go through one critic pass.
+        candidates = actor_actions.unsqueeze(0).repeat(n_discrete, 1, 1)
+        candidates[:, :, :n_discrete] = one_hot_preferences(n_discrete, actor_actions).unsqueeze(1)
+        candidates.mul_(masks.unsqueeze(1))
+        _, q_inputs = self.critic.forward_for_backward(
+            obs.repeat(n_discrete, 1), candidates.reshape(n_discrete * batch_size, -1)
+        )
+        grads = self.critic.action_gradient(q_inputs).view(n_discrete, batch_size, -1)
+        parameter_columns = masks.clone()
+        parameter_columns[:, :n_discrete] = 0.0
+        grads = grads * parameter_columns.unsqueeze(1)
+        no_kick = policy.kick_unavailable(obs)
+        if no_kick is not None:
+            grads[HFO_KICK_ACTION].masked_fill_(no_kick.unsqueeze(1), 0.0)
+        result = grads.sum(dim=0)
+        result[:, :n_discrete] = dq_da[:, :n_discrete]
+        return result
 
     def _skill_layout(self, counts: tuple[int, ...], like: th.Tensor) -> _Layout:
         """Segments and loss weights of a minibatch sorted by skill with ``counts[k]`` rows of skill ``k``.
