@@ -65,6 +65,23 @@ def test_discrete_choice_runs_both_modes_on_the_committed_model(tmp_path: Path) 
     assert all("scoring rate" in line for line in lines)
 
 
+def test_discrete_choice_agreement_counts_every_step(tmp_path: Path) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "discrete_choice.py")]
+    command += [
+        str(REPO / "models" / "x15_static_keeper_relative_kick_seed0"),
+        "--episodes",
+        "2",
+        "--agreement",
+    ]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = [line for line in completed.stdout.splitlines() if line.startswith("agreement: actor prefers")]
+    shares = [float(row.split()[-1].rstrip("%")) for row in rows]
+    assert rows and abs(sum(shares) - 100.0) < 0.1 * len(rows)
+    summary = completed.stdout.splitlines()[-1]
+    assert summary.startswith("agreement: ") and "steps, the played action" in summary
+
+
 def test_failure_map_groups_episodes_by_start_and_writes_a_png(tmp_path: Path) -> None:
     out = tmp_path / "map.png"
     command = [sys.executable, str(REPO / "benchmarks" / "failure_map.py")]
