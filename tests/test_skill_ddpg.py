@@ -88,6 +88,10 @@ def masked(policy: HFOPolicy, actions: th.Tensor) -> th.Tensor:
     return actions * keep
 
 
+#: ``discrete_target`` column of the update test: "max" with the policy's ``kick_only_when_kickable``.
+MAX_NO_KICK = "max, no kick without the ball"
+
+
 def reference_update(
     policy: HFOPolicy,
     optimizers: tuple[th.optim.Adam, list[th.optim.Adam]],
@@ -239,35 +243,11 @@ def reference_update(
         (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, True, 3, "actor", (), "chosen"),
         (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "max", (), "chosen"),
         (2, False, True, th.nn.LeakyReLU, 0.25, 0.0, False, 2, "max", (), "chosen"),
-        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 2, "max, no kick without the ball", (), "chosen"),
-        (
-            1,
-            False,
-            False,
-            th.nn.LeakyReLU,
-            0.0,
-            0.0,
-            True,
-            1,
-            "max, no kick without the ball",
-            (1, 8),
-            "chosen",
-        ),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 2, MAX_NO_KICK, (), "chosen"),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, MAX_NO_KICK, (1, 8), "chosen"),
         (2, False, True, th.nn.LeakyReLU, 0.25, 0.3, False, 2, "actor", (2, 32), "chosen"),
         (1, True, False, th.nn.LeakyReLU, 0.0, 0.0, False, 1, "actor", (1,), "chosen"),
-        (
-            1,
-            False,
-            False,
-            th.nn.LeakyReLU,
-            0.0,
-            0.0,
-            True,
-            1,
-            "max, no kick without the ball",
-            (1, 8),
-            "each_action",
-        ),
+        (1, False, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, MAX_NO_KICK, (1, 8), "each_action"),
         (2, False, True, th.nn.LeakyReLU, 0.25, 0.3, True, 2, "actor", (), "each_action"),
         (2, True, False, th.nn.LeakyReLU, 0.0, 0.0, True, 1, "actor", (), "each_action"),
     ],
