@@ -278,8 +278,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         with the policy's ``mask_unused_parameters``) those of the discrete action its own preferences pick;
         ``"each_action"`` (P-DQN's loss, beyond the paper) every discrete action's, each by the critic's value of
         that action played with them. With the policy's ``discrete_choice="critic"`` the preferences never pick
-        what is played, so under ``"chosen"`` the parameters played were left untrained in a third or more of the
-        greedy steps of the session-7 to session-10 agents (benchmarks/RESULTS.md, session 12). Needs
+        what is played, so under ``"chosen"`` the parameters played were ones the actor had not trained in that state
+        in 31-51 % of the greedy steps of three committed agents (benchmarks/RESULTS.md, session 12). Needs
         ``mask_unused_parameters``.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
