@@ -193,3 +193,13 @@ def test_shot_aim_projects_kicks_onto_the_goal_line_and_reports_outcomes() -> No
     assert len(outcome_lines) == 2, completed.stdout
     counts = [int(line.split()[1]) for line in outcome_lines if "episodes" in line]
     assert counts and sum(counts) <= 10
+
+
+def test_parameter_loss_cost_times_both_losses(tmp_path: Path) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "parameter_loss_cost.py")]
+    command += ["--updates", "2", "--repeats", "1", "--fill", "300"]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    lines = completed.stdout.splitlines()
+    assert [line.split(":")[0].strip() for line in lines] == ["chosen", "each_action", "each_action / chosen"]
+    assert float(lines[-1].split()[-1]) > 0

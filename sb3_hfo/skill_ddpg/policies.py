@@ -871,19 +871,29 @@ class HFOPolicy(BasePolicy):
 
     def _build_parameter_masks(self) -> None:
         """``parameter_masks (n_discrete, action_dim)``: row ``j`` is 1 on every preference and on discrete action
-        ``j``'s parameters, 0 elsewhere (not saved: it follows from ``mask_unused_parameters``)."""
+        ``j``'s parameters, 0 elsewhere. ``own_parameter_masks``: the same without the preferences (1 only on
+        ``j``'s parameters), and ``discrete_action_rows``: row ``j`` is ``j``'s one-hot preferences (+1 / -1) with
+        every parameter 0, so that ``rows[j] + a * own_masks[j]`` is action ``a`` played as ``j`` as the critic sees
+        it (SkillDDPG's ``parameter_loss="each_action"``). Not saved: they follow from ``mask_unused_parameters``."""
         sizes = self.action_parameter_sizes
-        masks = None
+        masks = own_masks = rows = None
         if sizes is not None:
             n_discrete = len(sizes)
-            masks = th.zeros(n_discrete, self.action_dim)
-            masks[:, :n_discrete] = 1.0
+            own_masks = th.zeros(n_discrete, self.action_dim)
             start = n_discrete
             for j, size in enumerate(sizes):
-                masks[j, start : start + size] = 1.0
+                own_masks[j, start : start + size] = 1.0
                 start += size
+            masks = own_masks.clone()
+            masks[:, :n_discrete] = 1.0
+            rows = th.zeros(n_discrete, self.action_dim)
+            rows[:, :n_discrete] = one_hot_preferences(n_discrete, rows)
         self.parameter_masks: th.Tensor | None
+        self.own_parameter_masks: th.Tensor | None
+        self.discrete_action_rows: th.Tensor | None
         self.register_buffer("parameter_masks", masks, persistent=False)
+        self.register_buffer("own_parameter_masks", own_masks, persistent=False)
+        self.register_buffer("discrete_action_rows", rows, persistent=False)
 
     def parameter_mask(self, actions: th.Tensor) -> th.Tensor | None:
         """``(B, action_dim)`` mask of what the environment executes for ``actions (B, action_dim)``: the

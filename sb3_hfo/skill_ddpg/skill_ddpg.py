@@ -88,7 +88,6 @@ from sb3_hfo.skill_ddpg.policies import (
     HFO_N_DISCRETE_ACTIONS,
     HFOPolicy,
     Segment,
-    one_hot_preferences,
 )
 
 __all__ = [
@@ -623,21 +622,17 @@ class SkillDDPG(OffPolicyAlgorithm):
         played with the actor's parameters (preferences ``e_k``: +1 for ``k``, -1 for the others; the other
         actions' parameters at 0). Zero for KICK's parameters where :meth:`HFOPolicy.kick_unavailable`."""
         policy = self.policy
-        masks = policy.parameter_masks
-        assert masks is not None
-        n_discrete, batch_size = masks.shape[0], obs.shape[0]
+        rows, own_masks = policy.discrete_action_rows, policy.own_parameter_masks
+        assert rows is not None and own_masks is not None
+        n_discrete, batch_size = rows.shape[0], obs.shape[0]
+        own_masks = own_masks.unsqueeze(1)
         # (n, B, A): block k is the actor's action played as discrete action k, as the critic sees it; the n * B
         # rows go through one critic pass.
-        candidates = actor_actions.unsqueeze(0).repeat(n_discrete, 1, 1)
-        candidates[:, :, :n_discrete] = one_hot_preferences(n_discrete, actor_actions).unsqueeze(1)
-        candidates.mul_(masks.unsqueeze(1))
+        candidates = th.addcmul(rows.unsqueeze(1), actor_actions.unsqueeze(0), own_masks)
         _, q_inputs = self.critic.forward_for_backward(
-            obs.repeat(n_discrete, 1), candidates.reshape(n_discrete * batch_size, -1)
+            obs.repeat(n_discrete, 1), candidates.view(n_discrete * batch_size, -1)
         )
-        grads = self.critic.action_gradient(q_inputs).view(n_discrete, batch_size, -1)
-        parameter_columns = masks.clone()
-        parameter_columns[:, :n_discrete] = 0.0
-        grads = grads * parameter_columns.unsqueeze(1)
+        grads = self.critic.action_gradient(q_inputs).view(n_discrete, batch_size, -1) * own_masks
         no_kick = policy.kick_unavailable(obs)
         if no_kick is not None:
             grads[HFO_KICK_ACTION].masked_fill_(no_kick.unsqueeze(1), 0.0)
