@@ -203,3 +203,21 @@ def test_parameter_loss_cost_times_both_losses(tmp_path: Path) -> None:
     lines = completed.stdout.splitlines()
     assert [line.split(":")[0].strip() for line in lines] == ["chosen", "each_action", "each_action / chosen"]
     assert float(lines[-1].split()[-1]) > 0
+
+
+def test_time_out_trace_reports_every_time_out(tmp_path: Path) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "time_out_trace.py")]
+    command += [
+        str(REPO / "models" / "x15_static_keeper_relative_kick_seed0"),
+        "--episodes",
+        "9",
+        "--last",
+        "2",
+    ]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    lines = completed.stdout.splitlines()
+    headers = [line for line in lines if line.startswith("episode ")]
+    assert lines[-1] == f"{len(headers)} OUT_OF_TIME of 9 episodes"
+    # Two steps printed per time-out (which episodes time out depends on the CPU's float rounding).
+    assert sum("Q(turn to ball)" in line for line in lines) == 2 * len(headers)
