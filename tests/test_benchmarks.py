@@ -221,3 +221,47 @@ def test_time_out_trace_reports_every_time_out(tmp_path: Path) -> None:
     assert lines[-1] == f"{len(headers)} OUT_OF_TIME of 9 episodes"
     # Two steps printed per time-out (which episodes time out depends on the CPU's float rounding).
     assert sum("Q(turn to ball)" in line for line in lines) == 2 * len(headers)
+
+
+def test_critic_parameter_search_candidates_move_one_own_parameter_at_a_time() -> None:
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        import critic_parameter_search
+    finally:
+        sys.path.pop(0)
+    import torch as th
+
+    from sb3_hfo.evaluate import load_for_evaluation
+
+    model, env, _, _, _ = load_for_evaluation(
+        str(REPO / "models" / "x19_static_keeper_each_action_parameters_seed0")
+    )
+    env.close()
+    policy = model.policy
+    actions = th.rand(4, policy.action_dim) * 2 - 1
+    candidates, owners = critic_parameter_search.searched_candidates(policy, actions, [0.1, -0.1, 0.3])
+    sizes = policy.action_parameter_sizes
+    # Per discrete action: the actor's parameters, then 4 moves (+-0.1, +-0.3) of each of its parameters.
+    assert owners.tolist() == [j for j, size in enumerate(sizes) for _ in range(1 + 4 * size)]
+    for column, owner in enumerate(owners.tolist()):
+        played = policy.discrete_action_rows[owner] + actions * policy.own_parameter_masks[owner]
+        difference = candidates[:, column] - played
+        assert (difference[:, : len(sizes)] == 0).all()  # the preferences name the owner
+        assert (
+            difference * (1 - policy.own_parameter_masks[owner]) == 0
+        ).all()  # other actions' parameters 0
+        assert ((difference != 0).sum(dim=1) <= 1).all()  # one parameter moved
+        assert (candidates[:, column].abs() <= 1).all()
+    chosen = critic_parameter_search.searched_choice(
+        policy, th.zeros(4, policy.observation_space.shape[0]), actions, [0.1]
+    )
+    assert chosen.shape == actions.shape
+
+
+def test_critic_parameter_search_plays_both_modes(tmp_path: Path) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "critic_parameter_search.py")]
+    command += [str(REPO / "models" / "x19_static_keeper_each_action_parameters_seed0"), "--episodes", "2"]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    lines = completed.stdout.splitlines()
+    assert [line.split(":")[0] for line in lines] == ["actor's parameters", "searched, offsets [0.05, 0.02]"]
