@@ -85,15 +85,15 @@ def main(argv: Sequence[str] | None = None) -> None:
         )
     policy.discrete_choice = "critic"
     n_skills = model_n_skills(model)
-    plain_choice = policy.critic_choice
+    modes = {
+        "actor's parameters": policy.critic_choice,
+        f"searched, offsets {args.offsets}": lambda obs, actions: searched_choice(
+            policy, obs, actions, args.offsets
+        ),
+    }
     try:
-        for mode in ("actor's parameters", f"searched, offsets {args.offsets}"):
-            if mode.startswith("searched"):
-                policy.critic_choice = lambda obs, actions: searched_choice(
-                    policy, obs, actions, args.offsets
-                )
-            else:
-                policy.critic_choice = plain_choice
+        for mode, choice in modes.items():
+            policy.critic_choice = choice  # what predict calls with discrete_choice="critic"
             records = run_episodes(model, env, args.episodes, args.seed, True, n_skills)
             result = summarize(
                 records, model=str(path), env_id=env_id, seed=args.seed, deterministic=True, n_skills=n_skills,

@@ -238,24 +238,28 @@ def test_critic_parameter_search_candidates_move_one_own_parameter_at_a_time() -
     )
     env.close()
     policy = model.policy
-    actions = th.rand(4, policy.action_dim) * 2 - 1
+    actions = th.rand(4, policy.action_dim, generator=th.Generator().manual_seed(0)) * 2 - 1
     candidates, owners = critic_parameter_search.searched_candidates(policy, actions, [0.1, -0.1, 0.3])
     sizes = policy.action_parameter_sizes
     # Per discrete action: the actor's parameters, then 4 moves (+-0.1, +-0.3) of each of its parameters.
     assert owners.tolist() == [j for j, size in enumerate(sizes) for _ in range(1 + 4 * size)]
     for column, owner in enumerate(owners.tolist()):
-        played = policy.discrete_action_rows[owner] + actions * policy.own_parameter_masks[owner]
+        own_mask = policy.own_parameter_masks[owner]
+        played = policy.discrete_action_rows[owner] + actions * own_mask
         difference = candidates[:, column] - played
-        assert (difference[:, : len(sizes)] == 0).all()  # the preferences name the owner
-        assert (
-            difference * (1 - policy.own_parameter_masks[owner]) == 0
-        ).all()  # other actions' parameters 0
+        assert (difference * (1 - own_mask) == 0).all()  # preferences name the owner; others' parameters 0
         assert ((difference != 0).sum(dim=1) <= 1).all()  # one parameter moved
         assert (candidates[:, column].abs() <= 1).all()
-    chosen = critic_parameter_search.searched_choice(
-        policy, th.zeros(4, policy.observation_space.shape[0]), actions, [0.1]
+
+    obs = th.zeros(4, policy.observation_space.shape[0])
+    chosen = critic_parameter_search.searched_choice(policy, obs, actions, [0.1, -0.1, 0.3])
+    values = policy.critic.forward(obs.repeat_interleave(len(owners), 0), candidates.flatten(0, 1)).view(
+        4, -1
     )
-    assert chosen.shape == actions.shape
+    best = candidates[th.arange(4), values.argmax(dim=1)]
+    assert th.equal(
+        chosen, best
+    )  # KICK is allowed: the kickable feature of a zero observation is not negative
 
 
 def test_critic_parameter_search_plays_both_modes(tmp_path: Path) -> None:
