@@ -152,10 +152,14 @@ def test_config_is_valid_and_documents_its_command(config: Path) -> None:
 
     env_id, hyperparams = _load_config(config)
     assert env_id in hfo2d.ENV_IDS
-    for key in ("learning_rate_actor", "tau", "gamma", "batch_size", "buffer_size", "n_timesteps"):
+    for key in ("tau", "gamma", "batch_size", "buffer_size", "n_timesteps"):
         # PyYAML reads "1e-4" (no dot) as a string; every number must really be a number.
         assert isinstance(hyperparams[key], (int, float)), f"{key} = {hyperparams[key]!r}"
-    assert re.fullmatch(r"lin_[0-9.]+|[0-9.]+", str(hyperparams["learning_rate_critic"]))
+    for key in ("learning_rate_actor", "learning_rate_critic"):
+        learning_rate = hyperparams[key]
+        assert isinstance(learning_rate, (int, float)) or re.fullmatch(r"lin_[0-9.]+", learning_rate), (
+            f"{key} = {learning_rate!r}"
+        )
     text = config.read_text()
     command = f"python -m sb3_hfo.train --algo skill_ddpg --env {env_id} --conf-file zoo_configs/{config.name} --seed 0"
     assert command in text, f"{config.name} must document its own command line"
