@@ -16,7 +16,7 @@ from hfo2d.features import (
     num_features,
 )
 from hfo2d.physics import PITCH_HALF_LENGTH, PITCH_HALF_WIDTH, PlayerState, ServerParams, World
-from hfo2d.reward import REWARD_NAMES, make_reward
+from hfo2d.reward import DEFAULT_SHAPING_GAMMA, REWARD_NAMES, make_reward
 
 # ---------------------------------------------------------------------------------------------------------------
 # Tasks, actions, episode rules
@@ -146,6 +146,9 @@ class HFOEnv(gym.Env):
         :mod:`hfo2d.reward`): Δ ball proximity + 1 on the first kickable step + 3 × ball-to-goal progress + 5 on a
         goal, deltas zero on the first and last step of an episode. ``"shaped_gap"`` (not HFO's): the same with the
         ball's progress measured toward the middle of the wider goalie-post gap (the goal centre without a goalie).
+        ``"potential_gap"`` (not HFO's): ``"shaped_gap"``'s progress terms as potential-based shaping discounted by
+        ``shaping_gamma``: every terminated episode's shaping sums (discounted) to the same total, so only a goal
+        pays more than losing the ball.
         ``"sparse"``: 1 for a goal, else 0.
         ``info["reward_terms"]`` holds each term.
 
@@ -178,7 +181,9 @@ class HFOEnv(gym.Env):
         task: one of TASKS.
         render_mode: None, "human" (pygame window, drawn every step) or "rgb_array".
         action_format: "flat" or "parameterized".
-        reward: "shaped", "shaped_gap" or "sparse".
+        reward: "shaped", "shaped_gap", "potential_gap" or "sparse".
+        shaping_gamma: discount of the ``"potential_gap"`` shaping, in [0, 1] (set it to the agent's ``gamma``);
+            the other rewards ignore it.
         noise: False turns off player, ball and kick noise (HFO's --deterministic).
         server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}``.
         keeper_skill: goalie quality for task "keeper", in [0, 1].
@@ -201,6 +206,7 @@ class HFOEnv(gym.Env):
         frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
         untouched_time: int = DEFAULT_UNTOUCHED_TIME,
         random_start_fraction: float = 0.0,
+        shaping_gamma: float = DEFAULT_SHAPING_GAMMA,
     ) -> None:
         if task not in TASKS:
             raise ValueError(f"unknown task {task!r}; choose one of {TASKS}")
@@ -267,7 +273,8 @@ class HFOEnv(gym.Env):
                 )
             )
 
-        self._reward_fn = make_reward(reward)
+        self._reward_fn = make_reward(reward, shaping_gamma)
+        self.shaping_gamma = float(shaping_gamma)
         # The world and its players live as long as the env; reset() re-places them and hands them the env's
         # (possibly reseeded) generator, so references to env.world / env.agent stay valid across episodes.
         rng = self.np_random
@@ -339,14 +346,13 @@ class HFOEnv(gym.Env):
             if self._keeper_policy.skill != self.keeper_skill:  # set_keeper_skill() was called
                 self._keeper_policy = self._make_scripted_keeper(rng)
             self._keeper_policy.reset()
-        self._reward_fn.reset()
-
         self._steps = 0
         self._untouched = 0
         self._take_time = 0
         self._status = IN_GAME
         self._needs_reset = False
         features = self._features()
+        self._reward_fn.reset(features)
         info = self._info(features)
         info["reward_terms"] = {"move_to_ball": 0.0, "kick_bonus": 0.0, "ball_to_goal": 0.0, "goal": 0.0}
         if self.render_mode == "human":
@@ -389,7 +395,7 @@ class HFOEnv(gym.Env):
         self._status = status
 
         features = self._features()
-        reward, terms = self._reward_fn(features, status)
+        reward, terms = self._reward_fn(features, status, terminated)
         info = self._info(features)
         info["reward_terms"] = terms
         info["action"] = ACTION_NAMES[kind]
