@@ -269,3 +269,16 @@ def test_critic_parameter_search_plays_both_modes(tmp_path: Path) -> None:
     assert completed.returncode == 0, completed.stderr[-2000:]
     lines = completed.stdout.splitlines()
     assert [line.split(":")[0] for line in lines] == ["actor's parameters", "searched, offsets [0.05, 0.02]"]
+
+
+def test_return_by_outcome_groups_every_episode_once(tmp_path: Path) -> None:
+    out = tmp_path / "rows.json"
+    command = [sys.executable, str(REPO / "benchmarks" / "return_by_outcome.py")]
+    command += [str(REPO / "models" / "x24_keeper_skills_each_action_parameters_seed0"), "--episodes", "3"]
+    command += ["--seed", "0", "--json", str(out)]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = json.loads(out.read_text())["rows"]
+    assert sum(row["episodes"] for row in rows) == 3
+    assert len({(row["last_kick"], row["status"]) for row in rows}) == len(rows)
+    assert all(row["mean_steps"] >= 1 for row in rows)
