@@ -766,3 +766,20 @@ def test_same_seed_same_training() -> None:
 def test_negative_preactivation_penalty_is_rejected() -> None:
     with pytest.raises(ValueError, match="preactivation_penalty"):
         make_model(1, preactivation_penalty=-1.0)
+
+
+@pytest.mark.parametrize(("shaping_gamma", "warns"), [(0.9, True), (0.98, False)])
+def test_learn_warns_when_potential_shaping_uses_another_discount(shaping_gamma: float, warns: bool) -> None:
+    import warnings
+
+    from hfo2d.hfo_env import HFOEnv
+
+    env = HFOEnv(reward="potential_gap", shaping_gamma=shaping_gamma)
+    model = SkillDDPG("HFOPolicy", env, gamma=0.98, learning_starts=10, seed=0, policy_kwargs=TINY)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        model.learn(2)
+    messages = [str(w.message) for w in caught if "shaping_gamma" in str(w.message)]
+    assert len(messages) == (1 if warns else 0)
+    if warns:
+        assert "shaping_gamma=0.9" in messages[0] and "gamma is 0.98" in messages[0]

@@ -62,6 +62,8 @@ exploring step only re-picks the discrete action (its preference set to 1, the o
 
 from __future__ import annotations
 
+import math
+import warnings
 from collections import deque
 from collections.abc import Sequence
 from typing import Any, ClassVar, TypeVar
@@ -812,6 +814,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         reset_num_timesteps: bool = True,
         progress_bar: bool = False,
     ) -> SelfSkillDDPG:
+        self._warn_if_shaping_discount_differs()
         return super().learn(
             total_timesteps=total_timesteps,
             callback=callback,
@@ -820,6 +823,28 @@ class SkillDDPG(OffPolicyAlgorithm):
             reset_num_timesteps=reset_num_timesteps,
             progress_bar=progress_bar,
         )
+
+    def _warn_if_shaping_discount_differs(self) -> None:
+        """Warn when HFO's ``potential_gap`` reward is discounted by another gamma than the agent's.
+
+        Potential-based shaping leaves the goal reward's optimal policy unchanged only at the agent's own discount.
+        """
+        if self.env is None:
+            return
+        try:
+            rewards = self.env.get_attr("reward_name")
+            shaping_gammas = self.env.get_attr("shaping_gamma")
+        except AttributeError:  # not an hfo2d env
+            return
+        for reward, shaping_gamma in zip(rewards, shaping_gammas, strict=True):
+            if reward == "potential_gap" and not math.isclose(shaping_gamma, self.gamma):
+                warnings.warn(
+                    f"the env's potential_gap reward is discounted by shaping_gamma={shaping_gamma} but the agent's "
+                    f"gamma is {self.gamma}: pass shaping_gamma={self.gamma} in the env kwargs for the shaping to "
+                    "leave the goal reward's optimal policy unchanged",
+                    stacklevel=3,
+                )
+                return
 
     def _excluded_save_params(self) -> list[str]:
         return [
