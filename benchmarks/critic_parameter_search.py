@@ -14,13 +14,12 @@ in benchmarks/RESULTS.md:
 
 from __future__ import annotations
 
-import argparse
 from collections.abc import Sequence
 from typing import Any
 
 import torch as th
 
-from sb3_hfo.evaluate import load_for_evaluation, model_n_skills, run_episodes, summarize
+from sb3_hfo.evaluate import episodes_parser, load_for_evaluation, model_n_skills, run_episodes, summarize
 from sb3_hfo.skill_ddpg.policies import HFO_KICK_ACTION
 
 
@@ -67,11 +66,7 @@ def searched_choice(policy: Any, obs: th.Tensor, actions: th.Tensor, offsets: Se
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("model", help="SkillDDPG .zip or rl-zoo3 run folder")
-    parser.add_argument("--env", default=None, help="environment id (default: the run's own)")
-    parser.add_argument("--episodes", type=int, default=1000)
-    parser.add_argument("--seed", type=int, default=0)
+    parser = episodes_parser(__doc__.splitlines()[0], default_episodes=1000)
     parser.add_argument(
         "--offsets", type=float, nargs="+", default=[0.05, 0.02], help="parameter moves to try"
     )

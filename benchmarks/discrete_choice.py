@@ -17,7 +17,6 @@ never trained in that state (session 12):
 
 from __future__ import annotations
 
-import argparse
 from collections import Counter
 from collections.abc import Sequence
 from typing import Any
@@ -25,7 +24,13 @@ from typing import Any
 import numpy as np
 import torch as th
 
-from sb3_hfo.evaluate import load_for_evaluation, model_n_skills, run_episodes, wilson_interval
+from sb3_hfo.evaluate import (
+    episodes_parser,
+    load_for_evaluation,
+    model_n_skills,
+    run_episodes,
+    wilson_interval,
+)
 from sb3_hfo.skill_ddpg.policies import DISCRETE_CHOICES
 
 ACTION_NAMES = ("DASH", "TURN", "KICK")
@@ -52,11 +57,7 @@ def preference_agreement(model: Any, env: Any, episodes: int, seed: int) -> Coun
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("model", help="SkillDDPG .zip or rl-zoo3 run folder")
-    parser.add_argument("--env", default=None, help="environment id (default: the run's own)")
-    parser.add_argument("--episodes", type=int, default=200)
-    parser.add_argument("--seed", type=int, default=0)
+    parser = episodes_parser(__doc__.splitlines()[0], default_episodes=200)
     parser.add_argument(
         "--agreement",
         action="store_true",

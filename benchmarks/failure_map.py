@@ -12,13 +12,13 @@ failure analysis in benchmarks/RESULTS.md:
 
 from __future__ import annotations
 
-import argparse
 from collections import Counter
 from collections.abc import Sequence
 from pathlib import Path
 
 from sb3_hfo.evaluate import (
     EpisodeRecord,
+    episodes_parser,
     load_for_evaluation,
     model_n_skills,
     run_episodes,
@@ -114,11 +114,7 @@ def plot(records: Sequence[EpisodeRecord], title: str, out: Path) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("model", help="SkillDDPG .zip or rl-zoo3 run folder")
-    parser.add_argument("--env", default=None, help="environment id (default: the run's own)")
-    parser.add_argument("--episodes", type=int, default=1000)
-    parser.add_argument("--seed", type=int, default=0)
+    parser = episodes_parser(__doc__.splitlines()[0], default_episodes=1000)
     parser.add_argument("--out", type=Path, default=None, help="PNG to write (default: none)")
     parser.add_argument(
         "--discrete-choice",
@@ -127,8 +123,6 @@ def main(argv: Sequence[str] | None = None) -> None:
         help="actor or critic (default: the model's)",
     )
     args = parser.parse_args(argv)
-    if args.episodes < 1:
-        parser.error(f"--episodes must be at least 1, got {args.episodes}")
 
     model, env, env_id, _, path = load_for_evaluation(args.model, args.env or None)
     if args.discrete_choice is not None:

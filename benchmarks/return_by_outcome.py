@@ -12,13 +12,13 @@ benchmarks/RESULTS.md (session 15) to show what the ``shaped_gap`` reward paid x
 
 from __future__ import annotations
 
-import argparse
 import json
 from collections.abc import Sequence
 from pathlib import Path
 
 from sb3_hfo.evaluate import (
     EpisodeRecord,
+    episodes_parser,
     load_for_evaluation,
     model_n_skills,
     run_episodes,
@@ -53,15 +53,9 @@ def group_rows(records: Sequence[EpisodeRecord]) -> list[dict[str, object]]:
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("model", help="SkillDDPG .zip or rl-zoo3 run folder")
-    parser.add_argument("--env", default=None, help="environment id (default: the run's own)")
-    parser.add_argument("--episodes", type=int, default=300)
-    parser.add_argument("--seed", type=int, default=0)
+    parser = episodes_parser(__doc__.splitlines()[0], default_episodes=300)
     parser.add_argument("--json", type=Path, default=None, help="write the rows here as JSON")
     args = parser.parse_args(argv)
-    if args.episodes < 1:
-        parser.error(f"--episodes must be at least 1, got {args.episodes}")
 
     model, env, env_id, env_kwargs, path = load_for_evaluation(args.model, args.env)
     try:

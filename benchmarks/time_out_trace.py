@@ -11,7 +11,6 @@ session-12 analysis in benchmarks/RESULTS.md:
 
 from __future__ import annotations
 
-import argparse
 import math
 from collections import Counter
 from collections.abc import Sequence
@@ -22,7 +21,7 @@ import torch as th
 
 from hfo2d.features import BALL_ANGLE_COS, BALL_ANGLE_SIN
 from hfo2d.hfo_env import TURN
-from sb3_hfo.evaluate import load_for_evaluation
+from sb3_hfo.evaluate import episodes_parser, load_for_evaluation
 from sb3_hfo.skill_ddpg.policies import HFO_DIRECTION_PARAMETER_INDICES
 
 #: The turn direction's index in HFO's flat action ([-1, 1] for [-180, 180] degrees).
@@ -44,11 +43,7 @@ def step_values(model: Any, obs: np.ndarray) -> tuple[np.ndarray, float, float]:
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("model", help="SkillDDPG .zip or rl-zoo3 run folder")
-    parser.add_argument("--env", default=None, help="environment id (default: the run's own)")
-    parser.add_argument("--episodes", type=int, default=300)
-    parser.add_argument("--seed", type=int, default=0)
+    parser = episodes_parser(__doc__.splitlines()[0], default_episodes=300)
     parser.add_argument("--last", type=int, default=3, help="steps printed at the end of each time-out")
     args = parser.parse_args(argv)
 

@@ -525,6 +525,27 @@ def print_table(result: EvaluationResult) -> None:
     Console().print(table)
 
 
+def _episode_count(text: str) -> int:
+    """argparse type of ``--episodes``: an integer >= 1."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"must be at least 1, got {value}")
+    return value
+
+
+def episodes_parser(description: str, default_episodes: int) -> argparse.ArgumentParser:
+    """A parser with the arguments the benchmark scripts share: model, ``--env``, ``--episodes`` (>= 1), ``--seed``."""
+    parser = argparse.ArgumentParser(description=description)
+    parser.add_argument("model", help="SkillDDPG .zip or rl-zoo3 run folder")
+    parser.add_argument("--env", default=None, help="environment id (default: the run's own)")
+    parser.add_argument("--episodes", type=_episode_count, default=default_episodes)
+    parser.add_argument("--seed", type=int, default=0, help="seed of the first env reset")
+    return parser
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="python -m sb3_hfo.evaluate",

@@ -282,3 +282,13 @@ def test_return_by_outcome_groups_every_episode_once(tmp_path: Path) -> None:
     assert sum(row["episodes"] for row in rows) == 3
     assert len({(row["last_kick"], row["status"]) for row in rows}) == len(rows)
     assert all(row["mean_steps"] >= 1 for row in rows)
+
+
+@pytest.mark.parametrize("episodes", ["0", "ten"])
+def test_episode_benchmarks_refuse_a_bad_episode_count(tmp_path: Path, episodes: str) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "return_by_outcome.py"), "no_such_model"]
+    completed = subprocess.run(
+        [*command, "--episodes", episodes], capture_output=True, text=True, timeout=120, cwd=tmp_path
+    )
+    assert completed.returncode == 2 and "--episodes" in completed.stderr
+    assert ("at least 1" if episodes == "0" else "must be an integer") in completed.stderr
