@@ -14,6 +14,7 @@ from hfo2d.hfo_env import HFOEnv
 from hfo2d.reward import (
     GapShapedReward,
     PotentialGapReward,
+    RefundedGapShapedReward,
     ShapedReward,
     SparseReward,
     ball_to_gap_distance,
@@ -269,3 +270,53 @@ def test_potential_reward_terms_and_kick_bonus() -> None:
 def test_bad_shaping_gamma_is_refused(gamma: object) -> None:
     with pytest.raises(ValueError, match="shaping gamma"):
         HFOEnv(reward="potential_gap", shaping_gamma=gamma)  # type: ignore[arg-type]
+
+
+def test_refund_takes_back_the_progress_since_the_ball_was_last_kickable() -> None:
+    # ball proximity fixed; goal proximity falls step by step: the ball moves 0.1 units closer each step.
+    def play(final_status: str) -> list[float]:
+        reward = RefundedGapShapedReward()
+        reward.reset()
+        terms = [reward(synthetic(0.5, 0.0, kickable=1.0), "IN_GAME")[1]["ball_to_goal"]]  # first step: 0
+        terms.append(reward(synthetic(0.5, 0.1, kickable=1.0), "IN_GAME")[1]["ball_to_goal"])  # carried
+        terms.append(reward(synthetic(0.5, 0.2, kickable=-1.0), "IN_GAME")[1]["ball_to_goal"])  # kicked
+        terms.append(reward(synthetic(0.5, 0.3, kickable=-1.0), "IN_GAME")[1]["ball_to_goal"])
+        terms.append(reward(synthetic(0.5, 0.3, kickable=-1.0), final_status)[1]["ball_to_goal"])
+        return terms
+
+    assert play("GOAL") == pytest.approx([0.0, 0.3, 0.3, 0.3, 0.0])
+    for lost in ("CAPTURED_BY_DEFENSE", "OUT_OF_BOUNDS", "OUT_OF_TIME"):
+        assert play(lost) == pytest.approx([0.0, 0.3, 0.3, 0.3, -0.6])  # the carried 0.3 stays paid
+    reward = RefundedGapShapedReward()
+    reward(synthetic(0.5, 0.0, kickable=-1.0), "IN_GAME")
+    reward(synthetic(0.5, 0.1, kickable=-1.0), "IN_GAME")
+    assert reward(synthetic(0.5, 0.1), "OUT_OF_TIME", terminated=False)[1]["ball_to_goal"] == 0.0  # truncated
+
+
+def test_refund_changes_only_the_last_step_of_a_lost_episode() -> None:
+    # The scripted striker plays the same episodes under shaped_gap and shaped_gap_refund (the reward does not
+    # steer it); the two agree step by step except a lost episode's last step, which takes back what shaped_gap
+    # paid for the ball's progress since it was last kickable.
+    plain = HFOEnv(task="keeper", reward="shaped_gap")
+    refund = HFOEnv(task="keeper", reward="shaped_gap_refund")
+    statuses = set()
+    for seed in range(12):
+        obs, _ = plain.reset(seed=seed)
+        refund.reset(seed=seed)
+        since_kickable = 0.0
+        while True:
+            action = heuristic(plain, obs)
+            obs, value, terminated, truncated, info = plain.step(action)
+            _, refund_value, _, _, refund_info = refund.step(action)
+            if terminated and info["status"] != "GOAL":
+                assert refund_info["reward_terms"]["ball_to_goal"] == pytest.approx(-since_kickable, abs=1e-9)
+                assert refund_value == pytest.approx(value - since_kickable, abs=1e-9)
+            else:
+                assert refund_value == value
+            since_kickable = (
+                0.0 if info["kickable"] else since_kickable + info["reward_terms"]["ball_to_goal"]
+            )
+            if terminated or truncated:
+                statuses.add(info["status"])
+                break
+    assert {"GOAL", "CAPTURED_BY_DEFENSE"} <= statuses

@@ -146,6 +146,8 @@ class HFOEnv(gym.Env):
         :mod:`hfo2d.reward`): Δ ball proximity + 1 on the first kickable step + 3 × ball-to-goal progress + 5 on a
         goal, deltas zero on the first and last step of an episode. ``"shaped_gap"`` (not HFO's): the same with the
         ball's progress measured toward the middle of the wider goalie-post gap (the goal centre without a goalie).
+        ``"shaped_gap_refund"`` (not HFO's): ``"shaped_gap"`` whose last step, when an episode ends without a goal,
+        takes back the progress paid since the ball was last kickable by the agent (a lost shot pays nothing).
         ``"potential_gap"`` (not HFO's): ``"shaped_gap"``'s progress terms as potential-based shaping discounted by
         ``shaping_gamma``: every terminated episode's shaping sums (discounted) to the same total, so only a goal
         pays more than losing the ball.
@@ -181,7 +183,7 @@ class HFOEnv(gym.Env):
         task: one of TASKS.
         render_mode: None, "human" (pygame window, drawn every step) or "rgb_array".
         action_format: "flat" or "parameterized".
-        reward: "shaped", "shaped_gap", "potential_gap" or "sparse".
+        reward: "shaped", "shaped_gap", "shaped_gap_refund", "potential_gap" or "sparse".
         shaping_gamma: discount of the ``"potential_gap"`` shaping, in [0, 1] (set it to the agent's ``gamma``);
             the other rewards ignore it.
         noise: False turns off player, ball and kick noise (HFO's --deterministic).

@@ -30,6 +30,12 @@ pays for moving the ball straight at a goalie on the goal line, and agents train
 keeper shoot at him from close range (benchmarks/RESULTS.md, sessions 8-9). The target is computed from the
 features alone (goal centre, posts, ball and goalie landmarks, all in the agent's body frame).
 
+Shaped toward the gap, lost shots refunded (``"shaped_gap_refund"``; not HFO's, an option of this package):
+``"shaped_gap"``, except that when an episode ends without a goal (terminated: CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS,
+or OUT_OF_TIME after 100 untouched cycles) its last step takes back the ball-to-gap progress paid since the ball
+was last kickable by the agent. Progress the agent carried the ball through (dribbling) stays paid; a kick's
+progress is kept only when it ends in a goal or the agent reaches the ball again. Why: the same x24 agent as below.
+
 Potential-based, toward the gap (``"potential_gap"``; not HFO's, an option of this package): the two progress
 terms of ``"shaped_gap"`` rewritten as potential-based shaping (Ng, Harada & Russell, ICML 1999), which provably
 leaves the optimal policy of the goal reward unchanged::
@@ -76,7 +82,7 @@ from hfo2d.features import (
     landmark_position,
 )
 
-REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "potential_gap", "sparse")
+REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "potential_gap", "sparse")
 STATUS_IN_GAME = "IN_GAME"
 STATUS_GOAL = "GOAL"
 
@@ -189,8 +195,11 @@ class ShapedReward:
     """Hausknecht & Stone's shaped reward, DQNHFO's 2016 computation (see the module docstring)."""
 
     distance_to_target = staticmethod(ball_to_goal_distance)
+    #: take back, on a terminal step without a goal, the progress paid since the ball was last kickable
+    refund_lost_progress = False
 
     def __init__(self) -> None:
+        self._progress_since_kickable = 0.0
         self._previous_ball_proximity = 0.0
         self._previous_kickable = -1.0
         self._previous_ball_to_goal = 0.0
@@ -204,6 +213,7 @@ class ShapedReward:
         """
         self._first_step = True
         self._kick_bonus_paid = False
+        self._progress_since_kickable = 0.0
 
     def __call__(
         self, features: Sequence[float], status: str, terminated: bool | None = None
@@ -213,7 +223,9 @@ class ShapedReward:
         Args:
             features: the step's feature vector (58 or 66 values, feature units).
             status: the step's HFO status ("IN_GAME", "GOAL", ...).
-            terminated: unused (any status but IN_GAME ends the deltas, truncation included, as in DQNHFO).
+            terminated: whether the episode ended for good (None: any status but IN_GAME); only the refund of
+                ``refund_lost_progress`` uses it (a truncated episode is not refunded). The deltas end with any
+                status but IN_GAME, truncation included, as in DQNHFO.
 
         Returns:
             (reward, terms) where terms maps each of REWARD_TERM_NAMES to its (weighted) share; they sum to reward.
@@ -231,6 +243,15 @@ class ShapedReward:
             if _kick_bonus_due(kickable, self._previous_kickable, self._kick_bonus_paid):
                 kick_bonus = KICK_BONUS
                 self._kick_bonus_paid = True
+        if self.refund_lost_progress:
+            if terminated is None:
+                terminated = status != STATUS_IN_GAME
+            if terminated and status != STATUS_GOAL:
+                ball_to_goal_term = -self._progress_since_kickable
+            # kickable > 0: the agent has the ball, and the progress so far is its own
+            self._progress_since_kickable = (
+                0.0 if kickable > 0.0 else self._progress_since_kickable + ball_to_goal_term
+            )
 
         self._first_step = False
         self._previous_ball_proximity = ball_proximity
@@ -243,6 +264,12 @@ class GapShapedReward(ShapedReward):
     """The shaped reward with ball progress measured toward ``gap_target`` (see the module docstring)."""
 
     distance_to_target = staticmethod(ball_to_gap_distance)
+
+
+class RefundedGapShapedReward(GapShapedReward):
+    """``shaped_gap`` that takes back a lost ball's progress since the agent last had it (module docstring)."""
+
+    refund_lost_progress = True
 
 
 class SparseReward:
@@ -350,6 +377,8 @@ def make_reward(name: str, gamma: float = DEFAULT_SHAPING_GAMMA) -> RewardFuncti
         return ShapedReward()
     if name == "shaped_gap":
         return GapShapedReward()
+    if name == "shaped_gap_refund":
+        return RefundedGapShapedReward()
     if name == "potential_gap":
         return PotentialGapReward(gamma)
     if name == "sparse":
