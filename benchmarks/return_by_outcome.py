@@ -8,6 +8,9 @@ benchmarks/RESULTS.md (session 15) to show what the ``shaped_gap`` reward paid x
 
     python benchmarks/return_by_outcome.py models/x24_keeper_skills_each_action_parameters_seed0 \\
         --episodes 300 --seed 0
+
+``--reward`` replays the same episodes under another of hfo2d's rewards (the reward does not steer a trained
+agent, so the episodes are the same), to see what a different reward would have paid for the same play.
 """
 
 from __future__ import annotations
@@ -16,6 +19,7 @@ import json
 from collections.abc import Sequence
 from pathlib import Path
 
+from hfo2d.reward import REWARD_NAMES
 from sb3_hfo.evaluate import (
     EpisodeRecord,
     episodes_parser,
@@ -54,10 +58,18 @@ def group_rows(records: Sequence[EpisodeRecord]) -> list[dict[str, object]]:
 
 def main(argv: Sequence[str] | None = None) -> None:
     parser = episodes_parser(__doc__.splitlines()[0], default_episodes=300)
+    parser.add_argument(
+        "--reward",
+        choices=REWARD_NAMES,
+        default=None,
+        help="score the episodes with this reward (default: the run's)",
+    )
     parser.add_argument("--json", type=Path, default=None, help="write the rows here as JSON")
     args = parser.parse_args(argv)
 
-    model, env, env_id, env_kwargs, path = load_for_evaluation(args.model, args.env)
+    model, env, env_id, env_kwargs, path = load_for_evaluation(
+        args.model, args.env, None if args.reward is None else {"reward": args.reward}
+    )
     try:
         records = run_episodes(model, env, args.episodes, args.seed, True, model_n_skills(model))
     finally:

@@ -271,17 +271,30 @@ def test_critic_parameter_search_plays_both_modes(tmp_path: Path) -> None:
     assert [line.split(":")[0] for line in lines] == ["actor's parameters", "searched, offsets [0.05, 0.02]"]
 
 
-def test_return_by_outcome_groups_every_episode_once(tmp_path: Path) -> None:
-    out = tmp_path / "rows.json"
-    command = [sys.executable, str(REPO / "benchmarks" / "return_by_outcome.py")]
-    command += [str(REPO / "models" / "x24_keeper_skills_each_action_parameters_seed0"), "--episodes", "3"]
-    command += ["--seed", "0", "--json", str(out)]
-    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
-    assert completed.returncode == 0, completed.stderr[-2000:]
-    rows = json.loads(out.read_text())["rows"]
-    assert sum(row["episodes"] for row in rows) == 3
-    assert len({(row["last_kick"], row["status"]) for row in rows}) == len(rows)
-    assert all(row["mean_steps"] >= 1 for row in rows)
+def test_return_by_outcome_groups_every_episode_once_and_replays_them_under_another_reward(
+    tmp_path: Path,
+) -> None:
+    def rows(*extra: str) -> list[dict]:
+        out = tmp_path / "rows.json"
+        command = [sys.executable, str(REPO / "benchmarks" / "return_by_outcome.py")]
+        command += [
+            str(REPO / "models" / "x24_keeper_skills_each_action_parameters_seed0"),
+            "--episodes",
+            "3",
+        ]
+        command += ["--seed", "0", "--json", str(out), *extra]
+        completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+        assert completed.returncode == 0, completed.stderr[-2000:]
+        return json.loads(out.read_text())["rows"]
+
+    own, sparse = rows(), rows("--reward", "sparse")
+    assert sum(row["episodes"] for row in own) == 3
+    assert len({(row["last_kick"], row["status"]) for row in own}) == len(own)
+    # the same episodes, scored by the sparse reward: 1 per goal, else 0
+    assert [(r["last_kick"], r["status"], r["mean_steps"]) for r in own] == [
+        (r["last_kick"], r["status"], r["mean_steps"]) for r in sparse
+    ]
+    assert all(r["mean_return"] == (1.0 if r["status"] == "GOAL" else 0.0) for r in sparse)
 
 
 @pytest.mark.parametrize("episodes", ["0", "ten"])
