@@ -825,7 +825,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         )
 
     def _warn_if_shaping_discount_differs(self) -> None:
-        """Warn when HFO's ``potential_gap`` reward is discounted by another gamma than the agent's.
+        """Warn when the hfo2d env's ``potential_gap`` reward (not HFO's) is discounted by another gamma than the agent's.
 
         Potential-based shaping leaves the goal reward's optimal policy unchanged only at the agent's own discount.
         """
