@@ -1,10 +1,12 @@
-"""Where a trained agent fails: end status by start geometry, as a table and a two-panel PNG.
+"""Where a trained agent fails: end status by start geometry and by where the ball ends, as tables and a PNG.
 
-Plays greedy episodes through :func:`sb3_hfo.evaluate.run_episodes` and groups them by where the agent started
-relative to the ball (HFO places it ``10.5 * (U(0, 1) + offset)`` m from the ball per axis, so some episodes
-start with the agent 20-30 m closer to the goal than the ball). The figure shows each episode's ball start
-(left) and the agent's start relative to the ball (right), coloured by end status. Used for the session-6
-failure analysis in benchmarks/RESULTS.md:
+Plays greedy episodes through :func:`sb3_hfo.evaluate.run_episodes` and groups them twice: by where the agent
+started relative to the ball (HFO places it ``10.5 * (U(0, 1) + offset)`` m from the ball per axis, so some
+episodes start with the agent 20-30 m closer to the goal than the ball), and by where the ball ended: in which
+half of the goal, or how far from the goal centre (a caught ball: where the keeper caught it). The figure shows
+each episode's ball start, the agent's start relative to the ball, and the ball's end position (with the
+keeper's, on keeper tasks, for the episodes he ended), coloured by end status. Used for the failure analyses of
+sessions 6 and 16 in benchmarks/RESULTS.md:
 
     python benchmarks/failure_map.py models/e1_empty_goal_fast_seed0 --episodes 1000 --seed 0 \\
         --out benchmarks/figures/failure_map_e1.png
@@ -12,11 +14,15 @@ failure analysis in benchmarks/RESULTS.md:
 
 from __future__ import annotations
 
+import itertools
+import math
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
+from hfo2d.physics import GOAL_HALF_WIDTH
 from sb3_hfo.evaluate import (
+    GOAL_CENTRE,
     EpisodeRecord,
     episodes_parser,
     load_for_evaluation,
@@ -28,6 +34,10 @@ from sb3_hfo.skill_ddpg.policies import DISCRETE_CHOICES
 
 #: Start classes by the agent's x minus the ball's x (m): the agent behind, level with, or ahead of the ball.
 AHEAD_LIMITS = (-5.0, 5.0, 15.0)
+#: End classes by the ball's final distance from the goal centre (m).
+END_DISTANCE_LIMITS = (5.0, 10.0, 20.0)
+#: Goals by the half of the goal the ball crossed the line in (rcssserver's y < 0 is the top post's half).
+GOAL_END_LABELS = ("ball ends in the goal, top half (y < 0)", "ball ends in the goal, bottom half (y >= 0)")
 STATUS_STYLE = {  # status: (colour, marker)
     "GOAL": ("tab:green", "."),
     "OUT_OF_BOUNDS": ("tab:orange", "x"),
@@ -51,15 +61,38 @@ def start_class(record: EpisodeRecord) -> str:
     return f"agent > {high:g} m ahead of the ball"
 
 
+def end_class_labels() -> list[str]:
+    """``end_class``'s labels, nearest the goal first."""
+    bounds = (0.0, *END_DISTANCE_LIMITS)
+    labels = [*GOAL_END_LABELS] + [
+        f"ball ends {low:g}-{high:g} m from goal" for low, high in itertools.pairwise(bounds)
+    ]
+    return [*labels, f"ball ends >= {bounds[-1]:g} m from goal"]
+
+
+def end_class(record: EpisodeRecord) -> str:
+    """Where the ball ended: in the goal, or its distance from the goal centre (no position recorded: 'unknown')."""
+    if record.end_ball is None:
+        return "unknown"
+    if record.status == "GOAL":
+        return GOAL_END_LABELS[record.end_ball[1] >= 0.0]
+    distance = math.dist(GOAL_CENTRE, record.end_ball)
+    below = sum(distance >= limit for limit in END_DISTANCE_LIMITS)
+    return end_class_labels()[len(GOAL_END_LABELS) + below]
+
+
 def table_rows(
-    records: Sequence[EpisodeRecord],
+    records: Sequence[EpisodeRecord], classify: Callable[[EpisodeRecord], str] = start_class
 ) -> list[tuple[str, int, float, float, float, dict[str, int]]]:
-    """(class, episodes, goal rate, CI low, CI high, status counts) per start class, then 'all'."""
+    """(class, episodes, goal rate, CI low, CI high, status counts) per ``classify`` class, then 'all'."""
     groups: dict[str, list[EpisodeRecord]] = {}
     for record in records:
-        groups.setdefault(start_class(record), []).append(record)
+        groups.setdefault(classify(record), []).append(record)
     rows = []
-    for name, members in [*sorted(groups.items()), ("all", list(records))]:
+    # end classes read nearest-first; start classes (and 'unknown') alphabetically
+    order = {label: index for index, label in enumerate(end_class_labels())}
+    ranked = sorted(groups.items(), key=lambda item: (order.get(item[0], len(order)), item[0]))
+    for name, members in [*ranked, ("all", list(records))]:
         counts = Counter(r.status for r in members)
         goals = counts.get("GOAL", 0)
         low, high = wilson_interval(goals, len(members))
@@ -68,13 +101,13 @@ def table_rows(
 
 
 def plot(records: Sequence[EpisodeRecord], title: str, out: Path) -> None:
-    """Two panels: ball start positions, and the agent's start offset from the ball, coloured by end status."""
+    """Three panels coloured by end status: ball starts, the agent's start offset from the ball, ball ends."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, (ax_ball, ax_offset) = plt.subplots(1, 2, figsize=(12, 5.2))
+    fig, (ax_ball, ax_offset, ax_end) = plt.subplots(1, 3, figsize=(18, 5.2))
     for status, (colour, marker) in STATUS_STYLE.items():
         chosen = [r for r in records if r.status == status and r.start_ball and r.start_player]
         if not chosen:
@@ -97,6 +130,28 @@ def plot(records: Sequence[EpisodeRecord], title: str, out: Path) -> None:
             marker=marker,
             label=label,
         )
+        ended = [r for r in chosen if r.end_ball]
+        ax_end.scatter(
+            [r.end_ball[0] for r in ended],  # type: ignore[index]
+            [r.end_ball[1] for r in ended],  # type: ignore[index]
+            s=size,
+            c=colour,
+            marker=marker,
+            label=label,
+        )
+    caught = [r for r in records if r.status == "CAPTURED_BY_DEFENSE" and r.end_keeper]
+    if caught:
+        ax_end.scatter(
+            [r.end_keeper[0] for r in caught],  # type: ignore[index]
+            [r.end_keeper[1] for r in caught],  # type: ignore[index]
+            s=10,
+            facecolors="none",
+            edgecolors="black",
+            linewidths=0.5,
+            label=f"keeper when he caught it ({len(caught)})",
+        )
+    goal_x, _ = GOAL_CENTRE
+    ax_end.plot([goal_x, goal_x], [-GOAL_HALF_WIDTH, GOAL_HALF_WIDTH], color="black", linewidth=3)
     ax_ball.set(xlabel="ball start x (m; goal at 52.5)", ylabel="ball start y (m)", title="Ball start")
     ax_ball.invert_yaxis()  # rcssserver's +y points down the screen
     ax_offset.set(
@@ -106,6 +161,12 @@ def plot(records: Sequence[EpisodeRecord], title: str, out: Path) -> None:
     )
     ax_offset.invert_yaxis()
     ax_offset.legend(loc="upper left", fontsize=8)
+    ax_end.set(
+        xlabel="ball end x (m; goal mouth drawn)", ylabel="ball end y (m)", title="Where the ball ends"
+    )
+    ax_end.set_aspect("equal", adjustable="datalim")
+    ax_end.invert_yaxis()
+    ax_end.legend(loc="upper left", fontsize=8)
     fig.suptitle(title)
     fig.tight_layout()
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -135,8 +196,9 @@ def main(argv: Sequence[str] | None = None) -> None:
     print(
         f"{path} on {env_id}: {args.episodes} greedy episodes, seed {args.seed}, {choice} picks the discrete action"
     )
-    for name, n, rate, low, high, counts in table_rows(records):
-        print(f"  {name:<34} {n:>5} episodes  goal rate {rate:.3f} [{low:.3f}, {high:.3f}]  {counts}")
+    for classify in (start_class, end_class):
+        for name, n, rate, low, high, counts in table_rows(records, classify):
+            print(f"  {name:<34} {n:>5} episodes  goal rate {rate:.3f} [{low:.3f}, {high:.3f}]  {counts}")
     if args.out is not None:
         title = (
             f"{Path(str(path)).parent.name}/{Path(str(path)).name}: {args.episodes} episodes, seed {args.seed}, "

@@ -118,6 +118,10 @@ class EpisodeRecord:
     start_ball: tuple[float, float] | None = None  # (x, y) m at reset, from info["ball"]
     start_player: tuple[float, float] | None = None  # (x, y) m at reset, from info["player"]
     shot_distance: float | None = None  # m from the goal centre to the ball before the last executed kick
+    end_ball: tuple[float, float] | None = None  # (x, y) m after the last step, from info["ball"]
+    end_keeper: tuple[float, float] | None = (
+        None  # (x, y) m after the last step, from info["keeper"] (keeper tasks)
+    )
 
 
 @dataclass
@@ -332,7 +336,7 @@ def skill_index(model: Any, obs: Any) -> int:
 
 
 def _position(state: Sequence[float] | None) -> tuple[float, float] | None:
-    """(x, y) of an ``info["ball"]`` / ``info["player"]`` tuple, or None when the env gives none."""
+    """(x, y) of an ``info["ball"]`` / ``info["player"]`` / ``info["keeper"]`` tuple, or None when there is none."""
     return None if state is None else (float(state[0]), float(state[1]))
 
 
@@ -392,6 +396,8 @@ def run_episodes(
                 start_ball,
                 start_player,
                 shot_distance,
+                _position(ball),
+                _position(info.get("keeper")),
             )
         )
         obs, info = env.reset()

@@ -89,10 +89,13 @@ def test_failure_map_groups_episodes_by_start_and_writes_a_png(tmp_path: Path) -
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert completed.returncode == 0, completed.stderr[-2000:]
     rows = [line for line in completed.stdout.splitlines() if "episodes  goal rate" in line]
-    assert rows[-1].split()[:2] == ["all", "6"]
-    assert (
-        sum(int(row.split("episodes")[0].split()[-1]) for row in rows[:-1]) == 6
-    )  # every episode in a class
+    totals = [index for index, row in enumerate(rows) if row.split()[:2] == ["all", "6"]]
+    assert len(totals) == 2  # one table by start, one by where the ball ended
+    for first, last in ((0, totals[0]), (totals[0] + 1, totals[1])):
+        assert sum(int(row.split("episodes")[0].split()[-1]) for row in rows[first:last]) == 6  # all classed
+    assert all(
+        row.split()[:3] == ["ball", "ends", "in"] or "GOAL" not in row for row in rows[totals[0] + 1 : -1]
+    )
     assert out.stat().st_size > 10_000
 
 
@@ -112,6 +115,33 @@ def test_start_class_bands_the_agents_lead_over_the_ball() -> None:
     assert start_class(record(20.0)).startswith("agent 5-15 m ahead")
     assert start_class(record(30.0)).startswith("agent > 15 m ahead")
     assert start_class(EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1])) == "unknown"
+
+
+def test_end_class_sorts_goals_by_goal_half_and_losses_by_distance() -> None:
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        from failure_map import end_class, end_class_labels, table_rows
+    finally:
+        sys.path.pop(0)
+    from sb3_hfo.evaluate import EpisodeRecord
+
+    def record(status: str, x: float, y: float) -> EpisodeRecord:
+        return EpisodeRecord(status, 1, 0.0, 0, [], 0, [1], end_ball=(x, y))
+
+    assert end_class(record("GOAL", 53.0, -3.0)) == "ball ends in the goal, top half (y < 0)"
+    assert end_class(record("GOAL", 53.0, 0.0)) == "ball ends in the goal, bottom half (y >= 0)"
+    assert end_class(record("CAPTURED_BY_DEFENSE", 52.0, 3.0)) == "ball ends 0-5 m from goal"
+    assert end_class(record("CAPTURED_BY_DEFENSE", 47.0, 1.0)) == "ball ends 5-10 m from goal"
+    assert end_class(record("OUT_OF_BOUNDS", 42.4, 0.0)) == "ball ends 10-20 m from goal"
+    assert end_class(record("OUT_OF_TIME", 30.0, 0.0)) == "ball ends >= 20 m from goal"
+    assert end_class(EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1])) == "unknown"
+    records = [
+        record("OUT_OF_TIME", 30.0, 0.0),
+        record("CAPTURED_BY_DEFENSE", 52.0, 3.0),
+        record("GOAL", 53, 1),
+    ]
+    names = [row[0] for row in table_rows(records, end_class)]
+    assert names == [end_class_labels()[i] for i in (1, 2, 5)] + ["all"]  # nearest the goal first
 
 
 def test_weight_layout_times_both_layouts_of_every_shape() -> None:

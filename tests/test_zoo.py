@@ -9,6 +9,7 @@ Under pytest-xdist use ``--dist loadgroup`` so that the training runs once (the 
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
 import subprocess
@@ -298,10 +299,37 @@ def test_evaluation_names_the_line_an_out_of_bounds_ball_crossed(
     env = PlacedStart(gym.make("HFO/EmptyGoal-v0"))
     records = run_episodes(KickStraightAhead(), env, episodes=2, seed=0, deterministic=True, n_skills=1)
     assert [(r.status, r.exit) for r in records] == [("OUT_OF_BOUNDS", line)] * 2
+    for record in records:  # the recorded end position is past the line it names, and there is no keeper
+        x, y = record.end_ball  # type: ignore[misc]
+        assert {"goal_line": x > 52.5, "side_line": abs(y) > 34.0, "halfway_line": x < 0.0}[line]
+        assert record.end_keeper is None
     result = summarize(records, model="m", env_id="HFO/EmptyGoal-v0", seed=0, deterministic=True, n_skills=1)
     assert result.out_of_bounds_exits == {
         name: 2 * (name == line) for name in ("goal_line", "side_line", "halfway_line")
     }
+
+
+def test_evaluation_records_where_the_keeper_caught_the_ball() -> None:
+    import gymnasium as gym
+
+    from sb3_hfo.evaluate import run_episodes
+
+    class PlacedStart(gym.Wrapper):  # 12 m out, facing the static keeper on the goal centre
+        def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
+            return self.env.reset(seed=seed, options={"player": (40.0, 0.0, 0.0), "ball": (40.5, 0.0)})
+
+    class KickSoftlyAhead:  # power 60 along the body, straight at the keeper
+        def predict(self, obs: np.ndarray, deterministic: bool = False) -> tuple[np.ndarray, None]:
+            return np.array([0, 0, 1, 0, 0.5, 0.5, 0.6, 0.5], dtype=np.float32), None
+
+    env = PlacedStart(gym.make("HFO/StaticKeeper-v0"))
+    records = run_episodes(KickSoftlyAhead(), env, episodes=2, seed=0, deterministic=True, n_skills=1)
+    for record in records:
+        assert record.status == "CAPTURED_BY_DEFENSE"
+        keeper_x, keeper_y = record.end_keeper  # type: ignore[misc]
+        ball_x, ball_y = record.end_ball  # type: ignore[misc]
+        assert math.dist((keeper_x, keeper_y), (ball_x, ball_y)) < 2.0  # caught within the keeper's reach
+        assert 40.5 < ball_x < 52.5
 
 
 def test_evaluation_loop_counts_goals_and_kicks_of_a_scoring_policy() -> None:
