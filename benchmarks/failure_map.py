@@ -197,8 +197,12 @@ def main(argv: Sequence[str] | None = None) -> None:
         f"{path} on {env_id}: {args.episodes} greedy episodes, seed {args.seed}, {choice} picks the discrete action"
     )
     for classify in (start_class, end_class):
-        for name, n, rate, low, high, counts in table_rows(records, classify):
-            print(f"  {name:<34} {n:>5} episodes  goal rate {rate:.3f} [{low:.3f}, {high:.3f}]  {counts}")
+        rows = table_rows(records, classify)
+        width = max(len(row[0]) for row in rows)
+        for name, n, rate, low, high, counts in rows:
+            print(
+                f"  {name:<{width}} {n:>5} episodes  goal rate {rate:.3f} [{low:.3f}, {high:.3f}]  {counts}"
+            )
     if args.out is not None:
         title = (
             f"{Path(str(path)).parent.name}/{Path(str(path)).name}: {args.episodes} episodes, seed {args.seed}, "
