@@ -1,0 +1,131 @@
+"""HFO's left-right symmetry: the mirror image (y -> -y) of a feature vector and of a flat action.
+
+Half Field Offense is symmetric about the pitch's long axis (y = 0): the field, the goal, the start distribution
+(ball and agent y drawn symmetrically), the keeper's decision rules (they use |y| and the ball's side) and the
+server's noise (uniform in direction) all look the same in a mirror. Mirroring the world maps
+
+* every angle θ to −θ (global angles and bearings relative to the body alike), so the sine of each (sin, cos)
+  pair changes sign and the cosine stays;
+* the top landmarks onto the bottom ones: goal posts, penalty-box corners, field corners, and the top / bottom
+  out-of-bounds proximities swap places;
+* flags, proximities, speeds and stamina onto themselves;
+* a flat action's three directions (dash, turn and kick, degrees relative to the body) d onto −d, i.e. the
+  [0, 1] parameter u onto 1 − u; preferences and powers stay.
+
+So a transition (s, a, r, s') of the environment has a mirror image (m(s), m(a), r, m(s')) with the same reward
+and episode end (HFO's rewards depend on distances only), which an off-policy learner can train on as well.
+``tests/test_symmetry.py`` checks this against the simulator with noise off: a mirrored start played with
+mirrored actions gives the mirrored features, the same rewards and the same end, against the scripted keeper too.
+
+Features follow :mod:`hfo2d.features` (58 basic features, then 8 per other player; hfo_reference §2.2).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+from hfo2d.features import (
+    BALL_ANGLE_SIN,
+    BALL_VEL_ANGLE_SIN,
+    CENTER_FIELD_SIN,
+    CORNER_BOTTOM_LEFT_SIN,
+    CORNER_BOTTOM_RIGHT_SIN,
+    CORNER_TOP_LEFT_SIN,
+    CORNER_TOP_RIGHT_SIN,
+    FEATURES_PER_PLAYER,
+    GOAL_CENTER_SIN,
+    GOAL_POST_BOTTOM_SIN,
+    GOAL_POST_TOP_SIN,
+    NUM_BASIC_FEATURES,
+    OUT_OF_BOUNDS_BOTTOM,
+    OUT_OF_BOUNDS_TOP,
+    PENALTY_BOX_BOTTOM_SIN,
+    PENALTY_BOX_CENTER_SIN,
+    PENALTY_BOX_TOP_SIN,
+    PLAYER_ANGLE_SIN,
+    PLAYER_BODY_SIN,
+    PLAYER_VEL_ANGLE_SIN,
+    SELF_BODY_SIN,
+    SELF_VEL_ANGLE_SIN,
+)
+
+__all__ = [
+    "FLAT_ACTION_DIRECTIONS",
+    "feature_mirror",
+    "flat_action_mirror_signs",
+    "mirror_features",
+    "mirror_flat_action",
+]
+
+#: Flat-action entries that are directions (dash_dir, turn_dir, kick_dir; hfo_env's flat layout).
+FLAT_ACTION_DIRECTIONS: tuple[int, ...] = (4, 5, 7)
+FLAT_ACTION_SIZE = 8
+
+# Landmarks are (sin, cos, proximity) triples starting at their sine: pairs of triples that swap in a mirror.
+_SWAPPED_LANDMARKS = (
+    (GOAL_POST_TOP_SIN, GOAL_POST_BOTTOM_SIN),
+    (PENALTY_BOX_TOP_SIN, PENALTY_BOX_BOTTOM_SIN),
+    (CORNER_TOP_LEFT_SIN, CORNER_BOTTOM_LEFT_SIN),
+    (CORNER_TOP_RIGHT_SIN, CORNER_BOTTOM_RIGHT_SIN),
+)
+# Sines of angles whose landmark (or meaning) stays in place; the swapped landmarks' sines are added below.
+_BASIC_SINES = (
+    SELF_VEL_ANGLE_SIN,
+    SELF_BODY_SIN,
+    GOAL_CENTER_SIN,
+    PENALTY_BOX_CENTER_SIN,
+    CENTER_FIELD_SIN,
+    BALL_ANGLE_SIN,
+    BALL_VEL_ANGLE_SIN,
+)
+_PLAYER_SINES = (PLAYER_ANGLE_SIN, PLAYER_BODY_SIN, PLAYER_VEL_ANGLE_SIN)
+
+
+def feature_mirror(n_features: int) -> tuple[list[int], list[float]]:
+    """``(source, sign)`` such that ``mirrored[i] = sign[i] * features[source[i]]`` for ``n_features`` features.
+
+    ``n_features`` must be 58 + 8 * (number of other players); ValueError otherwise.
+    """
+    extra = n_features - NUM_BASIC_FEATURES
+    if isinstance(n_features, bool) or extra < 0 or extra % FEATURES_PER_PLAYER:
+        raise ValueError(
+            f"an HFO feature vector has {NUM_BASIC_FEATURES} + {FEATURES_PER_PLAYER} * players entries, "
+            f"got {n_features}"
+        )
+    source = list(range(n_features))
+    sign = [1.0] * n_features
+    for top, bottom in _SWAPPED_LANDMARKS:
+        for offset in range(3):
+            source[top + offset], source[bottom + offset] = bottom + offset, top + offset
+        sign[top] = sign[bottom] = -1.0
+    source[OUT_OF_BOUNDS_TOP], source[OUT_OF_BOUNDS_BOTTOM] = OUT_OF_BOUNDS_BOTTOM, OUT_OF_BOUNDS_TOP
+    for index in _BASIC_SINES:
+        sign[index] = -1.0
+    for block in range(NUM_BASIC_FEATURES, n_features, FEATURES_PER_PLAYER):
+        for offset in _PLAYER_SINES:
+            sign[block + offset] = -1.0
+    return source, sign
+
+
+def mirror_features(features: Sequence[float] | np.ndarray) -> np.ndarray:
+    """The mirror image of one feature vector ``(n,)`` or a batch ``(..., n)`` (same dtype as a numpy input)."""
+    array = np.asarray(features)
+    source, sign = feature_mirror(array.shape[-1])
+    return array[..., source] * np.asarray(sign, dtype=array.dtype if array.dtype.kind == "f" else np.float64)
+
+
+def flat_action_mirror_signs() -> list[float]:
+    """Per-entry signs that mirror a flat action in a scale centred on 0 (SB3's replay-buffer scale [-1, 1])."""
+    return [-1.0 if index in FLAT_ACTION_DIRECTIONS else 1.0 for index in range(FLAT_ACTION_SIZE)]
+
+
+def mirror_flat_action(action: Sequence[float] | np.ndarray) -> np.ndarray:
+    """The mirror image of a flat action in the env's scale [0, 1] (``(8,)`` or ``(..., 8)``): u -> 1 - u for
+    the three directions, everything else unchanged."""
+    array = np.array(action, dtype=np.float64 if not isinstance(action, np.ndarray) else None)
+    if array.shape[-1:] != (FLAT_ACTION_SIZE,):
+        raise ValueError(f"a flat HFO action has {FLAT_ACTION_SIZE} entries, got shape {array.shape}")
+    array[..., FLAT_ACTION_DIRECTIONS] = 1.0 - array[..., FLAT_ACTION_DIRECTIONS]
+    return array
