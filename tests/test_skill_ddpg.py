@@ -783,3 +783,57 @@ def test_learn_warns_when_potential_shaping_uses_another_discount(shaping_gamma:
     assert len(messages) == (1 if warns else 0)
     if warns:
         assert "shaping_gamma=0.9" in messages[0] and "gamma is 0.98" in messages[0]
+
+
+# ----------------------------------------------------------------------------------------------------------
+# Mirror augmentation
+
+
+def test_mirror_rows_mirror_states_and_directions_and_keep_the_rest() -> None:
+    from hfo2d.symmetry import mirror_features
+
+    model = make_model(1, mirror_fraction=1.0)
+    batch = make_batch(16, mc_returns=True)
+    mirrored = model._mirror_rows(batch)
+    np.testing.assert_array_equal(mirrored.observations.numpy(), mirror_features(batch.observations.numpy()))
+    np.testing.assert_array_equal(
+        mirrored.next_observations.numpy(), mirror_features(batch.next_observations.numpy())
+    )
+    signs = th.tensor([1, 1, 1, 1, -1, -1, 1, -1], dtype=th.float32)  # dash, turn and kick directions flip
+    assert th.equal(mirrored.actions, batch.actions * signs)
+    for kept in ("rewards", "dones", "mc_returns", "mc_valid"):
+        assert getattr(mirrored, kept) is getattr(batch, kept), kept
+
+    model.mirror_fraction = 0.5
+    th.manual_seed(0)
+    batch = make_batch(64)
+    half = model._mirror_rows(batch)
+    flipped = (half.observations != batch.observations).any(dim=1)
+    assert 16 < int(flipped.sum()) < 48  # about half the rows, each whole: state, next state and action
+    assert th.equal(half.actions[flipped], batch.actions[flipped] * signs)
+    assert th.equal(half.next_observations[~flipped], batch.next_observations[~flipped])
+
+
+def test_training_updates_on_the_mirrored_minibatch() -> None:
+    model = make_model(1, learning_starts=10, mirror_fraction=1.0)
+    model.learn(20)
+    batch = make_batch(8)
+    seen: list[ReplayBufferSamples] = []
+    model.replay_buffer.sample = lambda *args, **kwargs: batch  # type: ignore[method-assign, union-attr]
+    model._update = seen.append  # type: ignore[method-assign]
+    model.train(gradient_steps=2, batch_size=8)
+    assert len(seen) == 2
+    assert all(th.equal(update.actions[:, 4], -batch.actions[:, 4]) for update in seen)
+
+
+def test_mirror_fraction_round_trips_and_rejects_bad_values(tmp_path: Path) -> None:
+    model = make_model(1, learning_starts=20, mirror_fraction=0.5)
+    model.learn(40)
+    model.save(tmp_path / "mirrored.zip")
+    loaded = SkillDDPG.load(tmp_path / "mirrored.zip", env=HybridTargetEnv())
+    assert loaded.mirror_fraction == 0.5 and loaded._mirror is not None
+    loaded.learn(10, reset_num_timesteps=False)
+    with pytest.raises(ValueError, match=r"mirror_fraction must lie in \[0, 1\], got 1.5"):
+        make_model(1, mirror_fraction=1.5)
+    with pytest.raises(ValueError, match=r"mirror_fraction > 0 needs HFO's flat action of shape \(8,\)"):
+        SkillDDPG("MlpPolicy", "Pendulum-v1", mirror_fraction=0.5)

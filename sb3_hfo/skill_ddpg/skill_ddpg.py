@@ -83,6 +83,7 @@ from stable_baselines3.common.utils import (
     update_learning_rate,
 )
 
+from hfo2d.symmetry import feature_mirror, flat_action_mirror_signs
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
 from sb3_hfo.skill_ddpg.policies import (
     HFO_FLAT_ACTION_DIM,
@@ -282,6 +283,12 @@ class SkillDDPG(OffPolicyAlgorithm):
         what is played, so under ``"chosen"`` the parameters played were ones the actor had not trained in that state
         in 31-51 % of the greedy steps of three committed agents (benchmarks/RESULTS.md, session 12). Needs
         ``mask_unused_parameters``.
+    :param mirror_fraction: fraction of each minibatch's rows (each row independently, with this probability)
+        replaced by their mirror image about the pitch's long axis (y -> -y; :mod:`hfo2d.symmetry`): observations
+        and next observations mirrored, the flat action's three directions negated, reward and end unchanged. HFO
+        is symmetric that way (checked against the simulator in ``tests/test_symmetry.py``), so a mirrored
+        transition is one the environment could have produced. 0 (default): the paper. Needs HFO's feature
+        vector (58 + 8 per other player) and 8-dimensional flat action.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
     :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
@@ -322,6 +329,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         preactivation_penalty: float = 0.0,
         discrete_target: str = "actor",
         parameter_loss: str = "chosen",
+        mirror_fraction: float = 0.0,
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -368,6 +376,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.preactivation_penalty = preactivation_penalty
         self.discrete_target = discrete_target
         self.parameter_loss = parameter_loss
+        self.mirror_fraction = mirror_fraction
         if _init_setup_model:
             self._setup_model()
 
@@ -398,6 +407,8 @@ class SkillDDPG(OffPolicyAlgorithm):
             )
         if self.parameter_loss not in PARAMETER_LOSSES:
             raise ValueError(f"parameter_loss must be one of {PARAMETER_LOSSES}, got {self.parameter_loss!r}")
+        if isinstance(self.mirror_fraction, bool) or not 0.0 <= self.mirror_fraction <= 1.0:
+            raise ValueError(f"mirror_fraction must lie in [0, 1], got {self.mirror_fraction!r}")
 
     def _select_replay_buffer(self) -> None:
         """``mc_mixing > 0`` needs the episode returns that only :class:`MonteCarloReplayBuffer` keeps."""
@@ -457,8 +468,48 @@ class SkillDDPG(OffPolicyAlgorithm):
             )
         else:
             self.exploration_schedule = ConstantSchedule(self.exploration_final_eps)
+        self._setup_mirror()
         self._create_aliases()
         self._reset_stats()
+
+    def _setup_mirror(self) -> None:
+        """``mirror_fraction > 0``: the index / sign tensors that mirror a minibatch (HFO's layout only)."""
+        self._mirror: tuple[th.Tensor, th.Tensor, th.Tensor] | None = None
+        if self.mirror_fraction == 0:
+            return
+        obs_shape, action_shape = self.observation_space.shape, self.action_space.shape
+        if action_shape != (HFO_FLAT_ACTION_DIM,):
+            raise ValueError(
+                f"mirror_fraction > 0 needs HFO's flat action of shape ({HFO_FLAT_ACTION_DIM},), got {action_shape}"
+            )
+        if obs_shape is None or len(obs_shape) != 1:
+            raise ValueError(
+                f"mirror_fraction > 0 needs HFO's 1-D feature vector, got observation shape {obs_shape}"
+            )
+        try:
+            source, sign = feature_mirror(obs_shape[0])
+        except ValueError as error:
+            raise ValueError(f"mirror_fraction > 0: {error}") from None
+        self._mirror = (
+            th.tensor(source, dtype=th.long, device=self.device),
+            th.tensor(sign, dtype=th.float32, device=self.device),
+            th.tensor(flat_action_mirror_signs(), dtype=th.float32, device=self.device),
+        )
+
+    def _mirror_rows(self, batch: ReplayBufferSamples) -> ReplayBufferSamples:
+        """``batch`` with each row, with probability ``mirror_fraction``, replaced by its mirror image
+        (observations and next observations ``(B, obs_dim)``, actions ``(B, 8)`` in [-1, 1]; the rest kept)."""
+        assert self._mirror is not None
+        source, sign, action_sign = self._mirror
+        observations = batch.observations
+        rows = th.rand(observations.shape[0], 1, device=observations.device) < self.mirror_fraction
+        return batch._replace(
+            observations=th.where(rows, observations[:, source] * sign, observations),
+            next_observations=th.where(
+                rows, batch.next_observations[:, source] * sign, batch.next_observations
+            ),
+            actions=th.where(rows, batch.actions * action_sign, batch.actions),
+        )
 
     def _create_aliases(self) -> None:
         self.actor = self.policy.actor
@@ -518,7 +569,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         assert self.replay_buffer is not None
         for _ in range(gradient_steps):
             self._n_updates += 1
-            self._update(self.replay_buffer.sample(batch_size, env=self._vec_normalize_env))
+            batch = self.replay_buffer.sample(batch_size, env=self._vec_normalize_env)
+            self._update(batch if self._mirror is None else self._mirror_rows(batch))
         self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
 
     @th.no_grad()
@@ -866,6 +918,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_critic_grad_list",
             "_critics",
             "_critic_targets",
+            "_mirror",
         ]
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
