@@ -28,7 +28,9 @@ Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" an
 * ``discrete_choice``: who picked DASH / TURN / KICK (``--discrete-choice``: the actor's preferences, the paper,
   or the critic; default the model's own ``policy.discrete_choice``);
 * ``kick_only_when_kickable``: whether KICK was left out of the greedy choice while the ball was out of reach
-  (``--kick-only-when-kickable on|off``; default the model's own setting).
+  (``--kick-only-when-kickable on|off``; default the model's own setting);
+* ``mirror_choice``: whether each step played the better, by the critic, of the greedy action in the state and in
+  its mirror image (``--mirror-choice on|off``; default the model's own setting; ``HFOPolicy``'s option).
 """
 
 from __future__ import annotations
@@ -151,6 +153,7 @@ class EvaluationResult:
     env_kwargs: dict[str, Any] = field(default_factory=dict)
     discrete_choice: str = "actor"
     kick_only_when_kickable: bool = False
+    mirror_choice: bool = False
     mean_shot_distance: float | None = None
     shots_by_distance: dict[str, dict[str, int]] = field(default_factory=dict)
 
@@ -189,6 +192,7 @@ def summarize(
     env_kwargs: dict[str, Any] | None = None,
     discrete_choice: str = "actor",
     kick_only_when_kickable: bool = False,
+    mirror_choice: bool = False,
 ) -> EvaluationResult:
     """Aggregate per-episode records into an :class:`EvaluationResult`."""
     n = len(records)
@@ -225,6 +229,7 @@ def summarize(
         env_kwargs=dict(env_kwargs or {}),
         discrete_choice=discrete_choice,
         kick_only_when_kickable=kick_only_when_kickable,
+        mirror_choice=mirror_choice,
         mean_shot_distance=sum(shot_distances) / len(shot_distances) if shot_distances else None,
         shots_by_distance=_shots_by_distance(records),
     )
@@ -452,12 +457,13 @@ def evaluate(
     env_kwargs: dict[str, Any] | None = None,
     discrete_choice: str | None = None,
     kick_only_when_kickable: bool | None = None,
+    mirror_choice: bool | None = None,
 ) -> EvaluationResult:
     """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors.
 
     ``discrete_choice``: ``"actor"`` or ``"critic"`` overrides who picks the discrete action (``HFOPolicy``'s
-    option of that name); ``kick_only_when_kickable`` overrides the policy's option of that name; ``None`` keeps
-    the model's own.
+    option of that name); ``kick_only_when_kickable`` and ``mirror_choice`` override the policy's options of those
+    names; ``None`` keeps the model's own.
     """
     model, env, env_id, kwargs, path = load_for_evaluation(model_path, env_id, env_kwargs)
     try:
@@ -465,6 +471,8 @@ def evaluate(
             model.policy.discrete_choice = discrete_choice
         if kick_only_when_kickable is not None:
             model.policy.kick_only_when_kickable = kick_only_when_kickable
+        if mirror_choice is not None:
+            model.policy.mirror_choice = mirror_choice
     except ValueError as error:
         env.close()
         raise EvaluationError(str(error)) from error
@@ -483,6 +491,7 @@ def evaluate(
         env_kwargs=kwargs,
         discrete_choice=getattr(model.policy, "discrete_choice", "actor"),
         kick_only_when_kickable=getattr(model.policy, "kick_only_when_kickable", False),
+        mirror_choice=getattr(model.policy, "mirror_choice", False),
     )
 
 
@@ -528,6 +537,7 @@ def print_table(result: EvaluationResult) -> None:
     table.add_row("deterministic", str(result.deterministic))
     table.add_row("discrete action picked by", result.discrete_choice)
     table.add_row("no KICK without the ball", "on" if result.kick_only_when_kickable else "off")
+    table.add_row("better of state and mirror image", "on" if result.mirror_choice else "off")
     Console().print(table)
 
 
@@ -592,6 +602,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="leave KICK out of the greedy choice while the ball is out of reach (default: the model's setting)",
     )
     parser.add_argument(
+        "--mirror-choice",
+        choices=("on", "off"),
+        default=None,
+        help="play the better, by the critic, of the greedy action in the state and in its mirror image "
+        "(default: the model's setting)",
+    )
+    parser.add_argument(
         "--env-kwargs",
         nargs="+",
         default=[],
@@ -635,6 +652,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             kick_only_when_kickable=None
             if args.kick_only_when_kickable is None
             else args.kick_only_when_kickable == "on",
+            mirror_choice=None if args.mirror_choice is None else args.mirror_choice == "on",
         )
     except EvaluationError as error:
         print(f"error: {error}", file=sys.stderr)

@@ -648,3 +648,66 @@ def test_critic_direction_frequencies_errors_and_round_trip(tmp_path) -> None:
     assert loaded.policy.critic_direction_frequencies == (1.0, 16.0)
     with th.no_grad():
         th.testing.assert_close(loaded.policy.critic(obs, action), model.policy.critic(obs, action))
+
+
+# ----------------------------------------------------------------------------------------------------------
+# The better of the state and its mirror image (beyond the paper)
+
+
+@pytest.mark.parametrize("choice", ["actor", "critic"])
+def test_mirror_choice_plays_the_better_of_the_state_and_its_mirror_image(choice: str) -> None:
+    from hfo2d.symmetry import mirror_features
+
+    policy = make_goalie_policy(
+        net_arch=[32, 16],
+        n_skills=2,
+        mask_unused_parameters=True,
+        discrete_choice=choice,
+        kick_only_when_kickable=True,
+    )
+    obs = th.as_tensor(np.random.default_rng(3).uniform(-1, 1, (64, 66)), dtype=th.float32)
+    mirrored_obs = th.as_tensor(mirror_features(obs.numpy()))
+    with th.no_grad():
+        plain = policy._predict(obs)
+        in_mirror = policy._predict(mirrored_obs)
+        plain_q = policy.critic(obs, policy.critic_action(plain))
+        mirror_q = policy.critic(mirrored_obs, policy.critic_action(in_mirror))
+        policy.mirror_choice = True
+        chosen = policy._predict(obs)
+    signs = th.tensor([1, 1, 1, 1, -1, -1, 1, -1], dtype=th.float32)
+    expected = th.where(mirror_q > plain_q, in_mirror * signs, plain)
+    assert 5 < int((mirror_q > plain_q).sum()) < 59  # both kinds of rows are tested
+    th.testing.assert_close(chosen, expected)
+
+
+def test_mirror_choice_keeps_a_state_that_is_its_own_mirror_image() -> None:
+    policy = make_policy(net_arch=[16], discrete_choice="critic", mirror_choice=True)
+    obs = th.zeros(4, 58)  # every sine 0: symmetric
+    obs[:, 14] = 1.0
+    with th.no_grad():
+        chosen = policy._predict(obs)
+        policy.mirror_choice = False
+        th.testing.assert_close(chosen, policy._predict(obs))
+
+
+def test_mirror_choice_errors_and_round_trip(tmp_path) -> None:
+    with pytest.raises(ValueError, match="mirror_choice needs HFO's 8-dimensional flat action"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, mirror_choice=True)
+    with pytest.raises(
+        ValueError, match=r"mirror_choice: an HFO feature vector has 58 \+ 8 \* players entries"
+    ):
+        HFOPolicy(spaces.Box(-1.0, 1.0, (60,)), ACTION_SPACE, lambda _: 1e-3, mirror_choice=True)
+    with pytest.raises(ValueError, match="mirror_choice must be a bool"):
+        make_policy(mirror_choice="yes")
+    model = SkillDDPG("HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16]), seed=0)
+    model.policy.mirror_choice = True  # acting options switched on a built model are saved with it
+    model.policy.discrete_choice, model.policy.kick_only_when_kickable = "critic", True
+    model.save(tmp_path / "m.zip")
+    loaded = SkillDDPG.load(tmp_path / "m.zip")
+    assert loaded.policy.acting_options() == {
+        "discrete_choice": "critic",
+        "kick_only_when_kickable": True,
+        "mirror_choice": True,
+    }
+    obs = batch_obs(8).numpy()
+    np.testing.assert_array_equal(model.predict(obs)[0], loaded.predict(obs)[0])

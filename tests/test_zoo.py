@@ -657,6 +657,16 @@ def test_evaluation_leaves_out_the_runs_exploring_starts(tmp_path: Path) -> None
     env.close()
 
 
+def test_evaluate_can_switch_on_the_mirror_choice() -> None:
+    from sb3_hfo.evaluate import build_parser, evaluate
+
+    model = REPO / "models" / "x27_keeper_skills_lost_shots_refunded_seed0"
+    result = evaluate(str(model), episodes=2, seed=0, mirror_choice=True)
+    assert result.mirror_choice is True and result.episodes == 2
+    assert evaluate(str(model), episodes=1, seed=0).mirror_choice is False  # the model's own setting
+    assert build_parser().parse_args(["m.zip", "--mirror-choice", "on"]).mirror_choice == "on"
+
+
 def test_evaluate_is_greedy_unless_stochastic() -> None:
     from sb3_hfo.evaluate import build_parser
 

@@ -84,12 +84,21 @@ alone, x11's and x12's critics still valued a shot at the static keeper within 0
 the network has to form itself, and at frequency 32 a product of sines. With the relative features x15's critic
 shows a notch at the keeper's bearing (Q - max Q -1.27 there against -0.61 / -0.74 at -10 / +10 degrees) and x15
 scores 96.2 / 89.9 % against the static keeper (two seeds), x12 79.7-89.4 % (benchmarks/RESULTS.md, session 10).
+
+The better of the state and its mirror image (beyond the paper, off by default): HFO is symmetric about the
+pitch's long axis (:mod:`hfo2d.symmetry`), so the policy played in the mirror image of the state, its action
+mirrored back, is another policy for the real state, and the critic's value of the mirrored state and action is
+its estimate of that policy's value. With ``mirror_choice=True`` acting (``predict``, and so SB3's rollouts)
+computes the greedy action in the state and in its mirror image and plays the one the first critic values more
+(ties: the unmirrored one); a one-step policy improvement over two policies, decided afresh every step. Why: x27's
+E6 agent scores all its goals in one half of the goal, by one route (benchmarks/failure_map.py, session 16). Can be
+switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action.
 """
 
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 import torch as th
@@ -113,6 +122,7 @@ from hfo2d.features import (
     KICKABLE,
 )
 from hfo2d.hfo_env import KICK
+from hfo2d.symmetry import feature_mirror, flat_action_mirror_signs
 from sb3_hfo.common.routers import SkillRouter, make_router, validate_skills
 
 __all__ = [
@@ -717,6 +727,9 @@ class HFOPolicy(BasePolicy):
     :param kick_only_when_kickable: KICK is never the greedy choice while the ball is out of reach (observation
         feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs HFO's 8-dimensional action and
         low-level features. Can be switched on a trained model.
+    :param mirror_choice: play the better, by the first critic, of the greedy action in the state and the greedy
+        action in its mirror image mirrored back (see module doc). Needs HFO's low-level features and 8-dimensional
+        flat action. Can be switched on a trained model.
     :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
         ``cos(k * theta)`` of the dash, turn and kick directions that the critic sees besides the action (see
         module doc); ``()`` (default, the paper): none. Needs HFO's 8-dimensional flat action.
@@ -754,6 +767,7 @@ class HFOPolicy(BasePolicy):
         n_critics: int = 1,
         discrete_choice: str = "actor",
         kick_only_when_kickable: bool = False,
+        mirror_choice: bool = False,
         critic_direction_frequencies: Sequence[float] = (),
         critic_kick_relative_to: Sequence[str] = (),
         weight_init_std: float = WEIGHT_INIT_STD,
@@ -805,6 +819,7 @@ class HFOPolicy(BasePolicy):
         self.action_parameter_sizes = _parameter_sizes(mask_unused_parameters, self.action_dim)
         self.discrete_choice = discrete_choice  # validated by the property setter
         self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
+        self.mirror_choice = mirror_choice  # validated by the property setter
         self.critic_direction_frequencies = _direction_frequencies(
             critic_direction_frequencies, self.action_dim
         )
@@ -937,6 +952,44 @@ class HFOPolicy(BasePolicy):
             )
         self._kick_only_when_kickable = bool(value)
 
+    #: Options that change only how the policy acts, not its networks: settable on a trained model, and saved.
+    ACTING_OPTIONS: ClassVar[tuple[str, ...]] = (
+        "discrete_choice",
+        "kick_only_when_kickable",
+        "mirror_choice",
+    )
+
+    def acting_options(self) -> dict[str, Any]:
+        """The current value of each of :attr:`ACTING_OPTIONS`."""
+        return {name: getattr(self, name) for name in self.ACTING_OPTIONS}
+
+    @property
+    def mirror_choice(self) -> bool:
+        """Whether acting also tries the mirror image of the state (see module doc; may be changed at any time)."""
+        return self._mirror is not None
+
+    @mirror_choice.setter
+    def mirror_choice(self, value: bool) -> None:
+        if not isinstance(value, (bool, np.bool_)):
+            raise ValueError(f"mirror_choice must be a bool, got {value!r}")
+        if not value:
+            self._mirror: tuple[th.Tensor, th.Tensor, th.Tensor] | None = None
+            return
+        if self.action_dim != HFO_FLAT_ACTION_DIM:
+            raise ValueError(
+                f"mirror_choice needs HFO's {HFO_FLAT_ACTION_DIM}-dimensional flat action, got action dim "
+                f"{self.action_dim}"
+            )
+        try:
+            source, sign = feature_mirror(self.obs_dim)
+        except ValueError as error:
+            raise ValueError(f"mirror_choice: {error}") from None
+        self._mirror = (
+            th.tensor(source, dtype=th.long),
+            th.tensor(sign, dtype=th.float32),
+            th.tensor(flat_action_mirror_signs(), dtype=th.float32),
+        )
+
     def kick_unavailable(self, obs: th.Tensor) -> th.Tensor | None:
         """``(B,)`` bool, True where KICK is left out (ball out of reach); ``None`` when the option is off."""
         if not self._kick_only_when_kickable:
@@ -1044,6 +1097,7 @@ class HFOPolicy(BasePolicy):
                 n_critics=self.n_critics,
                 discrete_choice=self.discrete_choice,
                 kick_only_when_kickable=self.kick_only_when_kickable,
+                mirror_choice=self.mirror_choice,
                 critic_direction_frequencies=self.critic_direction_frequencies,
                 critic_kick_relative_to=self.critic_kick_relative_to,
                 weight_init_std=self.weight_init_std,
@@ -1073,6 +1127,18 @@ class HFOPolicy(BasePolicy):
     def _predict(self, observation: PyTorchObs, deterministic: bool = False) -> th.Tensor:
         """Greedy action in [-1, 1] for ``observation (B, obs_dim)`` (DDPG's actor is deterministic)."""
         obs = self._flatten_obs(observation)
+        if self._mirror is None:
+            return self._greedy_action(obs)
+        source, sign, action_sign = (tensor.to(obs.device) for tensor in self._mirror)
+        batch = obs.shape[0]
+        both = th.cat((obs, obs[:, source] * sign))
+        actions = self._greedy_action(both)
+        values = self.critic.forward(both, self.critic_action(actions))
+        mirrored_better = values[batch:] > values[:batch]
+        return th.where(mirrored_better, actions[batch:] * action_sign, actions[:batch])
+
+    def _greedy_action(self, obs: th.Tensor) -> th.Tensor:
+        """The greedy action in [-1, 1] for ``obs (B, obs_dim)`` by ``discrete_choice``, without ``mirror_choice``."""
         action = self.actor.forward(obs, self.route(obs))  # not actor(...): no hooks to run, ~10 us per step
         if self.inverting_gradients:
             action = action.clamp(-1.0, 1.0)

@@ -62,10 +62,12 @@ exploring step only re-picks the discrete action (its preference set to 1, the o
 
 from __future__ import annotations
 
+import io
 import math
+import pathlib
 import warnings
 from collections import deque
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from typing import Any, ClassVar, TypeVar
 
 import numpy as np
@@ -856,6 +858,18 @@ class SkillDDPG(OffPolicyAlgorithm):
 
     # ------------------------------------------------------------------------------------------------------
     # SB3 plumbing
+
+    def save(
+        self,
+        path: str | pathlib.Path | io.BufferedIOBase,
+        exclude: Iterable[str] | None = None,
+        include: Iterable[str] | None = None,
+    ) -> None:
+        """SB3's ``save``, with the acting options switched on the policy after construction
+        (:attr:`HFOPolicy.ACTING_OPTIONS`, e.g. ``model.policy.mirror_choice = True``) written into
+        ``policy_kwargs``, which is what ``load`` rebuilds the policy from."""
+        self.policy_kwargs = {**self.policy_kwargs, **self.policy.acting_options()}
+        super().save(path, exclude=exclude, include=include)
 
     def learn(
         self: SelfSkillDDPG,
