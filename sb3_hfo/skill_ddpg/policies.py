@@ -122,7 +122,7 @@ from hfo2d.features import (
     KICKABLE,
 )
 from hfo2d.hfo_env import KICK
-from hfo2d.symmetry import feature_mirror, flat_action_mirror_signs
+from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.common.routers import SkillRouter, make_router, validate_skills
 
 __all__ = [
@@ -972,22 +972,8 @@ class HFOPolicy(BasePolicy):
     def mirror_choice(self, value: bool) -> None:
         if not isinstance(value, (bool, np.bool_)):
             raise ValueError(f"mirror_choice must be a bool, got {value!r}")
-        if not value:
-            self._mirror: tuple[th.Tensor, th.Tensor, th.Tensor] | None = None
-            return
-        if self.action_dim != HFO_FLAT_ACTION_DIM:
-            raise ValueError(
-                f"mirror_choice needs HFO's {HFO_FLAT_ACTION_DIM}-dimensional flat action, got action dim "
-                f"{self.action_dim}"
-            )
-        try:
-            source, sign = feature_mirror(self.obs_dim)
-        except ValueError as error:
-            raise ValueError(f"mirror_choice: {error}") from None
-        self._mirror = (
-            th.tensor(source, dtype=th.long),
-            th.tensor(sign, dtype=th.float32),
-            th.tensor(flat_action_mirror_signs(), dtype=th.float32),
+        self._mirror: Mirror | None = (
+            make_mirror((self.obs_dim,), self.action_dim, "mirror_choice") if value else None
         )
 
     def kick_unavailable(self, obs: th.Tensor) -> th.Tensor | None:
@@ -1129,13 +1115,12 @@ class HFOPolicy(BasePolicy):
         obs = self._flatten_obs(observation)
         if self._mirror is None:
             return self._greedy_action(obs)
-        source, sign, action_sign = (tensor.to(obs.device) for tensor in self._mirror)
-        batch = obs.shape[0]
-        both = th.cat((obs, obs[:, source] * sign))
+        mirror, batch = self._mirror.to(obs.device), obs.shape[0]
+        both = th.cat((obs, mirror.observations(obs)))
         actions = self._greedy_action(both)
         values = self.critic.forward(both, self.critic_action(actions))
         mirrored_better = values[batch:] > values[:batch]
-        return th.where(mirrored_better, actions[batch:] * action_sign, actions[:batch])
+        return th.where(mirrored_better, mirror.actions(actions[batch:]), actions[:batch])
 
     def _greedy_action(self, obs: th.Tensor) -> th.Tensor:
         """The greedy action in [-1, 1] for ``obs (B, obs_dim)`` by ``discrete_choice``, without ``mirror_choice``."""

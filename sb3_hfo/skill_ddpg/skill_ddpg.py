@@ -85,8 +85,8 @@ from stable_baselines3.common.utils import (
     update_learning_rate,
 )
 
-from hfo2d.symmetry import feature_mirror, flat_action_mirror_signs
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
+from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.skill_ddpg.policies import (
     HFO_FLAT_ACTION_DIM,
     HFO_KICK_ACTION,
@@ -475,42 +475,25 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._reset_stats()
 
     def _setup_mirror(self) -> None:
-        """``mirror_fraction > 0``: the index / sign tensors that mirror a minibatch (HFO's layout only)."""
-        self._mirror: tuple[th.Tensor, th.Tensor, th.Tensor] | None = None
-        if self.mirror_fraction == 0:
-            return
-        obs_shape, action_shape = self.observation_space.shape, self.action_space.shape
-        if action_shape != (HFO_FLAT_ACTION_DIM,):
-            raise ValueError(
-                f"mirror_fraction > 0 needs HFO's flat action of shape ({HFO_FLAT_ACTION_DIM},), got {action_shape}"
-            )
-        if obs_shape is None or len(obs_shape) != 1:
-            raise ValueError(
-                f"mirror_fraction > 0 needs HFO's 1-D feature vector, got observation shape {obs_shape}"
-            )
-        try:
-            source, sign = feature_mirror(obs_shape[0])
-        except ValueError as error:
-            raise ValueError(f"mirror_fraction > 0: {error}") from None
-        self._mirror = (
-            th.tensor(source, dtype=th.long, device=self.device),
-            th.tensor(sign, dtype=th.float32, device=self.device),
-            th.tensor(flat_action_mirror_signs(), dtype=th.float32, device=self.device),
-        )
+        """``mirror_fraction > 0``: the tensors that mirror a minibatch (HFO's layout only)."""
+        self._mirror: Mirror | None = None
+        if self.mirror_fraction > 0:
+            action_dim = int(np.prod(self.action_space.shape))
+            mirror = make_mirror(self.observation_space.shape, action_dim, "mirror_fraction > 0")
+            self._mirror = mirror.to(self.device)
 
     def _mirror_rows(self, batch: ReplayBufferSamples) -> ReplayBufferSamples:
         """``batch`` with each row, with probability ``mirror_fraction``, replaced by its mirror image
         (observations and next observations ``(B, obs_dim)``, actions ``(B, 8)`` in [-1, 1]; the rest kept)."""
         assert self._mirror is not None
-        source, sign, action_sign = self._mirror
-        observations = batch.observations
+        mirror, observations = self._mirror, batch.observations
         rows = th.rand(observations.shape[0], 1, device=observations.device) < self.mirror_fraction
         return batch._replace(
-            observations=th.where(rows, observations[:, source] * sign, observations),
+            observations=th.where(rows, mirror.observations(observations), observations),
             next_observations=th.where(
-                rows, batch.next_observations[:, source] * sign, batch.next_observations
+                rows, mirror.observations(batch.next_observations), batch.next_observations
             ),
-            actions=th.where(rows, batch.actions * action_sign, batch.actions),
+            actions=th.where(rows, mirror.actions(batch.actions), batch.actions),
         )
 
     def _create_aliases(self) -> None:
