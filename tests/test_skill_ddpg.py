@@ -835,5 +835,7 @@ def test_mirror_fraction_round_trips_and_rejects_bad_values(tmp_path: Path) -> N
     loaded.learn(10, reset_num_timesteps=False)
     with pytest.raises(ValueError, match=r"mirror_fraction must lie in \[0, 1\], got 1.5"):
         make_model(1, mirror_fraction=1.5)
-    with pytest.raises(ValueError, match="mirror_fraction > 0 needs HFO's 8-dimensional flat action, got action dim 1"):
+    with pytest.raises(
+        ValueError, match="mirror_fraction > 0 needs HFO's 8-dimensional flat action, got action dim 1"
+    ):
         SkillDDPG("MlpPolicy", "Pendulum-v1", mirror_fraction=0.5)
