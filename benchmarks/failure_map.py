@@ -183,16 +183,26 @@ def main(argv: Sequence[str] | None = None) -> None:
         default=None,
         help="actor or critic (default: the model's)",
     )
+    parser.add_argument(
+        "--mirror-choice",
+        choices=("on", "off"),
+        default=None,
+        help="play the better of the state and its mirror image (default: the model's setting)",
+    )
     args = parser.parse_args(argv)
 
     model, env, env_id, _, path = load_for_evaluation(args.model, args.env or None)
     if args.discrete_choice is not None:
         model.policy.discrete_choice = args.discrete_choice
+    if args.mirror_choice is not None:
+        model.policy.mirror_choice = args.mirror_choice == "on"
     try:
         records = run_episodes(model, env, args.episodes, args.seed, True, model_n_skills(model))
     finally:
         env.close()
     choice = model.policy.discrete_choice
+    if model.policy.mirror_choice:
+        choice += " (better of state and mirror image)"
     print(
         f"{path} on {env_id}: {args.episodes} greedy episodes, seed {args.seed}, {choice} picks the discrete action"
     )

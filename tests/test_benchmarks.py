@@ -86,8 +86,11 @@ def test_failure_map_groups_episodes_by_start_and_writes_a_png(tmp_path: Path) -
     out = tmp_path / "map.png"
     command = [sys.executable, str(REPO / "benchmarks" / "failure_map.py")]
     command += [str(REPO / "models" / "e1_empty_goal_fast_seed0"), "--episodes", "6", "--out", str(out)]
-    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    completed = subprocess.run(
+        [*command, "--mirror-choice", "on"], capture_output=True, text=True, timeout=300, cwd=tmp_path
+    )
     assert completed.returncode == 0, completed.stderr[-2000:]
+    assert "(better of state and mirror image) picks" in completed.stdout.splitlines()[0]
     rows = [line for line in completed.stdout.splitlines() if "episodes  goal rate" in line]
     totals = [index for index, row in enumerate(rows) if row.split()[:2] == ["all", "6"]]
     assert len(totals) == 2  # one table by start, one by where the ball ended
