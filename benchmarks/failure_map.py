@@ -19,6 +19,7 @@ import math
 from collections import Counter
 from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 from hfo2d.physics import GOAL_HALF_WIDTH
 from sb3_hfo.evaluate import (
@@ -100,6 +101,13 @@ def table_rows(
     return rows
 
 
+def _start_offset(record: EpisodeRecord) -> tuple[float, float] | None:
+    """The agent's start minus the ball's (m), or None without positions."""
+    if record.start_ball is None or record.start_player is None:
+        return None
+    return record.start_player[0] - record.start_ball[0], record.start_player[1] - record.start_ball[1]
+
+
 def plot(records: Sequence[EpisodeRecord], title: str, out: Path) -> None:
     """Three panels coloured by end status: ball starts, the agent's start offset from the ball, ball ends."""
     import matplotlib
@@ -108,37 +116,22 @@ def plot(records: Sequence[EpisodeRecord], title: str, out: Path) -> None:
     import matplotlib.pyplot as plt
 
     fig, (ax_ball, ax_offset, ax_end) = plt.subplots(1, 3, figsize=(18, 5.2))
+    panels: list[tuple[Any, Callable[[EpisodeRecord], tuple[float, float] | None]]] = [
+        (ax_ball, lambda r: r.start_ball),
+        (ax_offset, _start_offset),
+        (ax_end, lambda r: r.end_ball),
+    ]
     for status, (colour, marker) in STATUS_STYLE.items():
         chosen = [r for r in records if r.status == status and r.start_ball and r.start_player]
         if not chosen:
             continue
         label = f"{status} ({len(chosen)})"
         size = 6 if status == "GOAL" else 22
-        ax_ball.scatter(
-            [r.start_ball[0] for r in chosen],  # type: ignore[index]
-            [r.start_ball[1] for r in chosen],  # type: ignore[index]
-            s=size,
-            c=colour,
-            marker=marker,
-            label=label,
-        )
-        ax_offset.scatter(
-            [r.start_player[0] - r.start_ball[0] for r in chosen],  # type: ignore[index]
-            [r.start_player[1] - r.start_ball[1] for r in chosen],  # type: ignore[index]
-            s=size,
-            c=colour,
-            marker=marker,
-            label=label,
-        )
-        ended = [r for r in chosen if r.end_ball]
-        ax_end.scatter(
-            [r.end_ball[0] for r in ended],  # type: ignore[index]
-            [r.end_ball[1] for r in ended],  # type: ignore[index]
-            s=size,
-            c=colour,
-            marker=marker,
-            label=label,
-        )
+        for axis, point in panels:
+            points = [p for p in map(point, chosen) if p is not None]
+            axis.scatter(
+                [x for x, _ in points], [y for _, y in points], s=size, c=colour, marker=marker, label=label
+            )
     caught = [r for r in records if r.status == "CAPTURED_BY_DEFENSE" and r.end_keeper]
     if caught:
         ax_end.scatter(
