@@ -124,7 +124,9 @@ def flat_action_mirror_signs() -> list[float]:
 def mirror_flat_action(action: Sequence[float] | np.ndarray) -> np.ndarray:
     """The mirror image of a flat action in the env's scale [0, 1] (``(8,)`` or ``(..., 8)``): u -> 1 - u for
     the three directions, everything else unchanged."""
-    array = np.array(action, dtype=np.float64 if not isinstance(action, np.ndarray) else None)
+    array = np.array(action)  # a copy
+    if array.dtype.kind != "f":
+        array = array.astype(np.float64)
     if array.shape[-1:] != (FLAT_ACTION_SIZE,):
         raise ValueError(f"a flat HFO action has {FLAT_ACTION_SIZE} entries, got shape {array.shape}")
     array[..., FLAT_ACTION_DIRECTIONS] = 1.0 - array[..., FLAT_ACTION_DIRECTIONS]

@@ -1115,7 +1115,9 @@ class HFOPolicy(BasePolicy):
         obs = self._flatten_obs(observation)
         if self._mirror is None:
             return self._greedy_action(obs)
-        mirror, batch = self._mirror.to(obs.device), obs.shape[0]
+        mirror, batch = self._mirror, obs.shape[0]
+        if mirror.sign.device != obs.device:  # the tensors are not module buffers: .to(device) leaves them
+            mirror = self._mirror = mirror.to(obs.device)
         both = th.cat((obs, mirror.observations(obs)))
         actions = self._greedy_action(both)
         values = self.critic.forward(both, self.critic_action(actions))
