@@ -47,11 +47,19 @@ STATUS_STYLE = {  # status: (colour, marker)
 }
 
 
+def _start_offset(record: EpisodeRecord) -> tuple[float, float] | None:
+    """The agent's start minus the ball's (m), or None without positions."""
+    if record.start_ball is None or record.start_player is None:
+        return None
+    return record.start_player[0] - record.start_ball[0], record.start_player[1] - record.start_ball[1]
+
+
 def start_class(record: EpisodeRecord) -> str:
     """The agent's start relative to the ball along x, as a label (records without positions: 'unknown')."""
-    if record.start_ball is None or record.start_player is None:
+    offset = _start_offset(record)
+    if offset is None:
         return "unknown"
-    ahead = record.start_player[0] - record.start_ball[0]
+    ahead = offset[0]
     low, mid, high = AHEAD_LIMITS
     if ahead < low:
         return f"agent > {-low:g} m behind the ball"
@@ -99,13 +107,6 @@ def table_rows(
         low, high = wilson_interval(goals, len(members))
         rows.append((name, len(members), goals / len(members), low, high, dict(sorted(counts.items()))))
     return rows
-
-
-def _start_offset(record: EpisodeRecord) -> tuple[float, float] | None:
-    """The agent's start minus the ball's (m), or None without positions."""
-    if record.start_ball is None or record.start_player is None:
-        return None
-    return record.start_player[0] - record.start_ball[0], record.start_player[1] - record.start_ball[1]
 
 
 def plot(records: Sequence[EpisodeRecord], title: str, out: Path) -> None:
