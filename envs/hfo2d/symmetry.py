@@ -50,6 +50,7 @@ from hfo2d.features import (
     SELF_BODY_SIN,
     SELF_VEL_ANGLE_SIN,
 )
+from hfo2d.hfo_env import FLAT_ACTION_SIZE
 
 __all__ = [
     "FLAT_ACTION_DIRECTIONS",
@@ -61,7 +62,6 @@ __all__ = [
 
 #: Flat-action entries that are directions (dash_dir, turn_dir, kick_dir; hfo_env's flat layout).
 FLAT_ACTION_DIRECTIONS: tuple[int, ...] = (4, 5, 7)
-FLAT_ACTION_SIZE = 8
 
 # Landmarks are (sin, cos, proximity) triples starting at their sine: pairs of triples that swap in a mirror.
 _SWAPPED_LANDMARKS = (

@@ -6,7 +6,8 @@ from typing import NamedTuple
 
 import torch as th
 
-from hfo2d.symmetry import FLAT_ACTION_SIZE, feature_mirror, flat_action_mirror_signs
+from hfo2d.hfo_env import FLAT_ACTION_SIZE
+from hfo2d.symmetry import feature_mirror, flat_action_mirror_signs
 
 __all__ = ["Mirror", "make_mirror"]
 
