@@ -27,6 +27,8 @@ ACTION_NAMES: tuple[str, ...] = ("DASH", "TURN", "KICK")
 DASH, TURN, KICK = 0, 1, 2
 # [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir]
 FLAT_ACTION_SIZE = 8
+#: Where the three directions (dash_dir, turn_dir, kick_dir) sit in the flat action.
+FLAT_ACTION_DIRECTIONS: tuple[int, ...] = (4, 5, 7)
 POWER_MIN, POWER_MAX = 0.0, 100.0  # gym-soccer / paper dash and kick power range (hfo_reference §3.3)
 DIRECTION_MIN, DIRECTION_MAX = -180.0, 180.0  # degrees relative to the body
 

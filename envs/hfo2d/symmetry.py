@@ -50,18 +50,14 @@ from hfo2d.features import (
     SELF_BODY_SIN,
     SELF_VEL_ANGLE_SIN,
 )
-from hfo2d.hfo_env import FLAT_ACTION_SIZE
+from hfo2d.hfo_env import FLAT_ACTION_DIRECTIONS, FLAT_ACTION_SIZE
 
 __all__ = [
-    "FLAT_ACTION_DIRECTIONS",
     "feature_mirror",
     "flat_action_mirror_signs",
     "mirror_features",
     "mirror_flat_action",
 ]
-
-#: Flat-action entries that are directions (dash_dir, turn_dir, kick_dir; hfo_env's flat layout).
-FLAT_ACTION_DIRECTIONS: tuple[int, ...] = (4, 5, 7)
 
 # Landmarks are (sin, cos, proximity) triples starting at their sine: pairs of triples that swap in a mirror.
 _SWAPPED_LANDMARKS = (

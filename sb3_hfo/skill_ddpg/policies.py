@@ -121,7 +121,7 @@ from hfo2d.features import (
     GOALIE_ANGLE_SIN,
     KICKABLE,
 )
-from hfo2d.hfo_env import KICK
+from hfo2d.hfo_env import FLAT_ACTION_DIRECTIONS, KICK
 from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.common.routers import SkillRouter, make_router, validate_skills
 
@@ -153,7 +153,7 @@ HFO_N_DISCRETE_ACTIONS = len(HFO_ACTION_PARAMETER_SIZES)
 #: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
 HFO_FLAT_ACTION_DIM = HFO_N_DISCRETE_ACTIONS + sum(HFO_ACTION_PARAMETER_SIZES)
 # Where the three direction parameters (dash, turn, kick; [-1, 1] for [-180, 180] degrees) sit in the flat action.
-HFO_DIRECTION_PARAMETER_INDICES = (4, 5, 7)
+HFO_DIRECTION_PARAMETER_INDICES = FLAT_ACTION_DIRECTIONS
 #: Index of KICK among HFO's discrete actions (DASH, TURN, KICK: the flat action's first three preferences).
 HFO_KICK_ACTION = KICK
 #: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise); hfo2d
