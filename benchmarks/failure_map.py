@@ -183,6 +183,13 @@ def main(argv: Sequence[str] | None = None) -> None:
         default=None,
         help="play the better of the state and its mirror image (default: the model's setting)",
     )
+    parser.add_argument(
+        "--mirror-margin",
+        type=float,
+        default=None,
+        metavar="M",
+        help="with the mirror choice, switch sides within an episode only for a gain above M (default: the model's)",
+    )
     args = parser.parse_args(argv)
 
     model, env, env_id, _, path = load_for_evaluation(args.model, args.env or None)
@@ -190,13 +197,16 @@ def main(argv: Sequence[str] | None = None) -> None:
         model.policy.discrete_choice = args.discrete_choice
     if args.mirror_choice is not None:
         model.policy.mirror_choice = args.mirror_choice == "on"
+    if args.mirror_margin is not None:
+        model.policy.mirror_margin = args.mirror_margin
     try:
         records = run_episodes(model, env, args.episodes, args.seed, True, model_n_skills(model))
     finally:
         env.close()
     choice = model.policy.discrete_choice
     if model.policy.mirror_choice:
-        choice += " (better of state and mirror image)"
+        choice += " (better of state and mirror image"
+        choice += f", margin {model.policy.mirror_margin:g})" if model.policy.mirror_margin else ")"
     print(
         f"{path} on {env_id}: {args.episodes} greedy episodes, seed {args.seed}, {choice} picks the discrete action"
     )

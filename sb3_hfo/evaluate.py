@@ -30,7 +30,9 @@ Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" an
 * ``kick_only_when_kickable``: whether KICK was left out of the greedy choice while the ball was out of reach
   (``--kick-only-when-kickable on|off``; default the model's own setting);
 * ``mirror_choice``: whether each step played the better, by the critic, of the greedy action in the state and in
-  its mirror image (``--mirror-choice on|off``; default the model's own setting; ``HFOPolicy``'s option).
+  its mirror image (``--mirror-choice on|off``; default the model's own setting; ``HFOPolicy``'s option), and
+  ``mirror_margin``: by how much the other side had to be better for that choice to switch sides within an
+  episode (``--mirror-margin M``; 0: decided afresh every step; ``HFOPolicy``'s option).
 """
 
 from __future__ import annotations
@@ -154,6 +156,7 @@ class EvaluationResult:
     discrete_choice: str = "actor"
     kick_only_when_kickable: bool = False
     mirror_choice: bool = False
+    mirror_margin: float = 0.0
     mean_shot_distance: float | None = None
     shots_by_distance: dict[str, dict[str, int]] = field(default_factory=dict)
 
@@ -193,6 +196,7 @@ def summarize(
     discrete_choice: str = "actor",
     kick_only_when_kickable: bool = False,
     mirror_choice: bool = False,
+    mirror_margin: float = 0.0,
 ) -> EvaluationResult:
     """Aggregate per-episode records into an :class:`EvaluationResult`."""
     n = len(records)
@@ -230,6 +234,7 @@ def summarize(
         discrete_choice=discrete_choice,
         kick_only_when_kickable=kick_only_when_kickable,
         mirror_choice=mirror_choice,
+        mirror_margin=mirror_margin,
         mean_shot_distance=sum(shot_distances) / len(shot_distances) if shot_distances else None,
         shots_by_distance=_shots_by_distance(records),
     )
@@ -357,6 +362,8 @@ def run_episodes(
 
     records: list[EpisodeRecord] = []
     obs, info = env.reset(seed=seed)
+    # predict's recurrent state (HFOPolicy's mirror_margin keeps a side in it), reset at each episode's first step
+    state: Any = None
     for _ in range(episodes):
         start_ball, start_player = _position(info.get("ball")), _position(info.get("player"))
         steps = kicks = dribble_steps = 0
@@ -366,10 +373,14 @@ def run_episodes(
         skill_steps = [0] * n_skills
         status = "IN_GAME"
         done = False
+        episode_start = np.ones(1, dtype=bool)
         while not done:
             if n_skills > 1:
                 skill_steps[skill_index(model, obs)] += 1
-            action, _ = model.predict(obs, deterministic=deterministic)
+            action, state = model.predict(
+                obs, state=state, episode_start=episode_start, deterministic=deterministic
+            )
+            episode_start = np.zeros(1, dtype=bool)
             ball_before = info.get("ball")
             obs, reward, terminated, truncated, info = env.step(action)
             steps += 1
@@ -458,12 +469,13 @@ def evaluate(
     discrete_choice: str | None = None,
     kick_only_when_kickable: bool | None = None,
     mirror_choice: bool | None = None,
+    mirror_margin: float | None = None,
 ) -> EvaluationResult:
     """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors.
 
     ``discrete_choice``: ``"actor"`` or ``"critic"`` overrides who picks the discrete action (``HFOPolicy``'s
-    option of that name); ``kick_only_when_kickable`` and ``mirror_choice`` override the policy's options of those
-    names; ``None`` keeps the model's own.
+    option of that name); ``kick_only_when_kickable``, ``mirror_choice`` and ``mirror_margin`` override the policy's
+    options of those names; ``None`` keeps the model's own.
     """
     model, env, env_id, kwargs, path = load_for_evaluation(model_path, env_id, env_kwargs)
     try:
@@ -473,6 +485,8 @@ def evaluate(
             model.policy.kick_only_when_kickable = kick_only_when_kickable
         if mirror_choice is not None:
             model.policy.mirror_choice = mirror_choice
+        if mirror_margin is not None:
+            model.policy.mirror_margin = mirror_margin
     except ValueError as error:
         env.close()
         raise EvaluationError(str(error)) from error
@@ -492,6 +506,7 @@ def evaluate(
         discrete_choice=getattr(model.policy, "discrete_choice", "actor"),
         kick_only_when_kickable=getattr(model.policy, "kick_only_when_kickable", False),
         mirror_choice=getattr(model.policy, "mirror_choice", False),
+        mirror_margin=getattr(model.policy, "mirror_margin", 0.0),
     )
 
 
@@ -537,7 +552,12 @@ def print_table(result: EvaluationResult) -> None:
     table.add_row("deterministic", str(result.deterministic))
     table.add_row("discrete action picked by", result.discrete_choice)
     table.add_row("no KICK without the ball", "on" if result.kick_only_when_kickable else "off")
-    table.add_row("better of state and mirror image", "on" if result.mirror_choice else "off")
+    mirror = "off"
+    if result.mirror_choice:
+        mirror = (
+            f"on, switching sides at a margin of {result.mirror_margin:g}" if result.mirror_margin else "on"
+        )
+    table.add_row("better of state and mirror image", mirror)
     Console().print(table)
 
 
@@ -609,6 +629,14 @@ def build_parser() -> argparse.ArgumentParser:
         "(default: the model's setting)",
     )
     parser.add_argument(
+        "--mirror-margin",
+        type=float,
+        default=None,
+        metavar="M",
+        help="with the mirror choice, keep the side played through an episode and switch only when the other is "
+        "better by more than M (>= 0; inf: never; 0: decide every step; default: the model's setting)",
+    )
+    parser.add_argument(
         "--env-kwargs",
         nargs="+",
         default=[],
@@ -653,6 +681,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             if args.kick_only_when_kickable is None
             else args.kick_only_when_kickable == "on",
             mirror_choice=None if args.mirror_choice is None else args.mirror_choice == "on",
+            mirror_margin=args.mirror_margin,
         )
     except EvaluationError as error:
         print(f"error: {error}", file=sys.stderr)

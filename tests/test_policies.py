@@ -708,6 +708,86 @@ def test_mirror_choice_errors_and_round_trip(tmp_path) -> None:
         "discrete_choice": "critic",
         "kick_only_when_kickable": True,
         "mirror_choice": True,
+        "mirror_margin": 0.0,
     }
     obs = batch_obs(8).numpy()
     np.testing.assert_array_equal(model.predict(obs)[0], loaded.predict(obs)[0])
+
+
+def mirror_margin_setup() -> tuple[HFOPolicy, np.ndarray, th.Tensor, th.Tensor, th.Tensor]:
+    """A goalie-layout policy with mirror_choice, 64 random states, the plain and the mirrored greedy actions (in
+    [-1, 1], the mirrored one mapped back) and the gain of the mirrored side, mirror Q - plain Q, per row."""
+    from hfo2d.symmetry import mirror_features
+
+    policy = make_goalie_policy(net_arch=[32, 16], mask_unused_parameters=True, discrete_choice="critic")
+    obs = np.random.default_rng(5).uniform(-1, 1, (64, 66)).astype(np.float32)
+    mirrored_obs = th.as_tensor(mirror_features(obs))
+    with th.no_grad():
+        plain = policy._predict(th.as_tensor(obs))
+        in_mirror = policy._predict(mirrored_obs)
+        gain = policy.critic(mirrored_obs, policy.critic_action(in_mirror)) - policy.critic(
+            th.as_tensor(obs), policy.critic_action(plain)
+        )
+    policy.mirror_choice = True
+    signs = th.tensor([1, 1, 1, 1, -1, -1, 1, -1], dtype=th.float32)
+    return policy, obs, plain, in_mirror * signs, gain.squeeze(1)
+
+
+def test_mirror_margin_keeps_the_side_unless_the_other_is_better_by_the_margin() -> None:
+    policy, obs, plain, mirrored, gain = mirror_margin_setup()
+    margin = float(gain.abs().median())
+    policy.mirror_margin = margin
+
+    def played(sides: th.Tensor) -> np.ndarray:
+        return policy.unscale_action(th.where(sides.unsqueeze(1), mirrored, plain).numpy())
+
+    # No state, or a new episode: the better side, as without a margin; the sides come back as the state.
+    actions, (sides,) = policy.predict(obs)
+    np.testing.assert_array_equal(sides, (gain > 0).numpy().astype(np.float32))
+    np.testing.assert_allclose(actions, played(gain > 0), atol=1e-6)
+    _, (restarted,) = policy.predict(obs, state=(np.ones(64),), episode_start=np.ones(64, dtype=bool))
+    np.testing.assert_array_equal(restarted, sides)
+    # Kept mirrored: back to plain only where plain is better by more than the margin; kept plain: the reverse.
+    for kept, switch in ((1.0, -gain > margin), (0.0, gain > margin)):
+        state = (np.full(64, kept, dtype=np.float32),)
+        actions, (sides,) = policy.predict(obs, state=state, episode_start=np.zeros(64, dtype=bool))
+        expected = th.full((64,), bool(kept)) ^ switch
+        assert 5 < int(switch.sum()) < 59  # rows that switch and rows that stay
+        np.testing.assert_array_equal(sides, expected.numpy().astype(np.float32))
+        np.testing.assert_allclose(actions, played(expected), atol=1e-6)
+    # inf: the side of the episode's first step is kept whatever the values; a one-row state for one observation.
+    policy.mirror_margin = float("inf")
+    action, (side,) = policy.predict(obs[0], state=(np.ones(1),), episode_start=np.zeros(1, dtype=bool))
+    assert action.shape == (8,) and side.tolist() == [1.0]
+    np.testing.assert_allclose(action, played(th.ones(64, dtype=th.bool))[0], atol=1e-6)
+
+
+def test_mirror_margin_zero_decides_every_step_and_passes_the_state_through() -> None:
+    policy, obs, plain, mirrored, gain = mirror_margin_setup()
+    state = (np.ones(64, dtype=np.float32),)
+    actions, returned = policy.predict(obs, state=state, episode_start=np.zeros(64, dtype=bool))
+    assert returned is state  # SB3's contract when the policy keeps no state
+    expected = th.where((gain > 0).unsqueeze(1), mirrored, plain).numpy()
+    np.testing.assert_allclose(actions, policy.unscale_action(expected), atol=1e-6)
+
+
+def test_mirror_margin_errors_and_round_trip(tmp_path) -> None:
+    for bad in (-0.1, float("nan"), "0.1", True):
+        with pytest.raises(ValueError, match="mirror_margin must be"):
+            make_policy(mirror_margin=bad)
+    policy, obs, _, _, _ = mirror_margin_setup()
+    policy.mirror_margin = 0.5
+    with pytest.raises(ValueError, match="state has 3 sides but the observation batch has 64 rows"):
+        policy.predict(obs, state=(np.zeros(3),))
+    with pytest.raises(ValueError, match="episode_start has 2 entries but state has 64 sides"):
+        policy.predict(obs, state=(np.zeros(64),), episode_start=np.zeros(2, dtype=bool))
+    with pytest.raises(
+        ValueError, match=r"state must be the \(sides,\) tuple returned by the previous predict"
+    ):
+        policy.predict(obs, state=np.zeros(64))  # type: ignore[arg-type]
+    model = SkillDDPG(
+        "HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], mirror_choice=True), seed=0
+    )
+    model.policy.mirror_margin = 0.25
+    model.save(tmp_path / "m.zip")
+    assert SkillDDPG.load(tmp_path / "m.zip").policy.mirror_margin == 0.25

@@ -261,7 +261,7 @@ def test_evaluation_measures_the_shot_from_where_the_ball_was_kicked() -> None:
             return self.env.reset(seed=seed, options={"player": (30.0, 0.0, 0.0), "ball": (30.5, 0.0)})
 
     class KickStraightAhead:
-        def predict(self, obs: np.ndarray, deterministic: bool = False) -> tuple[np.ndarray, None]:
+        def predict(self, obs: np.ndarray, state=None, episode_start=None, deterministic=False) -> tuple:
             return np.array([0, 0, 1, 0, 0.5, 0.5, 1.0, 0.5], dtype=np.float32), None
 
     env = PlacedStart(gym.make("HFO/EmptyGoal-v0"))
@@ -293,7 +293,7 @@ def test_evaluation_names_the_line_an_out_of_bounds_ball_crossed(
             return self.env.reset(seed=seed, options={"player": player, "ball": ball})
 
     class KickStraightAhead:  # full power along the body
-        def predict(self, obs: np.ndarray, deterministic: bool = False) -> tuple[np.ndarray, None]:
+        def predict(self, obs: np.ndarray, state=None, episode_start=None, deterministic=False) -> tuple:
             return np.array([0, 0, 1, 0, 0.5, 0.5, 1.0, 0.5], dtype=np.float32), None
 
     env = PlacedStart(gym.make("HFO/EmptyGoal-v0"))
@@ -319,7 +319,7 @@ def test_evaluation_records_where_the_keeper_caught_the_ball() -> None:
             return self.env.reset(seed=seed, options={"player": (40.0, 0.0, 0.0), "ball": (40.5, 0.0)})
 
     class KickSoftlyAhead:  # power 60 along the body, straight at the keeper
-        def predict(self, obs: np.ndarray, deterministic: bool = False) -> tuple[np.ndarray, None]:
+        def predict(self, obs: np.ndarray, state=None, episode_start=None, deterministic=False) -> tuple:
             return np.array([0, 0, 1, 0, 0.5, 0.5, 0.6, 0.5], dtype=np.float32), None
 
     env = PlacedStart(gym.make("HFO/StaticKeeper-v0"))
@@ -341,7 +341,7 @@ def test_evaluation_loop_counts_goals_and_kicks_of_a_scoring_policy() -> None:
     env = gym.make("HFO/EmptyGoal-v0")
 
     class ScriptedStriker:  # the model interface run_episodes needs: predict(obs) -> (action, state)
-        def predict(self, obs: np.ndarray, deterministic: bool = False) -> tuple[np.ndarray, None]:
+        def predict(self, obs: np.ndarray, state=None, episode_start=None, deterministic=False) -> tuple:
             return hfo2d.heuristic(env, obs), None
 
     records = run_episodes(ScriptedStriker(), env, episodes=5, seed=0, deterministic=True, n_skills=1)
@@ -665,6 +665,37 @@ def test_evaluate_can_switch_on_the_mirror_choice() -> None:
     assert result.mirror_choice is True and result.episodes == 2
     assert evaluate(str(model), episodes=1, seed=0).mirror_choice is False  # the model's own setting
     assert build_parser().parse_args(["m.zip", "--mirror-choice", "on"]).mirror_choice == "on"
+
+
+def test_evaluate_sets_the_mirror_margin_and_threads_predicts_state_through_each_episode() -> None:
+    import gymnasium as gym
+
+    from sb3_hfo.evaluate import EvaluationError, build_parser, evaluate, run_episodes
+
+    model = REPO / "models" / "x27_keeper_skills_lost_shots_refunded_seed0"
+    result = evaluate(str(model), episodes=1, seed=0, mirror_choice=True, mirror_margin=float("inf"))
+    assert result.mirror_choice is True and result.mirror_margin == float("inf")
+    assert build_parser().parse_args(["m.zip", "--mirror-margin", "0.2"]).mirror_margin == 0.2
+    with pytest.raises(EvaluationError, match="mirror_margin must be >= 0"):
+        evaluate(str(model), episodes=1, seed=0, mirror_margin=-1.0)
+
+    class CountingStriker:  # returns as its state the number of steps since its last episode start
+        def __init__(self) -> None:
+            self.calls: list[tuple[object, bool]] = []
+
+        def predict(self, obs: np.ndarray, state=None, episode_start=None, deterministic=False) -> tuple:
+            self.calls.append((state, bool(episode_start[0])))
+            steps = 1 if episode_start[0] else state + 1
+            return np.array([0, 0, 1, 0, 0.5, 0.5, 1.0, 0.5], dtype=np.float32), steps
+
+    striker = CountingStriker()
+    records = run_episodes(
+        striker, gym.make("HFO/EmptyGoal-v0"), episodes=3, seed=0, deterministic=True, n_skills=1
+    )
+    starts = [i for i, (_, start) in enumerate(striker.calls) if start]
+    assert starts == [0, records[0].steps, records[0].steps + records[1].steps]
+    assert striker.calls[0][0] is None  # no state before the first step
+    assert [state for state, start in striker.calls[1 : records[0].steps]] == list(range(1, records[0].steps))
 
 
 def test_evaluate_is_greedy_unless_stochastic() -> None:

@@ -92,7 +92,13 @@ its estimate of that policy's value. With ``mirror_choice=True`` acting (``predi
 computes the greedy action in the state and in its mirror image and plays the one the first critic values more
 (ties: the unmirrored one); a one-step policy improvement over two policies, decided afresh every step. Why: x27's
 E6 agent scores all its goals in one half of the goal, by one route (benchmarks/failure_map.py, session 16). Can be
-switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action.
+switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action. Decided afresh every
+step, the choice can flip between the two routes and time out on the empty goal (session 16: x23 seed 1, 84
+time-outs in 2,000 episodes against 40), so ``mirror_margin=m > 0`` keeps a side (plain or mirrored) through an
+episode: the first step of an episode takes the better side, later steps switch only when the other side's value
+exceeds the kept side's by more than ``m`` (``inf``: never). The side is carried in ``predict``'s recurrent
+``state`` (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate``
+pass it; a call without ``state`` starts every row afresh, and so do SB3's training rollouts.
 """
 
 from __future__ import annotations
@@ -730,6 +736,10 @@ class HFOPolicy(BasePolicy):
     :param mirror_choice: play the better, by the first critic, of the greedy action in the state and the greedy
         action in its mirror image mirrored back (see module doc). Needs HFO's low-level features and 8-dimensional
         flat action. Can be switched on a trained model.
+    :param mirror_margin: with ``mirror_choice``, keep the side played (plain or mirrored) through an episode and
+        switch only when the other side's value (first critic) exceeds it by more than this (>= 0, ``inf``: never
+        switch; 0, the default: decide afresh every step); the side travels in ``predict``'s ``state`` (see module
+        doc). Can be switched on a trained model.
     :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
         ``cos(k * theta)`` of the dash, turn and kick directions that the critic sees besides the action (see
         module doc); ``()`` (default, the paper): none. Needs HFO's 8-dimensional flat action.
@@ -768,6 +778,7 @@ class HFOPolicy(BasePolicy):
         discrete_choice: str = "actor",
         kick_only_when_kickable: bool = False,
         mirror_choice: bool = False,
+        mirror_margin: float = 0.0,
         critic_direction_frequencies: Sequence[float] = (),
         critic_kick_relative_to: Sequence[str] = (),
         weight_init_std: float = WEIGHT_INIT_STD,
@@ -820,6 +831,10 @@ class HFOPolicy(BasePolicy):
         self.discrete_choice = discrete_choice  # validated by the property setter
         self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
         self.mirror_choice = mirror_choice  # validated by the property setter
+        self.mirror_margin = mirror_margin  # validated by the property setter
+        self._side_box: list[np.ndarray | None] | None = (
+            None  # set by predict for _predict (mirror_margin > 0)
+        )
         self.critic_direction_frequencies = _direction_frequencies(
             critic_direction_frequencies, self.action_dim
         )
@@ -957,6 +972,7 @@ class HFOPolicy(BasePolicy):
         "discrete_choice",
         "kick_only_when_kickable",
         "mirror_choice",
+        "mirror_margin",
     )
 
     def acting_options(self) -> dict[str, Any]:
@@ -975,6 +991,22 @@ class HFOPolicy(BasePolicy):
         self._mirror: Mirror | None = (
             make_mirror((self.obs_dim,), self.action_dim, "mirror_choice") if value else None
         )
+
+    @property
+    def mirror_margin(self) -> float:
+        """How much better the other side must be for ``mirror_choice`` to switch sides within an episode (see
+        module doc; 0: decide afresh every step; may be changed at any time)."""
+        return self._mirror_margin
+
+    @mirror_margin.setter
+    def mirror_margin(self, value: float) -> None:
+        if isinstance(value, (bool, np.bool_)) or not isinstance(
+            value, (int, float, np.integer, np.floating)
+        ):
+            raise ValueError(f"mirror_margin must be a number >= 0 (or inf), got {value!r}")
+        if not value >= 0.0:  # also rejects NaN
+            raise ValueError(f"mirror_margin must be >= 0 (or inf), got {value!r}")
+        self._mirror_margin = float(value)
 
     def kick_unavailable(self, obs: th.Tensor) -> th.Tensor | None:
         """``(B,)`` bool, True where KICK is left out (ball out of reach); ``None`` when the option is off."""
@@ -1084,6 +1116,7 @@ class HFOPolicy(BasePolicy):
                 discrete_choice=self.discrete_choice,
                 kick_only_when_kickable=self.kick_only_when_kickable,
                 mirror_choice=self.mirror_choice,
+                mirror_margin=self.mirror_margin,
                 critic_direction_frequencies=self.critic_direction_frequencies,
                 critic_kick_relative_to=self.critic_kick_relative_to,
                 weight_init_std=self.weight_init_std,
@@ -1110,6 +1143,50 @@ class HFOPolicy(BasePolicy):
     def forward(self, observation: PyTorchObs, deterministic: bool = False) -> th.Tensor:
         return self._predict(observation, deterministic=deterministic)
 
+    def predict(
+        self,
+        observation: np.ndarray | dict[str, np.ndarray],
+        state: tuple[np.ndarray, ...] | None = None,
+        episode_start: np.ndarray | None = None,
+        deterministic: bool = False,
+    ) -> tuple[np.ndarray, tuple[np.ndarray, ...] | None]:
+        """SB3's ``predict``; with ``mirror_choice`` and a ``mirror_margin`` > 0, ``state`` is ``(sides,)``, one
+        float per row (1.0: mirrored side kept, 0.0: plain, NaN: none yet), and the sides after this step are
+        returned in its place. ``state=None`` and rows with ``episode_start`` true start afresh."""
+        if self._mirror is None or self._mirror_margin == 0.0:
+            return super().predict(observation, state, episode_start, deterministic)
+        # SB3's predict hands state to the caller only, not to _predict: the sides go through a one-item box that
+        # _predict reads and overwrites.
+        self._side_box = [self._sides_from_state(state, episode_start)]
+        try:
+            actions, _ = super().predict(observation, None, None, deterministic)
+            sides = self._side_box[0]
+        finally:
+            self._side_box = None
+        return actions, (sides,)
+
+    @staticmethod
+    def _sides_from_state(
+        state: tuple[np.ndarray, ...] | None, episode_start: np.ndarray | None
+    ) -> np.ndarray | None:
+        """The kept sides of ``state`` (see :meth:`predict`) with new episodes' rows set to NaN; None: all new."""
+        if state is None:
+            return None
+        if not isinstance(state, tuple) or len(state) != 1:
+            raise ValueError(
+                "with mirror_margin > 0, state must be the (sides,) tuple returned by the previous predict, got "
+                f"{type(state).__name__} of length {len(state) if isinstance(state, tuple) else '-'}"
+            )
+        sides = np.array(state[0], dtype=np.float32).reshape(-1)
+        if episode_start is not None:
+            starts = np.asarray(episode_start, dtype=bool).reshape(-1)
+            if starts.shape != sides.shape:
+                raise ValueError(
+                    f"episode_start has {starts.size} entries but state has {sides.size} sides (one per env)"
+                )
+            sides[starts] = np.nan
+        return sides
+
     def _predict(self, observation: PyTorchObs, deterministic: bool = False) -> th.Tensor:
         """Greedy action in [-1, 1] for ``observation (B, obs_dim)`` (DDPG's actor is deterministic)."""
         obs = self._flatten_obs(observation)
@@ -1120,9 +1197,23 @@ class HFOPolicy(BasePolicy):
             mirror = self._mirror = mirror.to(obs.device)
         both = th.cat((obs, mirror.observations(obs)))
         actions = self._greedy_action(both)
-        values = self.critic.forward(both, self.critic_action(actions))
-        mirrored_better = values[batch:] > values[:batch]
-        return th.where(mirrored_better, mirror.actions(actions[batch:]), actions[:batch])
+        values = self.critic.forward(both, self.critic_action(actions)).squeeze(1)
+        plain_value, mirror_value = values[:batch], values[batch:]
+        mirrored = mirror_value > plain_value
+        side_box = self._side_box
+        if side_box is not None:  # called from predict with a margin: keep each row's side unless outdone
+            kept = side_box[0]
+            if kept is not None:
+                if kept.shape != (batch,):
+                    raise ValueError(
+                        f"state has {kept.size} sides but the observation batch has {batch} rows"
+                    )
+                kept_mirrored = th.as_tensor(kept == 1.0, device=obs.device)
+                gain = th.where(kept_mirrored, plain_value - mirror_value, mirror_value - plain_value)
+                new_episode = th.as_tensor(np.isnan(kept), device=obs.device)
+                mirrored = th.where(new_episode, mirrored, kept_mirrored ^ (gain > self._mirror_margin))
+            side_box[0] = mirrored.cpu().numpy().astype(np.float32)
+        return th.where(mirrored.unsqueeze(1), mirror.actions(actions[batch:]), actions[:batch])
 
     def _greedy_action(self, obs: th.Tensor) -> th.Tensor:
         """The greedy action in [-1, 1] for ``obs (B, obs_dim)`` by ``discrete_choice``, without ``mirror_choice``."""
