@@ -120,6 +120,44 @@ def test_start_class_bands_the_agents_lead_over_the_ball() -> None:
     assert start_class(EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1])) == "unknown"
 
 
+def test_mirror_twin_tables_both_sides_by_start_class(tmp_path: Path) -> None:
+    out = tmp_path / "twin.json"
+    command = [sys.executable, str(REPO / "benchmarks" / "mirror_twin.py")]
+    command += [str(REPO / "models" / "x21_empty_goal_each_action_parameters_fast_seed0"), "--episodes", "5"]
+    completed = subprocess.run(
+        [*command, "--json", str(out)], capture_output=True, text=True, timeout=300, cwd=tmp_path
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    assert [line.split()[0] for line in completed.stdout.splitlines()[-4:]] == [
+        "mirror",
+        "mirror",
+        "agent",
+        "all",
+    ]
+    tables = json.loads(out.read_text())
+    for side in ("plain", "twin"):
+        classes = [counts for name, counts in tables[side].items() if name != "all"]
+        assert sum(c["episodes"] for c in classes) == tables[side]["all"]["episodes"] == 5
+        assert sum(c["goals"] for c in classes) == tables[side]["all"]["goals"]
+
+
+def test_mirror_start_class_follows_hfos_offsets() -> None:
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        from mirror_twin import START_CLASSES, mirror_start_class
+    finally:
+        sys.path.pop(0)
+    from sb3_hfo.evaluate import EpisodeRecord
+
+    def record(ball_y: float, agent_y: float) -> EpisodeRecord:
+        return EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1], None, (5.0, ball_y), (10.0, agent_y))
+
+    assert mirror_start_class(record(0.0, 15.0)) == START_CLASSES[0]  # o = 1: mirror -15 is drawn with o = -2
+    assert mirror_start_class(record(0.0, -5.0)) == START_CLASSES[1]  # o = -1: mirror +5 is never drawn
+    assert mirror_start_class(record(-10.0, 15.0)) == START_CLASSES[1]  # o = 2: mirror -25 is never drawn
+    assert mirror_start_class(record(20.0, 27.2)) == START_CLASSES[2]  # clamped at the side line
+
+
 def test_end_class_sorts_goals_by_goal_half_and_losses_by_distance() -> None:
     sys.path.insert(0, str(REPO / "benchmarks"))
     try:

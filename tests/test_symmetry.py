@@ -10,7 +10,13 @@ import pytest
 
 import hfo2d
 from hfo2d.features import GOAL_POST_BOTTOM_PROXIMITY, GOAL_POST_TOP_PROXIMITY, SELF_BODY_SIN
-from hfo2d.symmetry import feature_mirror, mirror_features, mirror_flat_action
+from hfo2d.symmetry import (
+    feature_mirror,
+    mirror_features,
+    mirror_flat_action,
+    start_offset_is_drawn,
+    start_y_is_clamped,
+)
 
 STARTS = [
     {"player": (20.0, 8.0, 30.0), "ball": (25.0, 12.0), "keeper": (49.0, 2.0, 170.0)},
@@ -95,3 +101,23 @@ def test_feature_mirror_rejects_a_length_that_is_not_hfos(n_features: int) -> No
 def test_mirror_flat_action_rejects_other_shapes() -> None:
     with pytest.raises(ValueError, match="8 entries"):
         mirror_flat_action([0.5] * 7)
+
+
+def test_hfos_start_distribution_is_not_its_own_mirror_image() -> None:
+    # The agent's y offset from the ball is 10.5 * (U(0, 1) + o), o in {-2, -1, 1, 2}: offsets in (-10.5, 0) are
+    # drawn, their mirror images in (0, 10.5) never (away from the side lines, where y is clamped).
+    env = gym.make("HFO/EmptyGoal-v0")
+    offsets = []
+    for seed in range(600):
+        _, info = env.reset(seed=seed)
+        if not start_y_is_clamped(info["player"][1]):
+            offsets.append(info["player"][1] - info["ball"][1])
+    offsets_array = np.array(offsets)
+    assert len(offsets) > 400
+    assert np.sum((offsets_array > -10.5) & (offsets_array < 0.0)) > 60
+    assert np.sum((offsets_array > 0.0) & (offsets_array < 10.5)) == 0
+    assert np.sum(offsets_array > 21.0) > 60 and np.sum(offsets_array < -21.0) == 0
+    assert all(start_offset_is_drawn(offset) for offset in offsets)
+    mirrors_drawn = np.mean([start_offset_is_drawn(-offset) for offset in offsets])
+    assert 0.4 < mirrors_drawn < 0.6  # o = -1 or 2: half the draws, less the clamped ones
+    assert not start_offset_is_drawn(5.0) and start_offset_is_drawn(-5.0) and not start_offset_is_drawn(-25.0)

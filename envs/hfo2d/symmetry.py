@@ -1,8 +1,12 @@
 """HFO's left-right symmetry: the mirror image (y -> -y) of a feature vector and of a flat action.
 
-Half Field Offense is symmetric about the pitch's long axis (y = 0): the field, the goal, the start distribution
-(ball and agent y drawn symmetrically), the keeper's decision rules (they use |y| and the ball's side) and the
-server's noise (uniform in direction) all look the same in a mirror. Mirroring the world maps
+Half Field Offense's dynamics are symmetric about the pitch's long axis (y = 0): the field, the goal, the keeper's
+decision rules (they use |y| and the ball's side) and the server's noise (uniform in direction) all look the same
+in a mirror. Its start distribution is not: the ball's y is drawn symmetrically, but the agent's y offset from the
+ball is 10.5 m * (U(0, 1) + o) with o in {-2, -1, 1, 2} (HFO's resetField, hfo_reference §5.3), i.e. in [-21, 0)
+or [10.5, 31.5) m before clamping to the pitch, and the mirror image of an offset drawn with o = -1 or o = 2 (half
+the draws) is one HFO never draws. A policy's mirror twin (the policy played in the mirrored state, its action
+mirrored back) therefore meets, at the start, states its training never saw. Mirroring the world maps
 
 * every angle θ to −θ (global angles and bearings relative to the body alike), so the sine of each (sin, cos)
   pair changes sign and the cosine stays;
@@ -50,13 +54,21 @@ from hfo2d.features import (
     SELF_BODY_SIN,
     SELF_VEL_ANGLE_SIN,
 )
-from hfo2d.hfo_env import FLAT_ACTION_DIRECTIONS, FLAT_ACTION_SIZE
+from hfo2d.hfo_env import (
+    FLAT_ACTION_DIRECTIONS,
+    FLAT_ACTION_SIZE,
+    OFFENSE_OFFSETS,
+    OFFENSE_SPREAD,
+    OFFENSE_Y_RANGE,
+)
 
 __all__ = [
     "feature_mirror",
     "flat_action_mirror_signs",
     "mirror_features",
     "mirror_flat_action",
+    "start_offset_is_drawn",
+    "start_y_is_clamped",
 ]
 
 # Landmarks are (sin, cos, proximity) triples starting at their sine: pairs of triples that swap in a mirror.
@@ -127,3 +139,16 @@ def mirror_flat_action(action: Sequence[float] | np.ndarray) -> np.ndarray:
         raise ValueError(f"a flat HFO action has {FLAT_ACTION_SIZE} entries, got shape {array.shape}")
     array[..., FLAT_ACTION_DIRECTIONS] = 1.0 - array[..., FLAT_ACTION_DIRECTIONS]
     return array
+
+
+def start_offset_is_drawn(offset_y: float) -> bool:
+    """Whether HFO's start draws an agent-minus-ball y offset of ``offset_y`` m (before clamping to the pitch):
+    ``OFFENSE_SPREAD * (U(0, 1) + o)`` for one of the offsets ``o`` of ``OFFENSE_OFFSETS``. The mirror image of a
+    start is drawn when ``start_offset_is_drawn(-offset_y)``; for half of HFO's starts it is not (module doc)."""
+    units = offset_y / OFFENSE_SPREAD
+    return any(o <= units < o + 1.0 for o in {o_y for _, o_y in OFFENSE_OFFSETS})
+
+
+def start_y_is_clamped(agent_y: float) -> bool:
+    """Whether an agent's start y lies on the clamp limit of HFO's start (its offset then says nothing)."""
+    return abs(agent_y) >= OFFENSE_Y_RANGE[1] - 1e-6
