@@ -92,13 +92,16 @@ its estimate of that policy's value. With ``mirror_choice=True`` acting (``predi
 computes the greedy action in the state and in its mirror image and plays the one the first critic values more
 (ties: the unmirrored one); a one-step policy improvement over two policies, decided afresh every step. Why: x27's
 E6 agent scores all its goals in one half of the goal, by one route (benchmarks/failure_map.py, session 16). Can be
-switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action. Decided afresh every
-step, the choice can flip between the two routes and time out on the empty goal (session 16: x23 seed 1, 84
-time-outs in 2,000 episodes against 40), so ``mirror_margin=m > 0`` keeps a side (plain or mirrored) through an
-episode: the first step of an episode takes the better side, later steps switch only when the other side's value
-exceeds the kept side's by more than ``m`` (``inf``: never). The side is carried in ``predict``'s recurrent
+switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action. ``mirror_margin=m > 0``
+keeps a side (plain or mirrored) through an episode: the first step of an episode takes the better side, later
+steps switch only when the other side's value exceeds the kept side's by more than ``m`` (``inf``: never). Why: a
+choice made afresh every step may alternate between the two routes; with ``m = 0.1`` x27 scores 79.25 % against
+76.3 % over 2,000 episodes (benchmarks/RESULTS.md, session 17). The side is carried in ``predict``'s recurrent
 ``state`` (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate``
-pass it; a call without ``state`` starts every row afresh, and so do SB3's training rollouts.
+pass it; a call without ``state`` starts every row afresh, and so do SB3's training rollouts. Neither mends the
+empty goal, where the mirror choice costs some models points: HFO's start distribution is not mirror-symmetric
+(:mod:`hfo2d.symmetry`), and from the starts whose mirror image HFO never draws, starts its training never saw
+mirrored, the twin scores less (session 17, ``benchmarks/mirror_twin.py``).
 """
 
 from __future__ import annotations
