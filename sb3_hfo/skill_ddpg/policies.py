@@ -99,9 +99,10 @@ choice made afresh every step may alternate between the two routes; with ``m = 0
 76.3 % over 2,000 episodes (benchmarks/RESULTS.md, session 17). The side is carried in ``predict``'s recurrent
 ``state`` (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate``
 pass it; a call without ``state`` starts every row afresh, and so do SB3's training rollouts. Neither mends the
-empty goal, where the mirror choice costs some models points: HFO's start distribution is not mirror-symmetric
-(:mod:`hfo2d.symmetry`), and from the starts whose mirror image HFO never draws, starts its training never saw
-mirrored, the twin scores less (session 17, ``benchmarks/mirror_twin.py``).
+empty goal, where the mirror choice costs some models points. HFO's start distribution is not mirror-symmetric
+(:mod:`hfo2d.symmetry`), and one such model's twin scores less from the starts whose mirror image HFO never draws,
+starts its training never saw mirrored; another's twin is as good as the policy and the choice still costs it a
+point (session 17, ``benchmarks/mirror_twin.py``).
 """
 
 from __future__ import annotations
