@@ -836,9 +836,8 @@ class HFOPolicy(BasePolicy):
         self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
         self.mirror_choice = mirror_choice  # validated by the property setter
         self.mirror_margin = mirror_margin  # validated by the property setter
-        self._side_box: list[np.ndarray | None] | None = (
-            None  # set by predict for _predict (mirror_margin > 0)
-        )
+        # The kept sides, set by predict for _predict while a call with mirror_margin > 0 runs.
+        self._side_box: list[np.ndarray | None] | None = None
         self.critic_direction_frequencies = _direction_frequencies(
             critic_direction_frequencies, self.action_dim
         )
