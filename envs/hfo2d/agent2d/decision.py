@@ -1,0 +1,419 @@
+"""HFO's goalie decision tree (agent2d RoleGoalie, Bhv_GoalieChaseBall, Bhv_GoalieBasicMove), in GF.
+
+Sources (rules and numbers, no code): HFO b8b2a1d ``src/role_goalie.cpp``, ``src/bhv_goalie_chase_ball.cpp``,
+``src/bhv_goalie_basic_move.cpp``, ``src/bhv_goalie_free_kick.cpp``, ``src/bhv_set_play.cpp``; librcsc d222758
+``rcsc/geom/line_2d.{h,cpp}`` (the line arithmetic is reproduced operation for operation, because the goalie's
+targets come from line intersections). Frame: GF (see :mod:`hfo2d.agent2d.common`).
+
+One decision writes at most one body command into an :class:`~hfo2d.agent2d.common.Effector`; a later command
+replaces an earlier one, as in librcsc's ActionEffector.
+"""
+
+from __future__ import annotations
+
+import math
+
+from hfo2d.agent2d.actions import (
+    body_go_to_point,
+    body_intercept,
+    body_stop_dash,
+    body_turn_to_angle,
+    go_to_point_look_ball,
+)
+from hfo2d.agent2d.common import (
+    BALL_DECAY,
+    CATCH_DIR_OFFSET,
+    CATCHABLE_AREA,
+    DASH_RATE,
+    EXTRA_STAMINA,
+    GOAL_HALF_WIDTH,
+    OWN_GOAL,
+    PENALTY_AREA_HALF_WIDTH,
+    PENALTY_AREA_X,
+    PITCH_HALF_LENGTH,
+    PLAYER_DECAY,
+    STAMINA_INC_MAX,
+    STAMINA_MAX,
+    Effector,
+    GoalieView,
+    InterceptTable,
+    angle_of,
+    ball_at,
+    norm_deg,
+    rotate,
+)
+from hfo2d.agent2d.tackle import basic_tackle
+
+# --- RoleGoalie::execute: the catch rectangle (our penalty area shrunk by 1 m: x in [-52.5, -37], |y| <= 19.16)
+CATCH_RECT_MAX_X = PENALTY_AREA_X - 1.0
+CATCH_RECT_HALF_WIDTH = PENALTY_AREA_HALF_WIDTH - 1.0
+CATCH_DIST = CATCHABLE_AREA - 0.05  # role_goalie.cpp: catchableArea() - 0.05
+CATCH_BAN_CYCLE = 5  # rcssserver catch_ban_cycle, compared by the client with its last catch time
+
+# --- Bhv_GoalieBasicMove (bhv_goalie_basic_move.cpp) ---------------------------------------------------------------
+BASE_MOVE_X = -49.8
+DANGER_MOVE_X = -51.5
+LINE_ANCHOR_X_BACK = 7.0  # x_back: the positioning line runs from the ball to 7 m behind the goal centre
+BALL_PRED_CYCLE = 5
+Y_BUF = 0.5
+X_BUF = 0.5  # doCorrectX / doMoveForDangerousState
+
+
+class Line:
+    """librcsc Line2D, a x + b y + c = 0, with its exact constructors."""
+
+    __slots__ = ("a", "b", "c")
+
+    def __init__(self, a: float, b: float, c: float) -> None:
+        self.a, self.b, self.c = a, b, c
+
+    @classmethod
+    def from_angle(cls, ox: float, oy: float, angle_deg: float) -> Line:
+        r = angle_deg * (math.pi / 180.0)
+        a = -math.sin(r)
+        b = math.cos(r)
+        return cls(a, b, -a * ox - b * oy)
+
+    @classmethod
+    def from_points(cls, x1: float, y1: float, x2: float, y2: float) -> Line:
+        a = -(y2 - y1)
+        b = x2 - x1
+        return cls(a, b, -a * x1 - b * y1)
+
+    def dist(self, x: float, y: float) -> float:
+        return abs(self.a * x + self.b * y + self.c) / math.sqrt(self.a * self.a + self.b * self.b)
+
+    def get_y(self, x: float) -> float | None:
+        if abs(self.b) < 1.0e-10:  # Line2D::EPSILON
+            return None
+        return -(self.a * x + self.c) / self.b
+
+    def intersection(self, other: Line) -> tuple[float, float] | None:
+        tmp = self.a * other.b - self.b * other.a
+        if abs(tmp) < 1.0e-10:
+            return None
+        return (
+            (self.b * other.c - other.b * self.c) / tmp,
+            (other.a * self.c - self.a * other.c) / tmp,
+        )
+
+
+def _ball_angle(v: GoalieView) -> float:
+    """angle(W) as librcsc's Vector2D::th (0 for the zero vector)."""
+    return angle_of(v.wx, v.wy)
+
+
+def _opp_ball_dist(v: GoalieView) -> float:
+    """Distance from the opponent nearest the ball to the ball (100 when there is none: doCorrectBodyDir)."""
+    if not v.has_opp:
+        return 100.0
+    return math.hypot(v.ox - v.bx, v.oy - v.by)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# RoleGoalie::execute (role_goalie.cpp)
+# ---------------------------------------------------------------------------------------------------------------
+def can_catch(v: GoalieView, last_catch_cycle: int) -> bool:
+    """The catch test: ban over (client side), ball closer than 1.25 m, ball inside the catch rectangle."""
+    if not v.play_on:
+        return False
+    if not v.cycle > last_catch_cycle + CATCH_BAN_CYCLE:
+        return False
+    if not v.ball_dist < CATCH_DIST:
+        return False
+    return -PITCH_HALF_LENGTH <= v.bx <= CATCH_RECT_MAX_X and -CATCH_RECT_HALF_WIDTH <= v.by <= CATCH_RECT_HALF_WIDTH
+
+
+def decide(eff: Effector, v: GoalieView, table: InterceptTable, last_catch_cycle: int) -> None:
+    """One cycle of the goalie in PlayOn or after a non-terminal catch (SamplePlayer::actionImpl's goalie part)."""
+    if not v.play_on:
+        # Bhv_SetPlay -> Bhv_GoalieFreeKick, which falls back to the basic move unless the goalie is kickable
+        # (never in a live HFO episode): bhv_goalie_free_kick.cpp.
+        basic_move(eff, v, table)
+        return
+    if can_catch(v, last_catch_cycle):
+        eff.catch(norm_deg(angle_of(v.bx - v.px, v.by - v.py) - v.body + CATCH_DIR_OFFSET))
+        return
+    if v.self_kickable:
+        # Body_ClearBall: unreachable in a live HFO episode (the referee ends it at 1.085 m first).
+        eff.turn(0.0)
+        return
+    if is_ball_chase_situation(v, table):
+        chase_ball(eff, v, table)
+    else:
+        basic_move(eff, v, table)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Bhv_GoalieChaseBall (bhv_goalie_chase_ball.cpp)
+# ---------------------------------------------------------------------------------------------------------------
+def is_ball_shoot_moving(v: GoalieView) -> bool:
+    """Is the ball a shot rolling into the goal? (Bhv_GoalieChaseBall::is_ball_shoot_moving)."""
+    if v.ball_dist > 30.0:
+        return False
+    if v.bx > -34.5:
+        return False
+    if v.kick_opp:
+        return False
+    if abs(v.wx) < 0.1:
+        return v.bx < -46.0 and abs(v.by) < GOAL_HALF_WIDTH + 2.0
+    line = Line.from_angle(v.bx, v.by, _ball_angle(v))
+    y = line.get_y(-PITCH_HALF_LENGTH)
+    if abs(line.b) > 0.1 and y is not None and abs(y) < GOAL_HALF_WIDTH + 2.0 and v.bx < -40.0 and abs(v.by) < 15.0:
+        end_x = v.bx + v.wx / (1.0 - BALL_DECAY)
+        return math.hypot(v.wx, v.wy) > 0.5 and end_x < -PITCH_HALF_LENGTH + 2.0
+    return False
+
+
+def is_ball_chase_situation(v: GoalieView, table: InterceptTable) -> bool:
+    """Bhv_GoalieChaseBall::is_ball_chase_situation (PlayOn only)."""
+    if not v.play_on:
+        return False
+    self_min = table.self_min
+    opp_min = table.opp_min
+    next_x = v.bx + v.wx
+    next_y = v.by + v.wy
+    d_b = v.ball_dist
+    # A. the danger area in front of the goal
+    if next_x < -PITCH_HALF_LENGTH + 8.0 and abs(next_y) < GOAL_HALF_WIDTH + 3.0:
+        if d_b < 3.0 and self_min <= 3:
+            return True
+        return not (self_min > opp_min + 3 and opp_min < 7)
+    # B. a shot
+    if is_ball_shoot_moving(v) and self_min < opp_min:
+        return True
+    # C. the intercept point must lie inside the penalty area shrunk by pen_thr
+    ix, iy = ball_at(v.bx, v.by, v.wx, v.wy, self_min)
+    pen_thr = max(1.0, d_b * 0.1 + 1.0)
+    if abs(iy) > PENALTY_AREA_HALF_WIDTH - pen_thr or ix > PENALTY_AREA_X - pen_thr:
+        return False
+    # E. the opponent is faster by two cycles
+    if opp_min <= self_min - 2:
+        return False
+    # F. the opponent is nearer to the intercept point by more than 2 m
+    my_dist = math.hypot(v.px - ix, v.py - iy)
+    opp_dist = math.hypot(v.ox - ix, v.oy - iy) if v.has_opp else 10000.0
+    return not opp_dist < my_dist - 2.0
+
+
+def _in_intercept_area(ix: float, iy: float, pen_thr: float, min_x: float) -> bool:
+    return min_x < ix < PENALTY_AREA_X - pen_thr and abs(iy) < PENALTY_AREA_HALF_WIDTH - pen_thr
+
+
+def chase_ball(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
+    """Bhv_GoalieChaseBall::execute."""
+    if basic_tackle(eff, v, table, 0.8, 90.0):
+        return
+    self_min = table.self_min
+    ix, iy = ball_at(v.bx, v.by, v.wx, v.wy, self_min)
+    pen_thr = max(1.0, v.ball_dist * 0.1 + 1.0)
+    ball_line = Line.from_angle(v.bx, v.by, _ball_angle(v))
+    defend_line = Line.from_points(v.px, -10.0, v.px, 10.0)
+    if _in_intercept_area(ix, iy, pen_thr, -PITCH_HALF_LENGTH - 1.0):
+        save_recovery = ball_line.dist(v.px, v.py) < CATCHABLE_AREA
+        body_intercept(eff, v, table, save_recovery)
+        return
+    inter = ball_line.intersection(defend_line)
+    if inter is None or ball_line.dist(v.px, v.py) < CATCHABLE_AREA * 0.8 or abs(inter[1]) > GOAL_HALF_WIDTH + 3.0:
+        if not v.kick_opp:
+            if (
+                self_min <= table.opp_min + 2
+                and _in_intercept_area(ix, iy, pen_thr, -PITCH_HALF_LENGTH - 2.0)
+                and body_intercept(eff, v, table, False)
+            ):
+                return
+            go_to_catch_point(eff, v, v.bx, v.by)
+            return
+    if inter is None:
+        # Only reachable with a kickable opponent and a vertical ball line: librcsc's invalidated vector has
+        # huge coordinates, so the range test below fails it.
+        if not body_intercept(eff, v, table, False):
+            basic_move(eff, v, table)
+        return
+    xx, xy = inter
+    if (
+        abs(xx) > PITCH_HALF_LENGTH + CATCHABLE_AREA
+        or xx > PENALTY_AREA_X - CATCHABLE_AREA
+        or abs(xy) > PENALTY_AREA_HALF_WIDTH - CATCHABLE_AREA
+    ):
+        if not body_intercept(eff, v, table, False):
+            basic_move(eff, v, table)
+        return
+    fx = v.px + v.vx / (1.0 - PLAYER_DECAY)
+    fy = v.py + v.vy / (1.0 - PLAYER_DECAY)
+    dist_thr = max(0.5, 0.2 + v.ball_dist * 0.1)
+    if math.hypot(fx - xx, fy - xy) < dist_thr:
+        body_stop_dash(eff, v, False)
+        return
+    if v.bx > -35.0:
+        xy = 0.0 if v.by * xy < 0.0 else xy * 0.5
+    go_to_catch_point(eff, v, xx, xy)
+
+
+def go_to_catch_point(eff: Effector, v: GoalieView, tx: float, ty: float) -> None:
+    """Bhv_GoalieChaseBall::doGoToCatchPoint: dash straight (forward or back) or turn toward the point."""
+    rx, ry = rotate(tx - v.px, ty - v.py, -v.body)
+    rel_angle = angle_of(rx, ry)
+    angle_buf = abs(math.degrees(math.atan2(CATCHABLE_AREA * 0.9, math.hypot(rx, ry))))
+    if abs(rel_angle) < angle_buf:
+        eff.dash(min(v.stamina + EXTRA_STAMINA, 100.0))
+    elif abs(rel_angle) > 180.0 - angle_buf:
+        power = -100.0
+        if v.stamina + EXTRA_STAMINA < 200.0:
+            power = max(-100.0, (v.stamina + EXTRA_STAMINA) * -0.5)
+        eff.dash(power)
+    elif abs(rel_angle) < 90.0:
+        eff.turn(rel_angle)
+    else:
+        eff.turn(norm_deg(rel_angle - 180.0))
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Bhv_GoalieBasicMove (bhv_goalie_basic_move.cpp)
+# ---------------------------------------------------------------------------------------------------------------
+def target_point(v: GoalieView, table: InterceptTable) -> tuple[float, float]:
+    """Bhv_GoalieBasicMove::getTargetPoint: where the goalie stands."""
+    reach = 0 if v.kick_opp else table.opp_min  # min(teammate reach 1000, opp_min)
+    bx, by = ball_at(v.bx, v.by, v.wx, v.wy, reach)
+    if by > GOAL_HALF_WIDTH + 3.0:
+        if -140.0 < angle_of(-PITCH_HALF_LENGTH - bx, GOAL_HALF_WIDTH - by) < -90.0:
+            return DANGER_MOVE_X, GOAL_HALF_WIDTH + 0.001
+    elif by < -GOAL_HALF_WIDTH - 3.0 and 90.0 < angle_of(-PITCH_HALF_LENGTH - bx, -GOAL_HALF_WIDTH - by) < 140.0:
+        return DANGER_MOVE_X, -GOAL_HALF_WIDTH - 0.001
+    if bx < -PITCH_HALF_LENGTH + 8.0 and abs(by) > GOAL_HALF_WIDTH + 2.0:
+        y = GOAL_HALF_WIDTH - 0.1
+        return BASE_MOVE_X, -y if by < 0.0 else y
+    if v.kick_opp:
+        qx, qy = bx, by
+    else:
+        # (quirk) the current velocity is applied again on top of the predicted point
+        qx, qy = ball_at(bx, by, v.wx, v.wy, min(BALL_PRED_CYCLE, table.opp_min))
+    anchor_x = -PITCH_HALF_LENGTH - LINE_ANCHOR_X_BACK
+    qx = max(qx, anchor_x + 0.1)
+    move_y = Line.from_points(qx, qy, anchor_x, 0.0).get_y(BASE_MOVE_X)
+    if move_y is None:  # unreachable: qx > anchor_x
+        move_y = 0.0
+    move_y = min(max(move_y, -GOAL_HALF_WIDTH + Y_BUF), GOAL_HALF_WIDTH - Y_BUF)
+    return BASE_MOVE_X, move_y
+
+
+def basic_dash_power(v: GoalieView, table: InterceptTable, mx: float) -> float:
+    """Bhv_GoalieBasicMove::getBasicDashPower."""
+    inc = STAMINA_INC_MAX * v.recovery
+    if abs(v.px - mx) > 3.0:
+        return 100.0
+    if v.bx > -30.0:
+        return inc * 0.5 if v.stamina < STAMINA_MAX * 0.9 else inc
+    if v.bx > PENALTY_AREA_X:
+        if abs(v.by) > 20.0:
+            return inc
+        if v.wx > 1.0:
+            return inc * 0.5
+        if table.opp_min <= 3:
+            return 100.0
+        if v.stamina < STAMINA_MAX * 0.7:
+            return inc * 0.7
+        return 60.0
+    if abs(v.by) < 15.0 or v.by * v.py < 0.0:
+        return 100.0
+    return inc
+
+
+def _go_to_point_look_ball(eff: Effector, v: GoalieView, tx: float, ty: float, thr: float, power: float) -> None:
+    """Bhv_GoalieBasicMove::doGoToPointLookBall: Bhv_GoToPointLookBall in PlayOn, else go-to-point then face."""
+    if v.play_on:
+        go_to_point_look_ball(eff, v, tx, ty, thr, power)
+        return
+    if not body_go_to_point(eff, v, tx, ty, thr, power):
+        body_turn_to_angle(eff, v, angle_of(v.bx - v.px, v.by - v.py))
+
+
+def basic_move(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
+    """Bhv_GoalieBasicMove::execute: nine steps, the first that acts ends the cycle."""
+    mx, my = target_point(v, table)
+    if basic_tackle(eff, v, table, 0.8, 90.0):
+        return
+    d_b = v.ball_dist
+    thr = max(0.5, d_b * 0.1)
+    fx = v.px + v.vx / (1.0 - PLAYER_DECAY)
+    fy = v.py + v.vy / (1.0 - PLAYER_DECAY)
+    # 2. doPrepareDeepCross
+    if abs(my) >= GOAL_HALF_WIDTH - 0.8 and abs(angle_of(v.bx - OWN_GOAL[0], v.by - OWN_GOAL[1])) >= 60.0:
+        if math.hypot(fx - mx, fy - my) > thr:
+            _go_to_point_look_ball(eff, v, mx, my, thr, basic_dash_power(v, table, mx))
+        else:
+            body_turn_to_angle(eff, v, 10.0 if v.by < 0.0 else -10.0)
+        return
+    # 3. doStopAtMovePoint
+    if math.hypot(v.px - mx, v.py - my) < thr and not math.hypot(fx - mx, fy - my) < thr:
+        body_stop_dash(eff, v, True)
+        return
+    # 4. doMoveForDangerousState
+    next_x = v.bx + v.wx
+    next_y = v.by + v.wy
+    if (
+        abs(mx - v.px) > X_BUF
+        and next_x < -PITCH_HALF_LENGTH + 11.0
+        and abs(next_y) < GOAL_HALF_WIDTH + 1.0
+        and v.has_opp
+        and _opp_ball_dist(v) < 2.0
+    ):
+        qx = v.ox - 2.5
+        if v.px < qx:
+            qx = v.px
+        if _go_to_move_point(eff, v, table, qx, my):
+            return
+        _go_to_point_look_ball(eff, v, mx, my, thr, 100.0)
+        return
+    # 5. doCorrectX
+    if not abs(mx - v.px) < X_BUF and ((not v.kick_opp and table.opp_min >= 4) or d_b > 18.0):
+        power = basic_dash_power(v, table, mx)
+        if not v.kick_opp and d_b > 30.0:
+            if not body_go_to_point(eff, v, mx, my, X_BUF, power):
+                body_turn_to_angle(eff, v, 90.0 if v.body > 0.0 else -90.0)
+            return
+        _go_to_point_look_ball(eff, v, mx, my, X_BUF, power)
+        return
+    # 6.-8.
+    if _correct_body_dir(eff, v, my, True):
+        return
+    if _go_to_move_point(eff, v, table, mx, my):
+        return
+    if _correct_body_dir(eff, v, my, False):
+        return
+    eff.turn(0.0)
+
+
+def _correct_body_dir(eff: Effector, v: GoalieView, my: float, consider_opp: bool) -> bool:
+    """Bhv_GoalieBasicMove::doCorrectBodyDir: stand sideways, facing the ball's side of the goal."""
+    target = -90.0 if v.by + v.wy < 0.0 else 90.0
+    if abs(norm_deg(v.body - target)) < 5.0:
+        return False
+    if abs(angle_of(v.bx - OWN_GOAL[0], v.by - OWN_GOAL[1])) >= 60.0:
+        return False
+    if (
+        not consider_opp
+        or _opp_ball_dist(v) > 7.0
+        or v.ball_dist > 20.0
+        or (abs(my - v.py) < 1.0 and not v.kick_opp)
+    ):
+        body_turn_to_angle(eff, v, target)
+        return True
+    return False
+
+
+def _go_to_move_point(eff: Effector, v: GoalieView, table: InterceptTable, mx: float, my: float) -> bool:
+    """Bhv_GoalieBasicMove::doGoToMovePoint: correct y, sideways dashes when standing sideways."""
+    thr = max(0.5, v.ball_dist * 0.08)
+    y_diff = abs(my - v.py)
+    if y_diff < thr:
+        return False
+    power = basic_dash_power(v, table, mx)
+    if abs(abs(v.body) - 90.0) < 7.0:
+        power = min(power, y_diff / (DASH_RATE * v.effort))
+        if (my > v.py and v.body < 0.0) or (my <= v.py and v.body > 0.0):
+            power = -power
+        eff.dash(min(max(power, -100.0), 100.0))  # ServerParam::normalizeDashPower
+    else:
+        _go_to_point_look_ball(eff, v, mx, my, thr, power)
+    return True

@@ -1,0 +1,207 @@
+"""HFO's goalie as a policy of the hfo2d simulator: world model, decision, client conversions.
+
+Each cycle :meth:`Agent2dGoalie.decide` builds the goalie's world model from the true state (HFO's ``--fullstate``:
+librcsc overwrites it with the server's exact values), runs the decision tree of :mod:`hfo2d.agent2d.decision`, and
+:meth:`Agent2dGoalie.apply` sends the resulting body command through librcsc's client conversions to the server
+commands of :class:`hfo2d.physics.World`.
+
+Sources (facts, no code): librcsc d222758 ``rcsc/player/world_model.cpp`` (updateJustBeforeDecision: the
+opponent-kickable test and the zeroing of the ball velocity; updateLastKicker), ``self_object.cpp``
+(updateAfterSenseBody: the last catch time), ``action_effector.cpp``; HFO b8b2a1d ``src/sample_player.cpp``
+(actionImpl: frozen players send nothing), ``src/role_goalie.cpp``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from hfo2d.agent2d.actions import client_dash, client_turn_moment
+from hfo2d.agent2d.common import (
+    KICKABLE_AREA,
+    SELF_KICKABLE_DIST,
+    Command,
+    Effector,
+    GoalieView,
+    angle_of,
+    norm_deg,
+)
+from hfo2d.agent2d.decision import decide
+from hfo2d.agent2d.intercept import build_intercept_table
+from hfo2d.physics import PlayerState, ServerParams, World
+
+# librcsc world_model.cpp updatePlayerStateCache: an opponent counts as kickable within
+# kickable_area + min(0.25, 0.02 * ball distance from self) + min(0.25, 0.02 * its distance from self).
+KICKABLE_OPP_ERROR_MAX = 0.25
+KICKABLE_OPP_ERROR_RATE = 0.02
+# librcsc world_model.cpp updateLastKicker: a player within 2 * ball_speed_max of the ball may have kicked it.
+LAST_KICKER_DIST = 6.0
+BALL_VEL_CHANGE_SPEED = 0.1
+BALL_VEL_CHANGE_ANGLE = 20.0
+
+
+class Agent2dGoalie:
+    """HFO's default defence goalie (agent2d "base" team, role Goalie), defending the goal at x = +52.5.
+
+    Args:
+        params: server parameters of the world it plays in.
+        rng: generator for the weakening draws (``skill < 1``); skill 1 draws nothing.
+        skill: in [0, 1]. 1 is exactly agent2d's goalie. Below 1 the goalie sends no command at all in a cycle with
+            probability ``1 - skill`` (it hesitates: no turn, dash, catch or tackle), so skill 0 is a goalie that
+            stands where it is. This weakening is this project's design, for curricula; HFO has no such knob.
+
+    ``last_command`` is the body command of the last decision (None: nothing sent), ``last_view`` its world model.
+    """
+
+    def __init__(self, params: ServerParams, rng: np.random.Generator, skill: float = 1.0) -> None:
+        if isinstance(skill, bool) or not isinstance(skill, (int, float, np.number)) or not 0.0 <= skill <= 1.0:
+            raise ValueError(f"keeper skill must be a number in [0, 1], got {skill!r}")
+        self.params = params
+        self.rng = rng
+        self.skill = float(skill)
+        self.last_command: Command | None = None
+        self.last_view: GoalieView | None = None
+        # client state that outlives an episode in real HFO (the trainer resets only the server's objects)
+        self._last_catch_cycle = 0  # librcsc SelfObject::catchTime, as a cycle number
+        self._last_body_kind: str | None = None  # ActionEffector::lastBodyCommandType
+        self._last_kicker_ours = False  # WorldModel::M_last_kicker_side == our side (neutral at the start)
+        self._prev_ball_vel: tuple[float, float] | None = None
+        self._play_on = True
+        self._catch_pending = False
+
+    def reset(self) -> None:
+        """A new episode: the referee's before_kick_off / play_on messages put the world model back in PlayOn."""
+        self._play_on = True
+        self._catch_pending = False
+        self._prev_ball_vel = None
+        self._last_kicker_ours = False
+        self.last_command = None
+
+    # -------------------------------------------------------------------------------------------------------------
+    def act(self, world: World, keeper: PlayerState) -> None:
+        """Decide and send this cycle's command (use :meth:`decide` + :meth:`apply` to split the two)."""
+        self.apply(world, keeper, self.decide(world, keeper))
+
+    def decide(self, world: World, keeper: PlayerState) -> Command | None:
+        """The goalie's body command for the coming cycle, from the state after the last server step."""
+        cycle = world.cycle
+        # SelfObject::updateAfterSenseBody: the sense body after a catch command marks the catch time.
+        if self._last_body_kind == "catch":
+            self._last_catch_cycle = cycle
+        elif self._last_catch_cycle == cycle:
+            self._last_catch_cycle = 0
+        view = self._view(world, keeper)
+        self.last_view = view
+        command: Command | None = None
+        if getattr(keeper, "tackle_cycles", 0) > 0:
+            command = None  # frozen by its own tackle: SamplePlayer sends no body command
+        elif self.skill < 1.0 and self.rng.random() >= self.skill:
+            command = None  # the weakening: hesitate this cycle
+        else:
+            table = build_intercept_table(view, world.params.player_rand if world.noise else 0.0)
+            eff = Effector()
+            decide(eff, view, table, self._last_catch_cycle)
+            command = eff.command
+            if command is not None and command.kind == "catch" and not view.play_on:
+                command = None  # the client refuses a catch outside PlayOn
+        self.last_command = command
+        return command
+
+    def apply(self, world: World, keeper: PlayerState, command: Command | None) -> None:
+        """Send ``command`` through librcsc's conversions (:func:`client_turn_moment`, :func:`client_dash`)."""
+        if command is None:
+            return
+        view = self.last_view
+        kind = command.kind
+        if kind == "turn":
+            world.turn(keeper, client_turn_moment(view, command.a))
+        elif kind == "dash":
+            power, direction = client_dash(view, command.a, command.b)
+            world.dash(keeper, power, direction)
+        elif kind == "catch":
+            if world.catch(keeper, command.a):
+                self._catch_pending = True
+        elif kind == "tackle":
+            world.tackle(keeper, command.a, command.foul)
+        self._last_body_kind = kind
+
+    # -------------------------------------------------------------------------------------------------------------
+    def _view(self, world: World, keeper: PlayerState) -> GoalieView:
+        """librcsc's world model just before the decision, converted to GF."""
+        ball = world.ball
+        px, py, vx, vy = -keeper.x, -keeper.y, -keeper.vx, -keeper.vy
+        bx, by, wx, wy = -ball.x, -ball.y, -ball.vx, -ball.vy
+        d_b = math.hypot(bx - px, by - py)
+        attacker = None
+        for player in world.players:
+            if player.side != keeper.side:
+                attacker = player
+                break
+        view = GoalieView(
+            cycle=world.cycle,
+            px=px,
+            py=py,
+            vx=vx,
+            vy=vy,
+            body=norm_deg(keeper.body_deg - 180.0),
+            stamina=keeper.stamina,
+            effort=keeper.effort,
+            recovery=keeper.recovery,
+            bx=bx,
+            by=by,
+            wx=wx,
+            wy=wy,
+            true_wx=wx,
+            true_wy=wy,
+            has_opp=attacker is not None,
+            self_kickable=d_b <= SELF_KICKABLE_DIST,
+        )
+        if attacker is not None:
+            view.ox, view.oy = -attacker.x, -attacker.y
+            view.ux, view.uy = -attacker.vx, -attacker.vy
+            view.obody = norm_deg(attacker.body_deg - 180.0)
+            frozen = getattr(attacker, "tackle_cycles", 0)
+            view.opp_tackle_count = frozen
+            if frozen <= 0:
+                opp_ball = math.hypot(view.ox - bx, view.oy - by)
+                opp_self = math.hypot(view.ox - px, view.oy - py)
+                view.kick_opp = opp_ball < KICKABLE_AREA + min(
+                    KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
+                ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
+        if self._catch_pending:
+            # the referee's goalie_catch_ball message: GoalieCatch mode until the next episode, and librcsc zeroes
+            # the ball velocity on the play-mode change
+            self._catch_pending = False
+            self._play_on = False
+            view.wx = view.wy = 0.0
+        view.play_on = self._play_on
+        self._update_last_kicker(view, attacker is not None)
+        view.lk_not_ours = not self._last_kicker_ours
+        if view.kick_opp and not view.self_kickable:
+            view.wx = view.wy = 0.0  # BallObject::setOpponentControlEffect
+        return view
+
+    def _update_last_kicker(self, view: GoalieView, has_attacker: bool) -> None:
+        """WorldModel::updateLastKicker, reduced to HFO 1v1: ours after the goalie's own tackle (or kick), theirs
+        again once the ball's velocity changes with the attacker near it."""
+        prev = self._prev_ball_vel
+        self._prev_ball_vel = (view.true_wx, view.true_wy)
+        if not view.play_on:
+            self._last_kicker_ours = True  # GoalieCatch is our set play
+            return
+        if self._last_body_kind == "tackle":  # SelfObject::kicked(): the last body command sent was a tackle
+            self._last_kicker_ours = True
+            return
+        if not self._last_kicker_ours or prev is None or not has_attacker:
+            return
+        cur_speed = math.hypot(view.true_wx, view.true_wy)
+        prev_speed = math.hypot(*prev)
+        angle_diff = abs(norm_deg(angle_of(view.true_wx, view.true_wy) - angle_of(*prev)))
+        changed = (
+            cur_speed > prev_speed + BALL_VEL_CHANGE_SPEED
+            or cur_speed < prev_speed * 0.94 * 0.5
+            or (prev_speed > 0.5 and angle_diff > BALL_VEL_CHANGE_ANGLE)
+        )
+        if changed and math.hypot(view.ox - view.bx, view.oy - view.by) < LAST_KICKER_DIST:
+            self._last_kicker_ours = False
