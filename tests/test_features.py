@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 
 import numpy as np
 import pytest
@@ -193,3 +194,130 @@ def test_features_stay_in_range_under_random_play() -> None:
             assert np.all(obs >= -1.0) and np.all(obs <= 1.0)
             if terminated or truncated:
                 obs, _ = env.reset()
+
+
+# --- HFO master's layout (59 / 68) and its conversion into the paper layout ------------------------------------
+HFO_MASTER_MAX_DIST = math.hypot(52.5, 68.0)  # 85.908 m: HFO master's maxHFODist (half length, full width)
+
+
+def hfo_vector(env: HFOEnv, last_action_succeeded: bool = True) -> list[float]:
+    """HFO master's vector of ``env``'s current state, computed by hfo2d."""
+    return F.hfo_feature_list(
+        env.agent,
+        env.world.ball,
+        env.world.params.kickable_area - F.KICKABLE_BUFFER,
+        (),
+        (env.keeper,) if env.keeper is not None else (),
+        last_action_succeeded,
+    )
+
+
+def random_states(task: str, count: int, seed: int) -> Iterator[HFOEnv]:
+    """One env of ``task`` put in ``count`` states in turn: placed anywhere on (and a little off) the HFO half,
+    moving, then up to 3 random steps."""
+    rng = np.random.default_rng(seed)
+    env = HFOEnv(task=task)
+    env.action_space.seed(seed)
+    for index in range(count):
+        options = {
+            "player": (rng.uniform(-2.0, 56.0), rng.uniform(-38.0, 38.0), rng.uniform(-180, 180), 0.3, -0.2),
+            "ball": (
+                rng.uniform(0.0, 52.5),
+                rng.uniform(-34.0, 34.0),
+                rng.uniform(-3, 3),
+                rng.uniform(-3, 3),
+            ),
+        }
+        if env.has_keeper:
+            options["keeper"] = (rng.uniform(-3.0, 52.5), rng.uniform(-20.0, 20.0), rng.uniform(-180, 180))
+        env.reset(seed=seed + index, options=options)
+        for _ in range(int(rng.integers(0, 4))):
+            _, _, terminated, truncated, _ = env.step(env.action_space.sample())
+            if terminated or truncated:
+                break
+        yield env
+
+
+def test_hfo_master_sizes_and_extra_entries() -> None:
+    assert F.hfo_num_features() == 59 and F.hfo_num_features(0, 1) == 68
+    assert F.hfo_num_features(2, 3) == 58 + 9 * 5 + 1
+    master_max = F.HFO_MASTER_MAX_DIST
+    assert master_max == pytest.approx(HFO_MASTER_MAX_DIST, abs=1e-5)
+    assert master_max == float(np.sqrt(np.float32(52.5**2 + 68.0**2)))  # HFO's float32 sqrtf
+    env = HFOEnv(task="static_keeper")
+    env.reset(
+        seed=0, options={"player": (26.25, 0.0, 0.0), "ball": (20.0, 0.0), "keeper": (52.5, 0.0, 180.0)}
+    )
+    features = hfo_vector(env, last_action_succeeded=False)
+    assert len(features) == 68
+    # the goalie's uniform number 1 / 100, then the failed last action
+    assert features[66:] == [0.01, -1.0]
+    assert hfo_vector(env, True)[67] == 1.0
+    # master's normalisers: goal centre 26.25 m over 85.908 m; out of bounds x 26.25 over 57.75, y 34 over 71.4
+    assert features[15] == pytest.approx(1.0 - 2.0 * 26.25 / HFO_MASTER_MAX_DIST, abs=1e-6)
+    assert features[60] == pytest.approx(1.0 - 2.0 * 26.25 / HFO_MASTER_MAX_DIST, abs=1e-6)
+    assert features[46:50] == pytest.approx(
+        [1 - 52.5 / 57.75, 1 - 52.5 / 57.75, 1 - 68 / 71.4, 1 - 68 / 71.4]
+    )
+    # a goalie outside the HFO half is not listed: zeros, uniform number -1
+    env.reset(options={"player": (26.25, 0.0, 0.0), "ball": (20.0, 0.0), "keeper": (-1.0, 0.0, 0.0)})
+    features = hfo_vector(env)
+    assert features[58:66] == [0.0] * 8 and features[66:] == [-1.0, 1.0]
+    env = HFOEnv()
+    env.reset(seed=1)
+    features = hfo_vector(env, False)
+    assert len(features) == 59 and features[58] == -1.0
+
+
+def test_paper_from_hfo_inverts_hfo2d_master_features() -> None:
+    worst = 0.0
+    for task in ("empty_goal", "static_keeper", "keeper"):
+        for env in random_states(task, 40, seed=5):
+            paper = low_level_feature_list(
+                env.agent,
+                env.world.ball,
+                env.world.params.kickable_area - F.KICKABLE_BUFFER,
+                (),
+                env._opponents,
+            )
+            opponents = 1 if env.has_keeper else 0
+            converted = F.paper_from_hfo(hfo_vector(env), 0, opponents)
+            assert len(converted) == len(paper) == F.num_features(0, opponents)
+            worst = max(worst, float(np.max(np.abs(np.subtract(converted, paper)))))
+            # float32 input (an observation) converts as well
+            converted32 = F.paper_from_hfo(np.array(hfo_vector(env), dtype=np.float32), 0, opponents)
+            np.testing.assert_allclose(converted32, paper, atol=1e-5)
+    assert worst < 1e-9
+
+
+def test_paper_from_hfo_several_players_and_empty_slots() -> None:
+    from hfo2d.physics import BallState, PlayerState
+
+    me = PlayerState("l", 11, x=20.0, y=5.0, body_deg=30.0)
+    mate = PlayerState("l", 7, x=30.0, y=-10.0, body_deg=-60.0, vx=0.2, vy=0.1)
+    near = PlayerState("r", 3, x=24.0, y=8.0, body_deg=170.0)
+    far = PlayerState("r", 1, goalie=True, x=50.0, y=0.0, body_deg=180.0)
+    gone = PlayerState("r", 5, x=-4.0, y=0.0)  # outside the HFO half: not listed
+    ball = BallState(x=21.0, y=5.5, vx=1.0, vy=-0.5)
+    teammates, opponents = (mate,), (far, gone, near)
+    master = F.hfo_feature_list(me, ball, 1.03, teammates, opponents, True)
+    assert len(master) == F.hfo_num_features(1, 3) == 58 + 32 + 4 + 1
+    # blocks: the teammate, then the opponents nearest first, the unlisted one last as zeros; then the uniform
+    # numbers in the same order (-1 for the empty slot), then the flag
+    assert master[82:90] == [0.0] * 8
+    assert master[90:] == [0.07, 0.03, 0.01, -1.0, 1.0]
+    paper = low_level_feature_list(me, ball, 1.03, teammates, opponents)
+    np.testing.assert_allclose(F.paper_from_hfo(master, 1, 3), paper, atol=1e-12)
+    # a proximity at the clip: 85.9 m in master's units is beyond 62.55 m, -1 in the paper's
+    clipped = list(master)
+    clipped[F.BALL_PROXIMITY] = 1.0 - 2.0 * 70.0 / F.HFO_MASTER_MAX_DIST
+    assert F.paper_from_hfo(clipped, 1, 3)[F.BALL_PROXIMITY] == -1.0
+
+
+def test_paper_from_hfo_rejects_a_wrong_length() -> None:
+    with pytest.raises(ValueError, match="68 features, got 66"):
+        F.paper_from_hfo([0.0] * 66, 0, 1)
+    with pytest.raises(ValueError, match="59 features, got 58"):
+        F.paper_from_hfo([0.0] * 58)
+    with pytest.raises(ValueError, match="slot counts"):
+        F.paper_from_hfo([0.0] * 59, -1, 0)

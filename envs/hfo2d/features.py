@@ -21,6 +21,10 @@ Per other player (8 features): landmark at its position (3), its body angle (2),
 velocity heading (2). Teammates come first, then opponents, each sorted by distance from self; a player is
 listed only while its x > 0 (HFO's test), otherwise its slot is zeros.
 
+HFO master (b8b2a1d), which the real-HFO backend talks to, returns a longer vector (:func:`hfo_num_features`: 59
+for 1v0, 68 for 1v1) with other normalisers: :func:`hfo_feature_list` computes it from the state and
+:func:`paper_from_hfo` converts it into the paper layout above.
+
 The code is plain ``math`` on Python floats: the env needs tens of thousands of feature vectors per second and a
 few dozen tiny numpy operations would cost more than the whole computation.
 """
@@ -56,6 +60,13 @@ KICKABLE_BUFFER = 0.055  # m; librcsc marks the ball kickable within kickable_ar
 
 NUM_BASIC_FEATURES = 58
 FEATURES_PER_PLAYER = 8
+
+# HFO master's normalisers (HFO b8b2a1d). maxHFODist is a float32 sqrtf of half length² + full WIDTH²
+# (src/feature_extractor.cpp), 85.90838 m; the out-of-bounds normalisers are 1.1 * 52.5 and 1.05 * 68
+# (src/lowlevel_feature_extractor.cpp), passed to addDistFeature as floats (hence the float32 roundings).
+HFO_MASTER_MAX_DIST = 85.90837860107422  # float32 sqrtf(52.5² + 68²)
+HFO_MASTER_OUT_OF_BOUNDS_X_DIST_MAX = 57.75  # float32(1.1 * 52.5)
+HFO_MASTER_OUT_OF_BOUNDS_Y_DIST_MAX = 71.4000015258789  # float32(1.05 * 68)
 
 # ---------------------------------------------------------------------------------------------------------------
 # Feature indices (hfo_reference §2.2)
@@ -200,6 +211,17 @@ def num_features(num_teammates: int = 0, num_opponents: int = 0) -> int:
     return NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (num_teammates + num_opponents)
 
 
+def hfo_num_features(num_teammates: int = 0, num_opponents: int = 0) -> int:
+    """Length of HFO master's low-level vector: ``58 + 9 * (teammates + opponents) + 1`` (59 for 1v0, 68 for 1v1).
+
+    HFO master's layout (src/lowlevel_feature_extractor.cpp): the 58 basic features, the 8-feature blocks of the
+    teammates then the opponents, then one uniform number / 100 per teammate slot and per opponent slot in the same
+    order (-1 for a slot with nobody listed), then the last action's status (+1 succeeded, -1 failed).
+    """
+    players = num_teammates + num_opponents
+    return NUM_BASIC_FEATURES + (FEATURES_PER_PLAYER + 1) * players + 1
+
+
 def feature_names(num_teammates: int = 0, num_opponents: int = 0) -> tuple[str, ...]:
     """Names of the features in order; with one opponent and no teammate the block is ``goalie_*``."""
     if num_teammates == 0 and num_opponents == 1:
@@ -212,7 +234,6 @@ def feature_names(num_teammates: int = 0, num_opponents: int = 0) -> tuple[str, 
 
 
 _DEG_TO_RAD = math.pi / 180.0
-_TWO_OVER_MAX_HFO_DIST = 2.0 / MAX_HFO_DIST
 
 
 def _append_player_block(
@@ -222,6 +243,7 @@ def _append_player_block(
     self_y: float,
     body_cos: float,
     body_sin: float,
+    max_dist: float = MAX_HFO_DIST,
 ) -> None:
     """Append the 8 features describing ``other`` as seen from self (position, body angle, velocity)."""
     dx = other.x - self_x
@@ -242,7 +264,7 @@ def _append_player_block(
     features += (
         heading_sin * body_cos - heading_cos * body_sin,
         heading_cos * body_cos + heading_sin * body_sin,
-        1.0 - _TWO_OVER_MAX_HFO_DIST * dist if dist < MAX_HFO_DIST else -1.0,
+        1.0 - 2.0 / max_dist * dist if dist < max_dist else -1.0,
         math.sin(other_body),
         math.cos(other_body),
         2.0 * speed / PLAYER_SPEED_MAX - 1.0 if speed < PLAYER_SPEED_MAX else 1.0,
@@ -257,6 +279,10 @@ def low_level_feature_list(
     kickable_distance: float,
     teammates: list[PlayerState] | tuple[PlayerState, ...] = (),
     opponents: list[PlayerState] | tuple[PlayerState, ...] = (),
+    *,
+    max_dist: float = MAX_HFO_DIST,
+    out_of_bounds_x_max: float = OUT_OF_BOUNDS_X_DIST_MAX,
+    out_of_bounds_y_max: float = OUT_OF_BOUNDS_Y_DIST_MAX,
 ) -> list[float]:
     """The features as a list of Python floats (the fast path; see :func:`low_level_features`).
 
@@ -266,6 +292,9 @@ def low_level_feature_list(
         kickable_distance: the ball-centre distance (m) under which the kickable flag is +1 (librcsc: 1.03).
         teammates: the other players of the observer's side, one 8-feature slot each.
         opponents: the players of the other side, one 8-feature slot each.
+        max_dist: normaliser of the proximities (landmarks, ball, players); the paper era's by default.
+        out_of_bounds_x_max: normaliser of features 46 and 47.
+        out_of_bounds_y_max: normaliser of features 48 and 49.
 
     Returns:
         ``num_features(len(teammates), len(opponents))`` floats in [-1, 1].
@@ -302,8 +331,7 @@ def low_level_feature_list(
         0.0,  # kickable, filled in with the ball below
     ]
     hypot = math.hypot
-    two_over_max_dist = _TWO_OVER_MAX_HFO_DIST
-    max_dist = MAX_HFO_DIST
+    two_over_max_dist = 2.0 / max_dist
     for landmark_x, landmark_y in _LANDMARK_POINTS:
         dx = landmark_x - x
         dy = landmark_y - y
@@ -320,10 +348,10 @@ def low_level_feature_list(
 
     # Out-of-bounds proximities: 1 - 2 * clip(d / dmax, 0, 1).
     for dist, dist_max in (
-        (x, OUT_OF_BOUNDS_X_DIST_MAX),
-        (PITCH_HALF_LENGTH - x, OUT_OF_BOUNDS_X_DIST_MAX),
-        (PITCH_HALF_WIDTH + y, OUT_OF_BOUNDS_Y_DIST_MAX),
-        (PITCH_HALF_WIDTH - y, OUT_OF_BOUNDS_Y_DIST_MAX),
+        (x, out_of_bounds_x_max),
+        (PITCH_HALF_LENGTH - x, out_of_bounds_x_max),
+        (PITCH_HALF_WIDTH + y, out_of_bounds_y_max),
+        (PITCH_HALF_WIDTH - y, out_of_bounds_y_max),
     ):
         if dist <= 0.0:
             features.append(1.0)
@@ -353,7 +381,7 @@ def low_level_feature_list(
         1.0,  # ball position valid
         heading_sin * body_cos - heading_cos * body_sin,
         heading_cos * body_cos + heading_sin * body_sin,
-        1.0 - _TWO_OVER_MAX_HFO_DIST * dist if dist < MAX_HFO_DIST else -1.0,
+        1.0 - two_over_max_dist * dist if dist < max_dist else -1.0,
         1.0,  # ball velocity valid
         2.0 * ball_speed / BALL_SPEED_MAX - 1.0 if ball_speed < BALL_SPEED_MAX else 1.0,
         ball_vel_sin,
@@ -368,10 +396,121 @@ def low_level_feature_list(
         listed = 0
         for other in group:
             if other.x > 0.0:  # HFO lists a player only inside the HFO half (x > 0)
-                _append_player_block(features, other, x, y, body_cos, body_sin)
+                _append_player_block(features, other, x, y, body_cos, body_sin, max_dist)
                 listed += 1
         features += [0.0] * (FEATURES_PER_PLAYER * (len(group) - listed))
     return features
+
+
+def hfo_feature_list(
+    player: PlayerState,
+    ball: BallState,
+    kickable_distance: float,
+    teammates: list[PlayerState] | tuple[PlayerState, ...] = (),
+    opponents: list[PlayerState] | tuple[PlayerState, ...] = (),
+    last_action_succeeded: bool = False,
+) -> list[float]:
+    """HFO master's low-level vector (fullstate) of the state: layout of :func:`hfo_num_features`.
+
+    The paper-era computation with master's normalisers (``HFO_MASTER_*``), then one uniform number / 100 per
+    listed teammate and opponent, in the order of their blocks (nearest first; -1 for an empty slot), then
+    ``last_action_succeeded`` as +1 / -1 (HFO agent.cpp records librcsc's doDash / doTurn / doKick result: a kick
+    fails when the ball is not kickable, dash and turn fail only when frozen). The observing player's own uniform
+    number is not part of the vector. hfo2d's uniform numbers are all positive, so HFO's ``unum > 0`` listing
+    test reduces to the paper era's ``x > 0``.
+
+    Returns:
+        ``hfo_num_features(len(teammates), len(opponents))`` Python floats in [-1, 1].
+    """
+    features = low_level_feature_list(
+        player,
+        ball,
+        kickable_distance,
+        teammates,
+        opponents,
+        max_dist=HFO_MASTER_MAX_DIST,
+        out_of_bounds_x_max=HFO_MASTER_OUT_OF_BOUNDS_X_DIST_MAX,
+        out_of_bounds_y_max=HFO_MASTER_OUT_OF_BOUNDS_Y_DIST_MAX,
+    )
+    x = player.x
+    y = player.y
+    for group in (teammates, opponents):
+        if len(group) > 1:  # the same stable sort as the blocks, so the numbers follow the blocks' order
+            group = sorted(group, key=lambda other: (other.x - x) ** 2 + (other.y - y) ** 2)
+        listed = [other.unum / 100.0 for other in group if other.x > 0.0]
+        features += listed
+        features += [-1.0] * (len(group) - len(listed))
+    features.append(1.0 if last_action_succeeded else -1.0)
+    return features
+
+
+# Proximity indices of the basic features: the 11 landmarks and the ball (all over maxHFODist).
+_BASIC_PROXIMITIES: tuple[int, ...] = (
+    *(FIRST_LANDMARK + 3 * k + 2 for k in range(len(LANDMARKS))),
+    BALL_PROXIMITY,
+)
+
+
+def _renormalised_proximity(value: float, old_max: float, new_max: float) -> float:
+    """A proximity ``1 - 2 clip(d / old_max, 0, 1)`` re-expressed as ``1 - 2 clip(d / new_max, 0, 1)``."""
+    ratio = (1.0 - value) * 0.5 * old_max / new_max
+    if ratio <= 0.0:
+        return 1.0
+    if ratio >= 1.0:
+        return -1.0
+    return 1.0 - 2.0 * ratio
+
+
+def paper_from_hfo(features: Sequence[float], num_teammates: int = 0, num_opponents: int = 0) -> list[float]:
+    """HFO master's low-level vector converted into the paper-era layout hfo2d uses.
+
+    HFO master (b8b2a1d) differs from the paper-era extractor in its normalisers and in extra entries (see
+    :func:`hfo_num_features` for its layout). This re-normalises every proximity (landmarks, ball, listed players)
+    from ``HFO_MASTER_MAX_DIST`` (85.908 m) to ``MAX_HFO_DIST`` (62.55 m) and the out-of-bounds features 46/47 from
+    57.75 m to 52.5 m and 48/49 from 71.4 m to 68 m, by ``d = (1 - f) / 2 * old_max``,
+    ``f' = 1 - 2 min(d / new_max, 1)``, and drops the uniform numbers and the last-action flag. A player slot
+    whose uniform-number entry is negative (nobody listed; HFO fills it with zeros) stays zeros. Everything else
+    is copied. The inverse is not possible in general: the paper vector clips distances beyond 62.55 m.
+
+    Args:
+        features: HFO master's vector, ``hfo_num_features(num_teammates, num_opponents)`` numbers.
+        num_teammates: teammate slots of the vector (HFO's ``num_offense - 1`` for an offense agent).
+        num_opponents: opponent slots (HFO's ``num_defense``).
+
+    Returns:
+        ``num_features(num_teammates, num_opponents)`` Python floats (58 for 1v0, 66 for 1v1).
+
+    Raises:
+        ValueError: for a negative slot count or a vector of the wrong length.
+    """
+    if num_teammates < 0 or num_opponents < 0:
+        raise ValueError(
+            f"slot counts must be >= 0, got num_teammates={num_teammates}, num_opponents={num_opponents}"
+        )
+    expected = hfo_num_features(num_teammates, num_opponents)
+    if len(features) != expected:
+        raise ValueError(
+            f"HFO master's vector for {num_teammates} teammate(s) and {num_opponents} opponent(s) has {expected} "
+            f"features, got {len(features)}"
+        )
+    players = num_teammates + num_opponents
+    paper_length = num_features(num_teammates, num_opponents)
+    out = [float(value) for value in features[:paper_length]]
+    for index in _BASIC_PROXIMITIES:
+        out[index] = _renormalised_proximity(out[index], HFO_MASTER_MAX_DIST, MAX_HFO_DIST)
+    for index, old_max, new_max in (
+        (OUT_OF_BOUNDS_LEFT, HFO_MASTER_OUT_OF_BOUNDS_X_DIST_MAX, OUT_OF_BOUNDS_X_DIST_MAX),
+        (OUT_OF_BOUNDS_RIGHT, HFO_MASTER_OUT_OF_BOUNDS_X_DIST_MAX, OUT_OF_BOUNDS_X_DIST_MAX),
+        (OUT_OF_BOUNDS_TOP, HFO_MASTER_OUT_OF_BOUNDS_Y_DIST_MAX, OUT_OF_BOUNDS_Y_DIST_MAX),
+        (OUT_OF_BOUNDS_BOTTOM, HFO_MASTER_OUT_OF_BOUNDS_Y_DIST_MAX, OUT_OF_BOUNDS_Y_DIST_MAX),
+    ):
+        out[index] = _renormalised_proximity(out[index], old_max, new_max)
+    for slot in range(players):
+        if float(features[paper_length + slot]) < 0.0:  # uniform number -1: nobody listed, the block is zeros
+            continue
+        index = NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * slot + PLAYER_PROXIMITY
+        out[index] = _renormalised_proximity(out[index], HFO_MASTER_MAX_DIST, MAX_HFO_DIST)
+    return out
 
 
 def landmark_position(
