@@ -321,3 +321,50 @@ def test_paper_from_hfo_rejects_a_wrong_length() -> None:
         F.paper_from_hfo([0.0] * 58)
     with pytest.raises(ValueError, match="slot counts"):
         F.paper_from_hfo([0.0] * 59, -1, 0)
+
+
+def test_env_feature_set_hfo_matches_paper_twin() -> None:
+    # Two envs, same seed and actions: the "hfo" one's observations convert into the "paper" one's; rewards and
+    # info (kickable included) do not depend on the feature set.
+    for task in ("empty_goal", "static_keeper", "keeper"):
+        paper_env, hfo_env = HFOEnv(task=task), HFOEnv(task=task, feature_set="hfo")
+        size = 68 if paper_env.has_keeper else 59
+        assert hfo_env.observation_space.shape == (size,)
+        assert paper_env.observation_space.shape == (F.num_features(0, 1 if paper_env.has_keeper else 0),)
+        actions = np.random.default_rng(4).random((150, 8), dtype=np.float32)
+        paper_obs, paper_info = paper_env.reset(seed=2)
+        hfo_obs, hfo_info = hfo_env.reset(seed=2)
+        opponents = 1 if paper_env.has_keeper else 0
+        for action in actions:
+            assert hfo_obs.dtype == np.float32 and hfo_env.observation_space.contains(hfo_obs)
+            np.testing.assert_allclose(F.paper_from_hfo(hfo_obs, 0, opponents), paper_obs, atol=1e-5)
+            assert hfo_info["kickable"] == paper_info["kickable"]
+            paper_obs, paper_reward, paper_end, paper_cut, paper_info = paper_env.step(action)
+            hfo_obs, hfo_reward, hfo_end, hfo_cut, hfo_info = hfo_env.step(action)
+            assert (hfo_reward, hfo_end, hfo_cut) == (paper_reward, paper_end, paper_cut)
+            assert hfo_info["reward_terms"] == paper_info["reward_terms"]
+            assert hfo_obs[-1] == (1.0 if hfo_info["action_success"] else -1.0)
+            if paper_end or paper_cut:
+                paper_obs, paper_info = paper_env.reset()
+                hfo_obs, hfo_info = hfo_env.reset()
+
+
+def test_env_feature_set_hfo_flag_and_uniform_number() -> None:
+    env = HFOEnv(task="static_keeper", feature_set="hfo")
+    options = {"player": (30.0, 0.0, 0.0), "ball": (30.5, 0.0), "keeper": (52.5, 0.0, 180.0)}
+    obs, _ = env.reset(seed=0, options=options)
+    assert obs.shape == (68,) and obs[66] == np.float32(0.01) and obs[67] == -1.0  # HFO starts "failed"
+    dash, turn = [1, 0, 0, 0.5, 0.5, 0.5, 0, 0], [0, 1, 0, 0, 0, 0.5, 0, 0]
+    kick = [0, 0, 1, 0, 0, 0, 1.0, 0.5]  # full power straight ahead
+    assert env.step(np.array(kick, dtype=np.float32))[0][67] == 1.0  # the ball 0.5 m away: kickable
+    obs, *_ = env.step(np.array(kick, dtype=np.float32))
+    assert obs[67] == -1.0 and obs[F.KICKABLE] == -1.0  # the ball has left: a kick out of reach fails
+    assert env.step(np.array(turn, dtype=np.float32))[0][67] == 1.0
+    assert env.step(np.array(dash, dtype=np.float32))[0][67] == 1.0
+    env1v0 = HFOEnv(feature_set="hfo")
+    assert env1v0.reset(seed=0)[0].shape == (59,)
+
+
+def test_env_rejects_an_unknown_feature_set() -> None:
+    with pytest.raises(ValueError, match="'master'"):
+        HFOEnv(feature_set="master")

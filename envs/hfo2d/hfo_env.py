@@ -12,6 +12,8 @@ from gymnasium import spaces
 
 from hfo2d.features import (
     KICKABLE_BUFFER,
+    hfo_feature_list,
+    hfo_num_features,
     low_level_feature_list,
     num_features,
 )
@@ -23,6 +25,8 @@ from hfo2d.reward import DEFAULT_SHAPING_GAMMA, REWARD_NAMES, make_reward
 # ---------------------------------------------------------------------------------------------------------------
 TASKS: tuple[str, ...] = ("empty_goal", "static_keeper", "keeper")
 ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
+#: Observation layouts: the paper era's (58 / 66, the default) or HFO master's (59 / 68).
+FEATURE_SETS: tuple[str, ...] = ("paper", "hfo")
 ACTION_NAMES: tuple[str, ...] = ("DASH", "TURN", "KICK")
 DASH, TURN, KICK = 0, 1, 2
 # [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir]
@@ -95,6 +99,11 @@ class HFOEnv(gym.Env):
     Observation:
         ``Box(-1, 1, (58,), float32)`` for ``empty_goal``, ``(66,)`` with a goalie: HFO's paper-era low-level
         features, fullstate (see :mod:`hfo2d.features` for encodings and normalisers).
+        With ``feature_set="hfo"``: ``(59,)`` / ``(68,)``, HFO master's layout of the same state
+        (:func:`hfo2d.features.hfo_feature_list`): proximities over 85.908 m, out-of-bounds over 57.75 / 71.4 m,
+        the goalie's uniform number / 100 (0.01; -1 while it is not listed) at 66, and last at 58 / 67 the last
+        action's status (+1, or -1 for a KICK out of reach; -1 after reset). Rewards and ``info`` are computed
+        from the paper features either way; :func:`hfo2d.features.paper_from_hfo` converts.
 
         ======= =========================================================================
         index   feature
@@ -185,6 +194,7 @@ class HFOEnv(gym.Env):
         task: one of TASKS.
         render_mode: None, "human" (pygame window, drawn every step) or "rgb_array".
         action_format: "flat" or "parameterized".
+        feature_set: "paper" (default, the table above) or "hfo" (HFO master's 59 / 68 features).
         reward: "shaped", "shaped_gap", "shaped_gap_refund", "potential_gap" or "sparse".
         shaping_gamma: discount of the ``"potential_gap"`` shaping, in [0, 1] (set it to the agent's ``gamma``);
             the other rewards ignore it.
@@ -211,11 +221,14 @@ class HFOEnv(gym.Env):
         untouched_time: int = DEFAULT_UNTOUCHED_TIME,
         random_start_fraction: float = 0.0,
         shaping_gamma: float = DEFAULT_SHAPING_GAMMA,
+        feature_set: str = "paper",
     ) -> None:
         if task not in TASKS:
             raise ValueError(f"unknown task {task!r}; choose one of {TASKS}")
         if action_format not in ACTION_FORMATS:
             raise ValueError(f"unknown action_format {action_format!r}; choose one of {ACTION_FORMATS}")
+        if feature_set not in FEATURE_SETS:
+            raise ValueError(f"unknown feature_set {feature_set!r}; choose one of {FEATURE_SETS}")
         if reward not in REWARD_NAMES:
             raise ValueError(f"unknown reward {reward!r}; choose one of {REWARD_NAMES}")
         if render_mode is not None and render_mode not in self.metadata["render_modes"]:
@@ -238,6 +251,8 @@ class HFOEnv(gym.Env):
         self.task = task
         self.render_mode = render_mode
         self.action_format = action_format
+        self.feature_set = feature_set
+        self._hfo_layout = feature_set == "hfo"
         self.reward_name = reward
         self.noise = bool(noise)
         self.keeper_skill = float(keeper_skill)
@@ -249,7 +264,8 @@ class HFOEnv(gym.Env):
         self._kickable_distance = self.params.kickable_area - KICKABLE_BUFFER
         self._capture_distance = self.params.kickable_area
 
-        n_features = num_features(0, 1 if self.has_keeper else 0)
+        n_opponents = 1 if self.has_keeper else 0
+        n_features = hfo_num_features(0, n_opponents) if self._hfo_layout else num_features(0, n_opponents)
         self.observation_space = spaces.Box(-1.0, 1.0, shape=(n_features,), dtype=np.float32)
         if action_format == "flat":
             self.action_space: spaces.Space = spaces.Box(
@@ -361,7 +377,9 @@ class HFOEnv(gym.Env):
         info["reward_terms"] = {"move_to_ball": 0.0, "kick_bonus": 0.0, "ball_to_goal": 0.0, "goal": 0.0}
         if self.render_mode == "human":
             self.render()
-        return np.array(features, dtype=np.float32), info
+        # HFO's agent starts with its last action status false (agent.cpp)
+        observation = self._hfo_features(False) if self._hfo_layout else features
+        return np.array(observation, dtype=np.float32), info
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         """Advance one server cycle: agent command, goalie command, physics, referee, features, reward."""
@@ -407,7 +425,8 @@ class HFOEnv(gym.Env):
         info["kick_power"] = kick_power
         if self.render_mode == "human":
             self.render()
-        return np.array(features, dtype=np.float32), reward, terminated, truncated, info
+        observation = self._hfo_features(success) if self._hfo_layout else features
+        return np.array(observation, dtype=np.float32), reward, terminated, truncated, info
 
     def _make_scripted_keeper(self, rng: np.random.Generator) -> Any:
         from hfo2d.keeper import ScriptedKeeper  # only task "keeper" needs it
@@ -462,6 +481,12 @@ class HFOEnv(gym.Env):
     def steps(self) -> int:
         """Steps taken in the current episode."""
         return self._steps
+
+    def _hfo_features(self, last_action_succeeded: bool) -> list[float]:
+        """HFO master's vector of the current state (feature_set \"hfo\")."""
+        return hfo_feature_list(
+            self.agent, self.world.ball, self._kickable_distance, (), self._opponents, last_action_succeeded
+        )
 
     def _features(self) -> list[float]:
         return low_level_feature_list(
