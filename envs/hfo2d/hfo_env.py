@@ -75,6 +75,11 @@ RANDOM_START_AGENT_X_RANGE = (0.0, PITCH_HALF_LENGTH)  # m
 RANDOM_START_Y_RANGE = BALL_Y_RANGE  # m
 KEEPER_START = (PITCH_HALF_LENGTH, 0.0)
 KEEPER_START_BODY_DEG = -180.0  # facing the field
+#: The goalies of task "keeper": hfo2d's own design (HFO/Keeper-v0) and HFO's agent2d goalie (HFO/Keeper-v1).
+GOALIES: tuple[str, ...] = ("hfo2d", "agent2d")
+# rcssserver's initial body angle is 0 (facing the goalie's own goal); agent2d's before-kick-off scan turns it by
+# 180 degrees every few cycles, so real HFO's first episode starts facing either way (agent2d goalie spec §2.5).
+AGENT2D_FIRST_BODY_DEGS = (0.0, -180.0)
 AGENT_SIDE, AGENT_UNUM = "l", 11  # HFO's first offense agent
 KEEPER_SIDE, KEEPER_UNUM = "r", 1
 
@@ -93,8 +98,10 @@ class HFOEnv(gym.Env):
     relative angle to the agent's right. One step is one 100 ms server cycle. Physics: :class:`hfo2d.physics.World`.
 
     Tasks (``task``): ``"empty_goal"`` (1v0, ``HFO/EmptyGoal-v0``), ``"static_keeper"`` (a goalie on the goal line
-    that never moves, ``HFO/StaticKeeper-v0``), ``"keeper"`` (the scripted goalie of :mod:`hfo2d.keeper`, its
-    quality set by ``keeper_skill`` in [0, 1], ``HFO/Keeper-v0``).
+    that never moves, ``HFO/StaticKeeper-v0``), ``"keeper"`` (a scripted goalie whose quality is set by
+    ``keeper_skill`` in [0, 1]: with ``goalie="agent2d"`` HFO's own goalie, :mod:`hfo2d.agent2d`,
+    ``HFO/Keeper-v1``; with ``goalie="hfo2d"`` this project's earlier design, :mod:`hfo2d.keeper`,
+    ``HFO/Keeper-v0``).
 
     Observation:
         ``Box(-1, 1, (58,), float32)`` for ``empty_goal``, ``(66,)`` with a goalie: HFO's paper-era low-level
@@ -200,10 +207,23 @@ class HFOEnv(gym.Env):
             the other rewards ignore it.
         noise: False turns off player, ball and kick noise (HFO's --deterministic).
         server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}``.
-        keeper_skill: goalie quality for task "keeper", in [0, 1].
+        keeper_skill: goalie quality for task "keeper", in [0, 1] (1: the full goalie).
+        goalie: the goalie of task "keeper": "agent2d" (HFO's, ``HFO/Keeper-v1``) or "hfo2d" (``HFO/Keeper-v0``).
+            With "agent2d" the goalie's body angle, catch ban and catch time carry over from one episode to the
+            next as in real HFO (one wait cycle is played after each episode), except after ``reset(seed=...)``,
+            which starts the goalie afresh so that a seed repeats; its first body angle faces its own goal or the
+            field (drawn).
         frames_per_trial: steps after which an episode is truncated.
         untouched_time: cycles without a player near the ball after which the episode ends.
         random_start_fraction: probability in [0, 1] that an episode uses the exploring start above (0: HFO's).
+
+    Version History:
+        * v1 (``HFO/Keeper-v1`` only): the goalie is HFO's own (agent2d's, with librcsc's intercept table, body
+          actions, catch and tackle), the catch is part of the physics (rcssserver's catchable area, ban cycles),
+          and the goalie's body angle and bans carry over between episodes. Checked against a real HFO build
+          (see ``benchmarks/keeper_fidelity.py``). ``HFO/EmptyGoal-v0`` and ``HFO/StaticKeeper-v0`` are unchanged.
+        * v0: initial version; ``HFO/Keeper-v0`` keeps this project's own goalie design unchanged, so that figures
+          measured on it stay reproducible.
     """
 
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 10}
@@ -217,6 +237,7 @@ class HFOEnv(gym.Env):
         noise: bool = True,
         server_params: Mapping[str, float] | None = None,
         keeper_skill: float = 1.0,
+        goalie: str = "hfo2d",
         frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
         untouched_time: int = DEFAULT_UNTOUCHED_TIME,
         random_start_fraction: float = 0.0,
@@ -236,6 +257,10 @@ class HFOEnv(gym.Env):
                 f"unknown render_mode {render_mode!r}; choose None or one of {self.metadata['render_modes']}"
             )
         _check_keeper_skill(keeper_skill)
+        if goalie not in GOALIES:
+            raise ValueError(f"unknown goalie {goalie!r}; choose one of {GOALIES}")
+        if goalie != "hfo2d" and task != "keeper":
+            raise ValueError(f"goalie={goalie!r} needs task 'keeper'; task {task!r} has no scripted goalie")
         if isinstance(random_start_fraction, bool) or not isinstance(
             random_start_fraction, (int, float, np.number)
         ):
@@ -256,6 +281,7 @@ class HFOEnv(gym.Env):
         self.reward_name = reward
         self.noise = bool(noise)
         self.keeper_skill = float(keeper_skill)
+        self.goalie = goalie
         self.frames_per_trial = int(frames_per_trial)
         self.untouched_time = int(untouched_time)
         self.random_start_fraction = float(random_start_fraction)
@@ -310,6 +336,7 @@ class HFOEnv(gym.Env):
         self._rng_in_use = rng
         self._renderer: Any = None
         self._needs_reset = True
+        self._episode_started = False
         self._steps = 0
         self._untouched = 0
         self._take_time = 0
@@ -332,6 +359,13 @@ class HFOEnv(gym.Env):
             if self._keeper_policy is not None:
                 self._keeper_policy.rng = rng
             self._rng_in_use = rng
+        carry_keeper = self.goalie == "agent2d" and seed is None and self._episode_started
+        if carry_keeper:
+            self._agent2d_wait_frame()
+        elif self.goalie == "agent2d" and self._episode_started:
+            # reset(seed=...) repeats: the goalie starts as in a fresh env, without real HFO's carry-over
+            self._keeper_policy = self._make_scripted_keeper(rng)
+            self._clear_server_state()
 
         ball_x = rng.uniform(*BALL_X_RANGE)
         ball_y = rng.uniform(*BALL_Y_RANGE)
@@ -355,7 +389,15 @@ class HFOEnv(gym.Env):
         player = placements.get("player", (agent_x, agent_y, agent_body, 0.0, 0.0))
         world.place_player(agent, *player)
         if self.keeper is not None:
-            keeper = placements.get("keeper", (*KEEPER_START, KEEPER_START_BODY_DEG))
+            keeper_body = KEEPER_START_BODY_DEG
+            if self.goalie == "agent2d":
+                # real HFO never resets the goalie's body angle (HFORef::resetField); the first episode starts
+                # facing its own goal or the field
+                if carry_keeper:
+                    keeper_body = self.keeper.body_deg
+                else:
+                    keeper_body = AGENT2D_FIRST_BODY_DEGS[int(rng.integers(len(AGENT2D_FIRST_BODY_DEGS)))]
+            keeper = placements.get("keeper", (*KEEPER_START, keeper_body))
             world.place_player(self.keeper, *keeper)
         world.recover_players()
         # collisions of the last episode's final cycle are not part of the new one
@@ -364,13 +406,17 @@ class HFOEnv(gym.Env):
         world.ball.collided_post = False
         if self._keeper_policy is not None:
             if self._keeper_policy.skill != self.keeper_skill:  # set_keeper_skill() was called
-                self._keeper_policy = self._make_scripted_keeper(rng)
+                if self.goalie == "agent2d":
+                    self._keeper_policy.skill = self.keeper_skill  # keeps its client state (catch time)
+                else:
+                    self._keeper_policy = self._make_scripted_keeper(rng)
             self._keeper_policy.reset()
         self._steps = 0
         self._untouched = 0
         self._take_time = 0
         self._status = IN_GAME
         self._needs_reset = False
+        self._episode_started = True
         features = self._features()
         self._reward_fn.reset(features)
         info = self._info(features)
@@ -388,6 +434,11 @@ class HFOEnv(gym.Env):
         world = self.world
         agent = self.agent
         kind, power, direction = self._parse_action(action)
+        goalie_command: Any = _NO_DECISION
+        if self.goalie == "agent2d" and self.keeper is not None:
+            # agent2d decides on the state after the last step, before this cycle's commands arrive (a turn of the
+            # agent changes its body angle at once in World)
+            goalie_command = self._keeper_policy.decide(world, self.keeper)
 
         success = True
         kick_power = 0.0
@@ -399,7 +450,9 @@ class HFOEnv(gym.Env):
             success = bool(world.client_kick(agent, power, direction))
             if success:
                 kick_power = min(max(power, POWER_MIN), POWER_MAX)
-        if self._keeper_policy is not None and self.keeper is not None:
+        if goalie_command is not _NO_DECISION and self.keeper is not None:
+            self._keeper_policy.apply(world, self.keeper, goalie_command)
+        elif self._keeper_policy is not None and self.keeper is not None:
             self._keeper_policy.act(world, self.keeper)
 
         ball = world.ball
@@ -428,7 +481,25 @@ class HFOEnv(gym.Env):
         observation = self._hfo_features(success) if self._hfo_layout else features
         return np.array(observation, dtype=np.float32), reward, terminated, truncated, info
 
+    def _agent2d_wait_frame(self) -> None:
+        """Real HFO plays one more cycle after an episode ends and before the next reset; the goalie acts in it
+        (its body angle and bans carry over), the agent's command is not sent to an episode that has ended."""
+        assert self.keeper is not None
+        self._keeper_policy.act(self.world, self.keeper)
+        self.world.step()
+
+    def _clear_server_state(self) -> None:
+        """The goalie's server-side timers as in a fresh server (catch ban, tackle freeze)."""
+        for player in self.world.players:
+            for timer in ("catch_ban", "tackle_cycles"):
+                if hasattr(player, timer):
+                    setattr(player, timer, 0)
+
     def _make_scripted_keeper(self, rng: np.random.Generator) -> Any:
+        if self.goalie == "agent2d":
+            from hfo2d.agent2d.goalie import Agent2dGoalie
+
+            return Agent2dGoalie(self.params, rng, skill=self.keeper_skill)
         from hfo2d.keeper import ScriptedKeeper  # only task "keeper" needs it
 
         return ScriptedKeeper(self.params, rng, skill=self.keeper_skill)
@@ -635,6 +706,9 @@ class HFOEnv(gym.Env):
             # a placement without velocity starts at rest
             placements[key] = tuple(values) + (0.0,) * (max(lengths) - len(values))
         return placements
+
+
+_NO_DECISION = object()  # step(): the goalie (if any) decides in the usual place
 
 
 def _check_keeper_skill(skill: Any) -> None:
