@@ -9,9 +9,11 @@ Units and frame are rcssserver's: metres, metres per cycle, degrees; 0 deg faces
 
 Order of one cycle (rcssserver ``Stadium::step``, hfo_reference §4.1):
 
-1. Commands act as they arrive, i.e. when :meth:`World.dash`, :meth:`World.turn` or :meth:`World.kick`
-   is called: a turn changes the body angle at once, a dash adds to the player's acceleration, a kick
-   adds to the ball's acceleration.
+1. Commands act as they arrive, i.e. when :meth:`World.dash`, :meth:`World.turn`, :meth:`World.kick`,
+   :meth:`World.catch` or :meth:`World.tackle` is called: a turn changes the body angle at once, a dash adds
+   to the player's acceleration, a kick or a tackle adds to the ball's acceleration, a successful catch moves
+   the goalie next to the ball and resolves the overlaps at once. A player frozen by its own tackle ignores
+   every body command. :meth:`World.step` first counts the freezes down (``Player::resetCommandFlags``).
 2. :meth:`World.step` moves every object (``MPObject::_inc``): cap |a| at accel_max, v += a, cap |v| at
    speed_max (only when a != 0); v += polar(U(0, rand*|v|), U(-pi, pi)); goal-post overlap and path
    intersection are resolved by reflecting the velocity about the post normal (elastic); pos += v;
@@ -20,7 +22,8 @@ Order of one cycle (rcssserver ``Stadium::step``, hfo_reference §4.1):
    pairs closer than 2 * player_size are pushed apart symmetrically about their midpoint until just
    touching (each object moves to the mean of the positions its pairs ask for), for up to 10 passes; every
    object that collided then gets v *= -0.1.
-4. Stamina, effort and recovery of every player are updated (``Player::updateStamina``).
+4. Stamina, effort and recovery of every player are updated (``Player::updateStamina``), then the goalie
+   catch bans count down (``Player::updateCapacity``).
 
 rcssserver shuffles the objects before step 2; the moves of different objects are independent, so the order
 only changes which random number goes to which object and a fixed order (players, then the ball) is used.
@@ -73,7 +76,8 @@ class ServerParams:
 
     Values: rcssserver 15.2.2 ``serverparam.cpp`` as HFO builds it (hfo_reference §4, §9). Units: metres,
     m/cycle, m/cycle², degrees, stamina units. Thresholds ``*_thr`` are fractions of ``stamina_max``.
-    Tackle, catch and wind parameters are kept for completeness; this simulator does not use them.
+    Catch and tackle parameters are used by :meth:`World.catch` and :meth:`World.tackle`; the wind ones are
+    kept for completeness (wind is not simulated).
     """
 
     player_size: float = 0.3
@@ -131,6 +135,11 @@ class ServerParams:
     slowness_on_top_for_left_team: float = 1.0
     slowness_on_top_for_right_team: float = 1.0
     goal_width: float = 2.0 * GOAL_HALF_WIDTH
+    # rcssserver player_type.cpp: the default type's catchable_area_l_stretch is 1.0 (heterogeneous-type parameter)
+    catch_area_l_stretch: float = 1.0
+    # rcssserver serverparam.cpp: FOUL_EXPONENT 10.0, TACKLE_RAND_FACTOR 2.0
+    foul_exponent: float = 10.0
+    tackle_rand_factor: float = 2.0
 
     @property
     def kickable_area(self) -> float:
@@ -180,7 +189,11 @@ class PlayerState:
     """One player. Positions in m, velocities in m/cycle as held between cycles (after decay).
 
     ``body_deg`` is in [-180, 180). ``ax``, ``ay`` hold the acceleration of a dash issued this cycle.
-    The ``collided_*`` flags describe the last :meth:`World.step`.
+    The ``collided_*`` flags describe the last :meth:`World.step`, including the overlaps a catch resolved just
+    before it (rcssserver's sense_body reports those with the step).
+    ``catch_ban``: cycles before this goalie may catch again (rcssserver ``M_goalie_catch_ban``).
+    ``tackle_cycles``: cycles this player stays frozen by its own tackle (``M_tackle_cycles``); while it is > 0
+    every body command is ignored. Placing a player resets neither (rcssserver ``Player::place``).
     """
 
     side: str  # "l" offense, "r" defense
@@ -200,6 +213,8 @@ class PlayerState:
     collided_ball: bool = False
     collided_player: bool = False
     collided_post: bool = False
+    catch_ban: int = 0
+    tackle_cycles: int = 0
 
 
 @dataclass(slots=True)
@@ -234,12 +249,17 @@ class World:
             1024, so results are reproducible for a given generator state and call sequence. Assigning
             ``world.rng`` replaces it and discards the buffered draws.
         noise: False turns off the three noise sources (player_rand, ball_rand, kick_rand), like HFO's
-            ``--deterministic``.
+            ``--deterministic`` (which also zeroes the tackle noise, a multiple of kick_rand). The success draws
+            of a tackle, and of a catch when catch_probability < 1, stay random, as in HFO.
         pymunk_contacts: take the separation direction of two overlapping objects from pymunk's
             ``Shape.shapes_collide`` contact normal instead of the centre line computed in floats. Both give
             the same unit vector (tested); the pymunk path syncs two bodies and costs about 13 us per
             overlapping cycle against under 1 us, and an agent pushing the ball overlaps it most cycles,
             so the float path is the default.
+
+    Attributes:
+        play_on: whether the server's play mode is PlayOn (default True; HFO episodes always are). A catch
+            outside PlayOn is a fault, a successful tackle outside PlayOn leaves the ball alone.
     """
 
     def __init__(
@@ -259,6 +279,9 @@ class World:
         self.ball = BallState()
         self.players: list[PlayerState] = []
         self.cycle = 0
+        self.play_on = True
+        # collision flags raised by a catch's overlap resolution, reported with the next step
+        self._catch_contacts: list[tuple[PlayerState | BallState, bool, bool]] = []
 
         self._post_x = PITCH_HALF_LENGTH - GOAL_POST_RADIUS
         self._post_y = 0.5 * params.goal_width + GOAL_POST_RADIUS
@@ -402,6 +425,8 @@ class World:
 
     def _push_dash(self, p: PlayerState, power: float, d: float, dir_rate: float) -> None:
         """The stamina and acceleration part of ``Player::dash`` for a clamped power and rounded direction."""
+        if p.tackle_cycles > 0:  # frozen by its own tackle: rcssserver ignores the command (M_command_done)
+            return
         sp = self.params
         back = power < 0.0
         need = -2.0 * power if back else power
@@ -416,7 +441,12 @@ class World:
         p.ay += edp * math.sin(ang)
 
     def turn(self, p: PlayerState, moment_deg: float) -> None:
-        """Server turn: body += (1 + U(-player_rand, player_rand)) * clamp(moment) / (1 + inertia*|v|)."""
+        """Server turn: body += (1 + U(-player_rand, player_rand)) * clamp(moment) / (1 + inertia*|v|).
+
+        Ignored (no random draw) while the player is frozen by its own tackle.
+        """
+        if p.tackle_cycles > 0:
+            return
         sp = self.params
         moment = min(sp.max_moment, max(sp.min_moment, float(moment_deg)))
         factor = 1.0
@@ -426,12 +456,15 @@ class World:
         p.body_deg = normalize_deg(p.body_deg + factor * moment / (1.0 + sp.inertia_moment * speed))
 
     def kick(self, p: PlayerState, power: float, direction_deg: float) -> bool:
-        """Server kick; returns False (no effect) unless the ball is within kickable_area (1.085 m).
+        """Server kick; returns False (no effect) unless the ball is within kickable_area (1.085 m) and the
+        player is not frozen by its own tackle.
 
         The ball's acceleration gets ``polar(eff, body + dir)`` with
         ``eff = power * kick_power_rate * (1 - 0.25 * dir_diff/pi - 0.25 * gap/kickable_margin)`` plus, with
         noise, ``polar(U(0, m), U(-pi, pi))``, ``m = kick_rand * (|power|/maxpower) * (pos_rate + speed_rate)``.
         """
+        if p.tackle_cycles > 0:
+            return False
         sp = self.params
         power = min(sp.maxpower, max(sp.minpower, float(power)))
         direction = min(sp.max_moment, max(sp.min_moment, float(direction_deg)))
@@ -511,12 +544,196 @@ class World:
         power = min(sp.maxpower, max(0.0, float(power)))
         return self.kick(p, power, normalize_deg(float(direction_deg)))
 
+    # --- goalie catch and tackle (rcssserver Player::goalieCatch / Player::tackle, spec §5.1-5.3) ----------
+    def catch(self, p: PlayerState, direction_deg: float) -> bool:
+        """Server catch (``Player::goalieCatch``), executed as the command arrives; True when the ball is caught.
+
+        Ignored while ``p`` is frozen by its own tackle. A fault (False, nothing else happens) when ``p`` is not
+        the goalie, its ``catch_ban`` is > 0 or the play mode is not PlayOn. Otherwise the ban becomes
+        catch_ban_cycle (5) whether or not the catch succeeds; it counts down at the end of every step.
+
+        The ball, relative to the goalie and rotated by -(body + clamp(dir, +-180)), must lie in the rectangle
+        0 <= x <= l_max, |y| <= w/2 (l_max = catchable_area_l * stretch = 1.2, w = catchable_area_w = 1.0),
+        else a fault. Inside x <= l_min (= 1.2 at stretch 1) it succeeds with catch_probability, beyond it with
+        a probability falling linearly to 0 at l_max; probability 1 draws no random number. A probabilistic
+        failure punches the ball (its velocity mirrored about the catch direction, as an acceleration).
+
+        On success the goalie moves straight toward the ball until the centres are ball_size + player_size
+        (0.385 m) apart, in rcssserver's operation order (``PVector::normalize``: the offset is scaled by
+        (r - 0.385) / max(r, 1e-10)), its body faces along that move, its velocity becomes 0, the ball is left
+        alone, and the overlaps are resolved at once (``Stadium::ballCaught`` -> ``collisions``). The rounding
+        of that move registers a ball-goalie overlap about half the time (then both velocities get -0.1x).
+        """
+        if p.tackle_cycles > 0:
+            return False
+        sp = self.params
+        if not p.goalie or p.catch_ban > 0 or not self.play_on:
+            return False
+        p.catch_ban = int(sp.catch_ban_cycle)
+        # rcssserver player.cpp goalieCatch: stretched (heterogeneous) catch area; RArea bounds centre +- size/2
+        delta = sp.catchable_area_l * (sp.catch_area_l_stretch - 1.0)
+        l_max = sp.catchable_area_l + delta
+        l_min = sp.catchable_area_l - delta
+        half_w = sp.catchable_area_w * 0.5
+        catch_angle = p.body_deg * _DEG + min(sp.max_moment, max(sp.min_moment, float(direction_deg))) * _DEG
+        ball = self.ball
+        c = math.cos(-catch_angle)
+        s = math.sin(-catch_angle)
+        dx = ball.x - p.x
+        dy = ball.y - p.y
+        rx = dx * c - dy * s
+        ry = dx * s + dy * c
+        # RArea(centre (l/2, 0), size (l, w)).inArea, bounds inclusive: l/2 - l/2 = 0 and l/2 + l/2 = l exactly
+        if not (0.0 <= rx <= l_max and -half_w <= ry <= half_w):
+            return False
+        if 0.0 <= rx <= l_min and -half_w <= ry <= half_w:
+            prob = sp.catch_probability
+        else:
+            prob = sp.catch_probability - sp.catch_probability * ((rx - l_min) / (l_max - l_min))
+            prob = min(max(0.0, prob), 1.0)
+        # boost::bernoulli_distribution: p >= 1 always succeeds, p == 0 never (neither needs a draw here)
+        if not (prob >= 1.0 or (prob > 0.0 and self._uniform() < prob)):
+            # ballPunched: the ball's velocity mirrored about the catch direction, pushed as an acceleration
+            vx0, vy0 = ball.vx, ball.vy
+            ux = vx0 * c - vy0 * s
+            uy = vx0 * s + vy0 * c
+            ux = -ux
+            c2 = math.cos(catch_angle)
+            s2 = math.sin(catch_angle)
+            ball.ax += (ux * c2 - uy * s2) - vx0
+            ball.ay += (ux * s2 + uy * c2) - vy0
+            return False
+        # the teleport, in rcssserver's IEEE operation order (spec §5.2)
+        r = math.sqrt(dx * dx + dy * dy)
+        mag = r - (sp.ball_size + sp.player_size)
+        scale = mag / max(r, _EPS)
+        nx = dx * scale
+        ny = dy * scale
+        p.x += nx
+        p.y += ny
+        p.body_deg = normalize_deg(math.degrees(math.atan2(ny, nx))) if (nx != 0.0 or ny != 0.0) else 0.0
+        p.vx = p.vy = 0.0
+        self._resolve_catch_overlaps()
+        return True
+
+    def _resolve_catch_overlaps(self) -> None:
+        """``Stadium::collisions`` run by ``ballCaught``; the flags it raises are reported with the next step."""
+        ball = self.ball
+        players = self.players
+        saved = [(q.collided_ball, q.collided_player) for q in players]
+        saved_ball = ball.collided_player
+        for q in players:
+            q.collided_ball = q.collided_player = False
+        ball.collided_player = False
+        self._collisions()
+        for q, (was_ball, was_player) in zip(players, saved, strict=True):
+            if q.collided_ball or q.collided_player:
+                self._catch_contacts.append((q, q.collided_ball, q.collided_player))
+            q.collided_ball, q.collided_player = was_ball, was_player
+        if ball.collided_player:
+            self._catch_contacts.append((ball, False, True))
+        ball.collided_player = saved_ball
+
+    def server_kickable(self, p: PlayerState) -> bool:
+        """rcssserver ``Player::ballKickable``: squared centre distance <= (player + ball size + margin)²."""
+        sp = self.params
+        dx = p.x - self.ball.x
+        dy = p.y - self.ball.y
+        area = sp.player_size + sp.ball_size + sp.kickable_margin
+        return dx * dx + dy * dy <= area * area
+
+    def tackle_success_probability(self, p: PlayerState, foul: bool = False) -> float:
+        """1 - the failure probability :meth:`tackle` would draw against now (0 when it cannot succeed)."""
+        fail = self._tackle_failure(p, foul)[0]
+        return 1.0 - fail if fail < 1.0 else 0.0
+
+    def _tackle_failure(self, p: PlayerState, foul: bool) -> tuple[float, float, float, bool]:
+        """``Player::tackle``'s failure probability, the ball relative to the body (r.x, r.y) and whether the
+        foul is effective; failure 1.0 for a ball behind (tackle_back_dist 0)."""
+        sp = self.params
+        ball = self.ball
+        body = p.body_deg * _DEG
+        c = math.cos(-body)
+        s = math.sin(-body)
+        dx = ball.x - p.x
+        dy = ball.y - p.y
+        rx = dx * c - dy * s
+        ry = dx * s + dy * c
+        tackle_dist = sp.tackle_dist if rx > 0.0 else sp.tackle_back_dist
+        if abs(tackle_dist) <= 1.0e-5:  # rcssserver player.cpp: no tackle at a zero distance
+            return 1.0, rx, ry, False
+        exponent = sp.tackle_exponent
+        if foul:
+            foul = False
+            for q in self.players:
+                if q.side != p.side and self.server_kickable(q):
+                    foul = True
+                    exponent = sp.foul_exponent
+                    break
+        fail = (abs(rx) / tackle_dist) ** exponent + (abs(ry) / sp.tackle_width) ** exponent
+        return fail, rx, ry, foul
+
+    def tackle(self, p: PlayerState, direction_deg: float, foul: bool = False) -> bool:
+        """Server tackle, protocol version >= 12 (``Player::tackle``); True when the ball was pushed.
+
+        Ignored while ``p`` is already frozen. Otherwise ``p.tackle_cycles`` becomes tackle_cycles (10) before
+        anything is tested, so a failed tackle freezes too: the player ignores every body command until
+        :meth:`step` has counted it down to 0 (10 steps). With the ball at r = (ball - player) rotated by
+        -body, the failure probability is (|r.x| / tackle_dist)^e + (|r.y| / tackle_width)^e, e = tackle_exponent
+        (6), or foul_exponent (10) when ``foul`` is asked for and some opponent can kick the ball (server
+        test, :meth:`server_kickable`); a ball behind (r.x <= 0, tackle_back_dist 0) always fails. The success
+        draw is made whenever the probability is < 1, noise or not. On success outside PlayOn nothing more
+        happens; in PlayOn an effective foul ends the freeze at once, and the ball gets the acceleration
+        polar((max_back + (max - max_back)(1 - |dir|/180)) * tackle_power_rate * (1 - 0.5 |angle(r)|/180),
+        body + dir) plus, with noise, polar(U(0, kick_rand * tackle_rand_factor * (pos_rate + speed_rate)),
+        U(-pi, pi)), pos_rate = 0.5 + 0.5 (1 - prob_fail), speed_rate = 0.5 + 0.5 |v_ball| / (3.0 * 0.94).
+        The ball's acceleration and speed caps of :meth:`step` apply.
+        """
+        if p.tackle_cycles > 0:
+            return False
+        sp = self.params
+        p.tackle_cycles = int(sp.tackle_cycles)
+        ball = self.ball
+        body = p.body_deg * _DEG
+        fail, rx, ry, foul = self._tackle_failure(p, foul)
+        if fail >= 1.0:
+            return False
+        if not self._uniform() < 1.0 - fail:
+            return False
+        if not self.play_on:
+            return False
+        if foul:
+            p.tackle_cycles = 0
+        angle = min(sp.max_moment, max(sp.min_moment, float(direction_deg))) * _DEG
+        eff = (
+            sp.max_back_tackle_power
+            + (sp.max_tackle_power - sp.max_back_tackle_power) * (1.0 - abs(angle) / math.pi)
+        ) * sp.tackle_power_rate
+        ball_angle = math.atan2(ry, rx) if (rx != 0.0 or ry != 0.0) else 0.0
+        eff *= 1.0 - 0.5 * (abs(ball_angle) / math.pi)
+        ax = eff * math.cos(angle + body)
+        ay = eff * math.sin(angle + body)
+        if self.noise and sp.kick_rand > 0.0:
+            pos_rate = 0.5 + 0.5 * (1.0 - fail)
+            speed_rate = 0.5 + 0.5 * (math.hypot(ball.vx, ball.vy) / (sp.ball_speed_max * sp.ball_decay))
+            # the v12+ tackle keeps power_rate at 1.0
+            max_rand = sp.kick_rand * sp.tackle_rand_factor * 1.0 * (pos_rate + speed_rate)
+            rr = max_rand * self._uniform()
+            th = math.pi * (2.0 * self._uniform() - 1.0)
+            ax += rr * math.cos(th)
+            ay += rr * math.sin(th)
+        ball.ax += ax
+        ball.ay += ay
+        return True
+
     # --- one cycle ---------------------------------------------------------------------------------
     def step(self) -> None:
         """Advance one cycle (see the module docstring for the order) and increment ``cycle``."""
         sp = self.params
         noise = self.noise
         for player in self.players:
+            if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
+                player.tackle_cycles -= 1
             player.collided_ball = player.collided_player = False
             self._move(
                 player,
@@ -536,9 +753,19 @@ class World:
             sp.ball_speed_max,
             sp.ball_accel_max,
         )
+        if self._catch_contacts:
+            for obj, with_ball, with_player in self._catch_contacts:
+                if isinstance(obj, BallState):
+                    obj.collided_player = obj.collided_player or with_player
+                else:
+                    obj.collided_ball = obj.collided_ball or with_ball
+                    obj.collided_player = obj.collided_player or with_player
+            self._catch_contacts = []
         self._collisions()
         for player in self.players:
             self._update_stamina(player)
+            if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
+                player.catch_ban -= 1
         self.cycle += 1
 
     def _move(
@@ -787,3 +1014,156 @@ class World:
                 inc = p.capacity
                 p.capacity = 0.0
         p.stamina = min(smax, stamina + max(0.0, inc))
+
+
+# --- HFO referee (rcssserver referee.cpp HFORef::analyse, spec §5.4) --------------------------------------------
+# HFORef's messages, also HFO's hfo::Status names
+HFO_IN_GAME = "IN_GAME"
+HFO_GOAL = "GOAL"
+HFO_CAPTURED_BY_DEFENSE = "CAPTURED_BY_DEFENSE"
+HFO_OUT_OF_BOUNDS = "OUT_OF_BOUNDS"
+HFO_OUT_OF_TIME = "OUT_OF_TIME"
+HFO_TURNOVER_TIME = 2  # referee.cpp HFORef::TURNOVER_TIME
+
+
+def crosses_right_goal_line(
+    prev_x: float, prev_y: float, x: float, y: float, params: ServerParams | None = None
+) -> bool:
+    """rcssserver ``Referee::crossGoalLine(RIGHT, prev)``: did the ball's centre cross into the right goal?
+
+    The centre must go from |x| <= 52.5 + ball_size to x > 52.5 + ball_size, a start behind the goal line
+    (|prev x| > 52.5) outside the mouth (|prev y| > goal_width/2 + post radius) never counts, and the crossing
+    y, computed as gradient * line_x + offset, must satisfy |y| <= goal_width/2 + post radius (7.069999...).
+    """
+    sp = params if params is not None else _DEFAULT_PARAMS
+    line_x = PITCH_HALF_LENGTH + sp.ball_size  # PITCH_LENGTH * 0.5 + ball_size
+    if prev_x == x:
+        return False
+    if abs(x) <= line_x or abs(prev_x) > line_x:
+        return False
+    if -x >= 0.0:  # side RIGHT is -1: side * x >= 0 is the wrong half
+        return False
+    mouth = sp.goal_width * 0.5 + GOAL_POST_RADIUS
+    if abs(prev_y) > mouth and abs(prev_x) > PITCH_HALF_LENGTH:
+        return False
+    gradient = (y - prev_y) / (x - prev_x)
+    offset = prev_y - gradient * prev_x
+    return abs(gradient * line_x + offset) <= mouth
+
+
+def in_hfo_area(x: float, y: float) -> bool:
+    """rcssserver ``HFORef::inHFOArea``: 0 <= x <= 52.5 and |y| <= 34 (bounds inclusive)."""
+    return x >= 0.0 and x <= PITCH_HALF_LENGTH and abs(y) <= PITCH_HALF_WIDTH
+
+
+class HFOReferee:
+    """rcssserver's HFO referee (``HFORef``), exactly: call :meth:`reset` after placing the field and
+    :meth:`analyse` after every :meth:`World.step`.
+
+    :meth:`analyse`, in PlayOn, checks in this order and returns the first that holds:
+
+    1. GOAL: :func:`crosses_right_goal_line` from the previous analysed ball position;
+    2. OUT_OF_BOUNDS: the *previous* ball position is outside :func:`in_hfo_area`;
+    3. CAPTURED_BY_DEFENSE: ``take_time >= 2`` as counted by the earlier cycles;
+    4. OUT_OF_TIME: ``untouched`` as counted by the earlier cycles exceeds ``untouched_time`` (if > 0), or more
+       than ``trial_time`` (if > 0) cycles were played since the reset;
+    5. otherwise ``untouched += 1``, then the players are walked in server order (``World.players``: the
+       offense connects first). Each with squared centre distance to the ball ``< kickable_area²`` (strict)
+       becomes the holder and zeroes ``untouched``; an offense ("l") player sets ``offense_possession``, a
+       defence ("r") player clears it, adds 1 to ``take_time`` and stops the walk. ``offense_possession``
+       then zeroes ``take_time``. If the holder (kept from earlier cycles) is defence unum 1:
+       CAPTURED_BY_DEFENSE, else IN_GAME.
+
+    The previous ball position is updated at the end of every call. Outside PlayOn (``world.play_on`` False)
+    nothing but that update happens.
+
+    Args:
+        params: server parameters (kickable_area, ball_size, goal_width).
+        untouched_time: HFO's ``hfo_max_untouched_time`` (bin/HFO ``--untouched-time``, default 100); <= 0 off.
+        trial_time: HFO's ``hfo_max_trial_time`` (bin/HFO ``--frames-per-trial``); <= 0 off (the default:
+            hfo2d's env truncates on its own).
+    """
+
+    __slots__ = (
+        "params",
+        "untouched_time",
+        "trial_time",
+        "take_time",
+        "untouched",
+        "holder_side",
+        "holder_unum",
+        "cycles",
+        "prev_ball_x",
+        "prev_ball_y",
+    )
+
+    def __init__(self, params: ServerParams, untouched_time: int = 100, trial_time: int = 0) -> None:
+        self.params = params
+        self.untouched_time = int(untouched_time)
+        self.trial_time = int(trial_time)
+        self.take_time = 0
+        self.untouched = 0
+        self.holder_side = "U"
+        self.holder_unum = -1
+        self.cycles = 0
+        self.prev_ball_x = 0.0
+        self.prev_ball_y = 0.0
+
+    def reset(self, world: World) -> None:
+        """``HFORef::resetField``'s bookkeeping: counters zeroed, no holder, previous ball = the placed ball."""
+        self.take_time = 0
+        self.untouched = 0
+        self.holder_side = "U"
+        self.holder_unum = -1
+        self.cycles = 0
+        self.prev_ball_x = world.ball.x
+        self.prev_ball_y = world.ball.y
+
+    def analyse(self, world: World) -> str:
+        """The status after one step (see the class docstring); updates the counters."""
+        ball = world.ball
+        bx = ball.x
+        by = ball.y
+        status = HFO_IN_GAME
+        if world.play_on:
+            self.cycles += 1
+            if crosses_right_goal_line(self.prev_ball_x, self.prev_ball_y, bx, by, self.params):
+                status = HFO_GOAL
+            elif not in_hfo_area(self.prev_ball_x, self.prev_ball_y):
+                status = HFO_OUT_OF_BOUNDS
+            elif self.take_time >= HFO_TURNOVER_TIME:
+                status = HFO_CAPTURED_BY_DEFENSE
+            elif (self.untouched_time > 0 and self.untouched > self.untouched_time) or (
+                self.trial_time > 0 and self.cycles > self.trial_time
+            ):
+                status = HFO_OUT_OF_TIME
+            else:
+                self.untouched += 1
+                offense_possession = False
+                # ServerParam::kickableArea(): player_size + kickable_margin + ball_size, squared by std::pow
+                area = self.params.kickable_area
+                limit2 = area * area
+                for p in world.players:
+                    dx = p.x - bx
+                    dy = p.y - by
+                    if dx * dx + dy * dy < limit2:
+                        self.holder_unum = p.unum
+                        self.untouched = 0
+                        if p.side == "l":
+                            offense_possession = True
+                            self.holder_side = "L"
+                        else:
+                            offense_possession = False
+                            self.holder_side = "R"
+                            self.take_time += 1
+                            break
+                if offense_possession:
+                    self.take_time = 0
+                if self.holder_side == "R" and self.holder_unum == 1:
+                    status = HFO_CAPTURED_BY_DEFENSE
+        self.prev_ball_x = bx
+        self.prev_ball_y = by
+        return status
+
+
+_DEFAULT_PARAMS = ServerParams()
