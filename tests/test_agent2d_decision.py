@@ -155,7 +155,9 @@ def test_shot_test() -> None:
     # wide of the goal
     assert not is_ball_shoot_moving(view_g((44.0, 2.0), ball_vel=(2.0, 2.0), goalie=(49.8, 0.0)))
     # held by the attacker
-    assert not is_ball_shoot_moving(view_g((44.0, 2.0), ball_vel=(2.0, 0.0), goalie=(49.8, 0.0), kick_opp=True))
+    assert not is_ball_shoot_moving(
+        view_g((44.0, 2.0), ball_vel=(2.0, 0.0), goalie=(49.8, 0.0), kick_opp=True)
+    )
 
 
 def test_chase_situation_in_the_danger_area() -> None:

@@ -121,7 +121,10 @@ def can_catch(v: GoalieView, last_catch_cycle: int) -> bool:
         return False
     if not v.ball_dist < CATCH_DIST:
         return False
-    return -PITCH_HALF_LENGTH <= v.bx <= CATCH_RECT_MAX_X and -CATCH_RECT_HALF_WIDTH <= v.by <= CATCH_RECT_HALF_WIDTH
+    return (
+        -PITCH_HALF_LENGTH <= v.bx <= CATCH_RECT_MAX_X
+        and -CATCH_RECT_HALF_WIDTH <= v.by <= CATCH_RECT_HALF_WIDTH
+    )
 
 
 def decide(eff: Effector, v: GoalieView, table: InterceptTable, last_catch_cycle: int) -> None:
@@ -159,7 +162,13 @@ def is_ball_shoot_moving(v: GoalieView) -> bool:
         return v.bx < -46.0 and abs(v.by) < GOAL_HALF_WIDTH + 2.0
     line = Line.from_angle(v.bx, v.by, _ball_angle(v))
     y = line.get_y(-PITCH_HALF_LENGTH)
-    if abs(line.b) > 0.1 and y is not None and abs(y) < GOAL_HALF_WIDTH + 2.0 and v.bx < -40.0 and abs(v.by) < 15.0:
+    if (
+        abs(line.b) > 0.1
+        and y is not None
+        and abs(y) < GOAL_HALF_WIDTH + 2.0
+        and v.bx < -40.0
+        and abs(v.by) < 15.0
+    ):
         end_x = v.bx + v.wx / (1.0 - BALL_DECAY)
         return math.hypot(v.wx, v.wy) > 0.5 and end_x < -PITCH_HALF_LENGTH + 2.0
     return False
@@ -214,16 +223,20 @@ def chase_ball(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
         body_intercept(eff, v, table, save_recovery)
         return
     inter = ball_line.intersection(defend_line)
-    if inter is None or ball_line.dist(v.px, v.py) < CATCHABLE_AREA * 0.8 or abs(inter[1]) > GOAL_HALF_WIDTH + 3.0:
-        if not v.kick_opp:
-            if (
-                self_min <= table.opp_min + 2
-                and _in_intercept_area(ix, iy, pen_thr, -PITCH_HALF_LENGTH - 2.0)
-                and body_intercept(eff, v, table, False)
-            ):
-                return
-            go_to_catch_point(eff, v, v.bx, v.by)
+    line_unusable = (
+        inter is None
+        or ball_line.dist(v.px, v.py) < CATCHABLE_AREA * 0.8
+        or abs(inter[1]) > GOAL_HALF_WIDTH + 3.0
+    )
+    if line_unusable and not v.kick_opp:
+        if (
+            self_min <= table.opp_min + 2
+            and _in_intercept_area(ix, iy, pen_thr, -PITCH_HALF_LENGTH - 2.0)
+            and body_intercept(eff, v, table, False)
+        ):
             return
+        go_to_catch_point(eff, v, v.bx, v.by)
+        return
     if inter is None:
         # Only reachable with a kickable opponent and a vertical ball line: librcsc's invalidated vector has
         # huge coordinates, so the range test below fails it.
@@ -278,7 +291,10 @@ def target_point(v: GoalieView, table: InterceptTable) -> tuple[float, float]:
     if by > GOAL_HALF_WIDTH + 3.0:
         if -140.0 < angle_of(-PITCH_HALF_LENGTH - bx, GOAL_HALF_WIDTH - by) < -90.0:
             return DANGER_MOVE_X, GOAL_HALF_WIDTH + 0.001
-    elif by < -GOAL_HALF_WIDTH - 3.0 and 90.0 < angle_of(-PITCH_HALF_LENGTH - bx, -GOAL_HALF_WIDTH - by) < 140.0:
+    elif (
+        by < -GOAL_HALF_WIDTH - 3.0
+        and 90.0 < angle_of(-PITCH_HALF_LENGTH - bx, -GOAL_HALF_WIDTH - by) < 140.0
+    ):
         return DANGER_MOVE_X, -GOAL_HALF_WIDTH - 0.001
     if bx < -PITCH_HALF_LENGTH + 8.0 and abs(by) > GOAL_HALF_WIDTH + 2.0:
         y = GOAL_HALF_WIDTH - 0.1
@@ -319,7 +335,9 @@ def basic_dash_power(v: GoalieView, table: InterceptTable, mx: float) -> float:
     return inc
 
 
-def _go_to_point_look_ball(eff: Effector, v: GoalieView, tx: float, ty: float, thr: float, power: float) -> None:
+def _go_to_point_look_ball(
+    eff: Effector, v: GoalieView, tx: float, ty: float, thr: float, power: float
+) -> None:
     """Bhv_GoalieBasicMove::doGoToPointLookBall: Bhv_GoToPointLookBall in PlayOn, else go-to-point then face."""
     if v.play_on:
         go_to_point_look_ball(eff, v, tx, ty, thr, power)

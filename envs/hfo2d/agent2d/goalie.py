@@ -29,6 +29,7 @@ from hfo2d.agent2d.common import (
 )
 from hfo2d.agent2d.decision import decide
 from hfo2d.agent2d.intercept import build_intercept_table
+from hfo2d.agent2d.tackle import client_tackle_dir
 from hfo2d.physics import PlayerState, ServerParams, World
 
 # librcsc world_model.cpp updatePlayerStateCache: an opponent counts as kickable within
@@ -55,7 +56,11 @@ class Agent2dGoalie:
     """
 
     def __init__(self, params: ServerParams, rng: np.random.Generator, skill: float = 1.0) -> None:
-        if isinstance(skill, bool) or not isinstance(skill, (int, float, np.number)) or not 0.0 <= skill <= 1.0:
+        if (
+            isinstance(skill, bool)
+            or not isinstance(skill, (int, float, np.number))
+            or not 0.0 <= skill <= 1.0
+        ):
             raise ValueError(f"keeper skill must be a number in [0, 1], got {skill!r}")
         self.params = params
         self.rng = rng
@@ -120,10 +125,11 @@ class Agent2dGoalie:
             power, direction = client_dash(view, command.a, command.b)
             world.dash(keeper, power, direction)
         elif kind == "catch":
-            if world.catch(keeper, command.a):
+            # PlayerCatchCommand: the direction is written with a C++ stream's default 6 significant digits
+            if world.catch(keeper, float(f"{norm_deg(command.a):.6g}")):
                 self._catch_pending = True
         elif kind == "tackle":
-            world.tackle(keeper, command.a, command.foul)
+            world.tackle(keeper, client_tackle_dir(command.a), command.foul)
         self._last_body_kind = kind
 
     # -------------------------------------------------------------------------------------------------------------
