@@ -449,7 +449,10 @@ def load_for_evaluation(
     torch.set_num_threads(1)
     # A 1-transition replay buffer: evaluation never trains.
     model = skill_ddpg_class().load(str(resolved.path), device="cpu", buffer_size=1)
-    env = gym.make(env_id, **kwargs)
+    try:
+        env = gym.make(env_id, **kwargs)
+    except FileNotFoundError as error:  # e.g. HFO/Real*: no HFO build in hfo_dir / $HFO_DIR (hfo2d.real)
+        raise EvaluationError(str(error)) from error
     if env.observation_space.shape != model.observation_space.shape:
         env.close()
         raise EvaluationError(
