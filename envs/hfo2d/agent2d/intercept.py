@@ -231,12 +231,13 @@ def _waited(wt: list[tuple[float, float, float]], n: int) -> tuple[float, float,
 
 # --- public entry point ----------------------------------------------------------------------------------------
 def build_intercept_table(
-    view: GoalieView, player_rand: float = 0.1, ball_rand: float = 0.05, full: bool = True
+    view: GoalieView, player_rand: float | None = None, ball_rand: float | None = None, full: bool = True
 ) -> InterceptTable:
     """librcsc ``InterceptTable::update`` for the goalie's view (GF).
 
     ``player_rand`` / ``ball_rand`` are the server's noise parameters as the client receives them (rcssserver
-    defaults 0.1 / 0.05 with noise on; 0 / 0 under HFO's ``--deterministic``).
+    defaults 0.1 / 0.05 with noise on; 0 / 0 under HFO's ``--deterministic``). Left at None they come from the
+    view's ``player_rand`` / ``ball_rand`` fields, or are 0.1 / 0.05 if the view has none.
 
     Returns the ball cache (``view.bx, by`` moved by ``view.wx, wy``), the goalie's candidates sorted by
     (reach cycle, turn cycles), ``self_min`` (0 when the goalie is kickable; 1000 when the first sorted
@@ -247,6 +248,10 @@ def build_intercept_table(
     at most one candidate per reach cycle, in increasing cycles), but it is not the cache that Body_Intercept's
     BestIntercept needs. Use it for the decisions that read only ``self_min`` and ``opp_min``.
     """
+    if player_rand is None:
+        player_rand = getattr(view, "player_rand", 0.1)
+    if ball_rand is None:
+        ball_rand = getattr(view, "ball_rand", 0.05)
     bx = view.bx
     by = view.by
     wx = view.wx
