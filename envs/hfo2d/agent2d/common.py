@@ -19,7 +19,9 @@ from dataclasses import dataclass, field
 PITCH_HALF_LENGTH = 52.5
 PITCH_HALF_WIDTH = 34.0
 GOAL_HALF_WIDTH = 7.01
-PENALTY_AREA_X = -36.0  # GF penalty-area line (36 m from the halfway line: rcssserver penalty_area_length 16.5)
+PENALTY_AREA_X = (
+    -36.0
+)  # GF penalty-area line (36 m from the halfway line: rcssserver penalty_area_length 16.5)
 PENALTY_AREA_HALF_WIDTH = 20.16
 OWN_GOAL = (-52.5, 0.0)  # G0
 KICKABLE_AREA = 1.085  # player_size 0.3 + kickable_margin 0.7 + ball_size 0.085
@@ -167,6 +169,10 @@ class GoalieView:
     self_kickable: bool = False
     lk_not_ours: bool = True  # the last kicker is not the goalie's side
     play_on: bool = True  # False only in GoalieCatch mode after a non-terminal catch
+    # the server's noise parameters as the client reads them (0 under HFO's --deterministic); librcsc's
+    # intercept and WaitTurn margins use them
+    ball_rand: float = 0.05
+    player_rand: float = 0.1
 
     @property
     def ball_dist(self) -> float:
@@ -205,6 +211,9 @@ class InterceptTable:
     self_cache: list[InterceptEntry] = field(default_factory=list)  # sorted by (reach, turns)
     self_min: int = 1000
     opp_min: int = 1000
+    complete: bool = (
+        True  # False: the self cache stops at its fastest entry (enough for self_min and opp_min)
+    )
 
 
 # --- commands -------------------------------------------------------------------------------------------------

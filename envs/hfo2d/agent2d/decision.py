@@ -42,6 +42,7 @@ from hfo2d.agent2d.common import (
     norm_deg,
     rotate,
 )
+from hfo2d.agent2d.intercept import build_intercept_table
 from hfo2d.agent2d.tackle import basic_tackle
 
 # --- RoleGoalie::execute: the catch rectangle (our penalty area shrunk by 1 m: x in [-52.5, -37], |y| <= 19.16)
@@ -96,6 +97,14 @@ class Line:
             (self.b * other.c - other.b * self.c) / tmp,
             (other.a * self.c - self.a * other.c) / tmp,
         )
+
+
+def _complete(v: GoalieView, table: InterceptTable) -> InterceptTable:
+    """The whole intercept table, for Body_Intercept's BestIntercept; the other rules need only its minima, which
+    a table that stops at the fastest entry already has exactly (so the fast path builds that one first)."""
+    if table.complete:
+        return table
+    return build_intercept_table(v)
 
 
 def _ball_angle(v: GoalieView) -> float:
@@ -220,7 +229,7 @@ def chase_ball(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
     defend_line = Line.from_points(v.px, -10.0, v.px, 10.0)
     if _in_intercept_area(ix, iy, pen_thr, -PITCH_HALF_LENGTH - 1.0):
         save_recovery = ball_line.dist(v.px, v.py) < CATCHABLE_AREA
-        body_intercept(eff, v, table, save_recovery)
+        body_intercept(eff, v, _complete(v, table), save_recovery, ball_rand=v.ball_rand)
         return
     inter = ball_line.intersection(defend_line)
     line_unusable = (
@@ -232,7 +241,7 @@ def chase_ball(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
         if (
             self_min <= table.opp_min + 2
             and _in_intercept_area(ix, iy, pen_thr, -PITCH_HALF_LENGTH - 2.0)
-            and body_intercept(eff, v, table, False)
+            and body_intercept(eff, v, _complete(v, table), False, ball_rand=v.ball_rand)
         ):
             return
         go_to_catch_point(eff, v, v.bx, v.by)
@@ -240,7 +249,7 @@ def chase_ball(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
     if inter is None:
         # Only reachable with a kickable opponent and a vertical ball line: librcsc's invalidated vector has
         # huge coordinates, so the range test below fails it.
-        if not body_intercept(eff, v, table, False):
+        if not body_intercept(eff, v, _complete(v, table), False, ball_rand=v.ball_rand):
             basic_move(eff, v, table)
         return
     xx, xy = inter
@@ -249,7 +258,7 @@ def chase_ball(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
         or xx > PENALTY_AREA_X - CATCHABLE_AREA
         or abs(xy) > PENALTY_AREA_HALF_WIDTH - CATCHABLE_AREA
     ):
-        if not body_intercept(eff, v, table, False):
+        if not body_intercept(eff, v, _complete(v, table), False, ball_rand=v.ball_rand):
             basic_move(eff, v, table)
         return
     fx = v.px + v.vx / (1.0 - PLAYER_DECAY)

@@ -104,7 +104,8 @@ class Agent2dGoalie:
         elif self.skill < 1.0 and self.rng.random() >= self.skill:
             command = None  # the weakening: hesitate this cycle
         else:
-            table = build_intercept_table(view, world.params.player_rand if world.noise else 0.0)
+            table = build_intercept_table(view, full=False)
+            table.complete = False
             eff = Effector()
             decide(eff, view, table, self._last_catch_cycle)
             command = eff.command
@@ -162,6 +163,8 @@ class Agent2dGoalie:
             true_wy=wy,
             has_opp=attacker is not None,
             self_kickable=d_b <= SELF_KICKABLE_DIST,
+            ball_rand=world.params.ball_rand if world.noise else 0.0,
+            player_rand=world.params.player_rand if world.noise else 0.0,
         )
         if attacker is not None:
             view.ox, view.oy = -attacker.x, -attacker.y
