@@ -40,6 +40,7 @@ KICKABLE_OPP_ERROR_RATE = 0.02
 LAST_KICKER_DIST = 6.0
 BALL_VEL_CHANGE_SPEED = 0.1
 BALL_VEL_CHANGE_ANGLE = 20.0
+NEVER_CAUGHT = -1000
 
 
 class Agent2dGoalie:
@@ -68,7 +69,9 @@ class Agent2dGoalie:
         self.last_command: Command | None = None
         self.last_view: GoalieView | None = None
         # client state that outlives an episode in real HFO (the trainer resets only the server's objects)
-        self._last_catch_cycle = 0  # librcsc SelfObject::catchTime, as a cycle number
+        # librcsc SelfObject::catchTime as a cycle number; NEVER_CAUGHT: no catch yet (real HFO's first episode
+        # starts long after cycle 0, so the ban test of the client never bites before a first catch)
+        self._last_catch_cycle = NEVER_CAUGHT
         self._last_body_kind: str | None = None  # ActionEffector::lastBodyCommandType
         self._last_kicker_ours = False  # WorldModel::M_last_kicker_side == our side (neutral at the start)
         self._prev_ball_vel: tuple[float, float] | None = None
@@ -95,7 +98,7 @@ class Agent2dGoalie:
         if self._last_body_kind == "catch":
             self._last_catch_cycle = cycle
         elif self._last_catch_cycle == cycle:
-            self._last_catch_cycle = 0
+            self._last_catch_cycle = NEVER_CAUGHT
         view = self._view(world, keeper)
         self.last_view = view
         command: Command | None = None
