@@ -19,14 +19,13 @@ Three rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperime
   gets the same ``env_kwargs`` as the training envs, which is what rl-zoo3 documents as its default.
 
 :class:`HFOEpisodeStatsCallback` logs ``rollout/episodes`` (SB3 excludes ``time/episodes`` from TensorBoard, and
-the paper's figures are plotted against episodes) and ``rollout/goal_rate`` (which SkillDDPG logs itself too,
-with the same definition; the callback makes it available for any SB3 algorithm, e.g. a TD3 baseline).
+the paper's figures are plotted against episodes). The training goal rate is SB3's own ``rollout/success_rate``
+(from HFO's ``info["is_success"]``), logged for any SB3 algorithm, e.g. a TD3 baseline.
 """
 
 from __future__ import annotations
 
 import sys
-from collections import deque
 from collections.abc import Callable, Sequence
 from typing import Any
 
@@ -38,9 +37,6 @@ ALGO_NAME = "skill_ddpg"
 
 #: Hyperparameters holding a learning rate that rl-zoo3 style strings (``"lin_1e-3"``) or floats may describe.
 SCHEDULE_KEYS: tuple[str, ...] = ("learning_rate", "learning_rate_actor", "learning_rate_critic")
-
-#: Episode end status that counts as a goal (HFO's ``GOAL`` status string, as put in ``info["status"]``).
-GOAL_STATUS = "GOAL"
 
 
 def hfo_env_ids() -> list[str]:
@@ -197,39 +193,22 @@ def run_rl_zoo_entry_point(
 
 
 class HFOEpisodeStatsCallback(BaseCallback):
-    """Log per-episode HFO outcomes during training.
+    """Log ``rollout/episodes``, the number of episodes finished so far, whenever one ends (written at SB3's next
+    log dump): SB3 logs ``time/episodes`` to stdout only, and the paper's Figures 3 and 4 use episodes on the x axis.
 
-    Records, whenever an episode ends (values are written at SB3's next log dump):
-
-    * ``rollout/goal_rate``: fraction of the last ``window`` episodes whose final ``info["status"]`` is ``GOAL``
-      (by default the model's ``stats_window_size``, the window of SB3's ``rollout/ep_rew_mean``: 100 episodes);
-    * ``rollout/episodes``: episodes finished so far (SB3 logs ``time/episodes`` to stdout only, and the
-      paper's Figures 3 and 4 use episodes on the x axis).
-
-    :param window: number of most recent episodes the goal rate averages over (None: the model's
-        ``stats_window_size``, else 100).
+    The goal rate is not logged here: SB3 logs it for every algorithm as ``rollout/success_rate`` (the last
+    ``stats_window_size`` episodes' ``info["is_success"]``, which HFO sets at a GOAL), the one name it has.
     """
 
-    def __init__(self, window: int | None = None, verbose: int = 0) -> None:
+    def __init__(self, verbose: int = 0) -> None:
         super().__init__(verbose)
-        self.window = window
-        self.recent_goals: deque[float] = deque(maxlen=window or 100)
         self.episodes = 0
-
-    def _init_callback(self) -> None:
-        if self.window is None:
-            self.recent_goals = deque(maxlen=int(getattr(self.model, "_stats_window_size", 100)))
 
     def _on_step(self) -> bool:
         dones = np.asarray(self.locals.get("dones", []), dtype=bool)
-        infos: Sequence[dict[str, Any]] = self.locals.get("infos", [])
-        for done, info in zip(dones, infos, strict=False):
-            if not done:
-                continue
-            self.episodes += 1
-            self.recent_goals.append(float(info.get("status") == GOAL_STATUS))
-        if self.recent_goals and dones.any():
-            self.logger.record("rollout/goal_rate", float(np.mean(self.recent_goals)))
+        finished = int(dones.sum())
+        if finished:
+            self.episodes += finished
             self.logger.record("rollout/episodes", self.episodes)
         return True
 

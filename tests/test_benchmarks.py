@@ -376,3 +376,16 @@ def test_episode_benchmarks_refuse_a_bad_episode_count(tmp_path: Path, episodes:
     )
     assert completed.returncode == 2 and "--episodes" in completed.stderr
     assert ("at least 1" if episodes == "0" else "must be an integer") in completed.stderr
+
+
+def test_python_vs_cli_times_both_with_the_same_thread_count(tmp_path: Path) -> None:
+    out = tmp_path / "python_vs_cli.json"
+    command = [sys.executable, str(REPO / "benchmarks" / "python_vs_cli.py"), "--steps", "3"]
+    command += ["--no-default-threads", "--out", str(out)]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    results = json.loads(out.read_text())
+    assert set(results["steps_per_s"]) == {"python", "cli"}
+    assert all(sample["steps"] == 3 for runs in results["samples"].values() for sample in runs)
+    assert results["threads"] == {"python": [1], "cli": [1]}  # learn chose the CLI's count by itself
+    assert results["ratio_python_vs_cli"] == results["steps_per_s"]["python"] / results["steps_per_s"]["cli"]

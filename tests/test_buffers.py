@@ -137,3 +137,41 @@ def test_mc_mixing_model_round_trips_through_save_and_load(tmp_path: object) -> 
     model.save(path)
     loaded = SkillDDPG.load(path, env=gym.make("Pendulum-v1"), device="cpu")
     assert loaded.mc_mixing == 0.2 and isinstance(loaded.replay_buffer, MonteCarloReplayBuffer)
+
+
+def test_load_replay_buffer_refuses_a_plain_buffer_into_an_mc_mixing_model(tmp_path: object) -> None:
+    plain = pendulum_model(buffer_size=500)
+    plain.learn(25)
+    path = f"{tmp_path}/plain.pkl"
+    plain.save_replay_buffer(path)
+    model = pendulum_model(mc_mixing=0.2, buffer_size=500)
+    own = model.replay_buffer
+    with pytest.raises(
+        ValueError, match=r"mc_mixing=0.2 needs a MonteCarloReplayBuffer .*got a ReplayBuffer"
+    ):
+        model.load_replay_buffer(path)
+    assert model.replay_buffer is own  # kept: the next update still finds mc_valid
+    model.learn(25)
+    # The other way round is fine: a MonteCarloReplayBuffer is a ReplayBuffer.
+    model.save_replay_buffer(f"{tmp_path}/mc.pkl")
+    plain.load_replay_buffer(f"{tmp_path}/mc.pkl")
+    assert isinstance(plain.replay_buffer, MonteCarloReplayBuffer)
+
+
+def test_load_replay_buffer_refuses_returns_of_another_gamma_and_other_shapes(tmp_path: object) -> None:
+    source = pendulum_model(mc_mixing=0.2, gamma=0.9, buffer_size=500)
+    path = f"{tmp_path}/mc.pkl"
+    source.save_replay_buffer(path)
+    model = pendulum_model(mc_mixing=0.2, gamma=0.99, buffer_size=500)
+    with pytest.raises(ValueError, match=r"discounted with gamma=0.9, the model's is 0.99"):
+        model.load_replay_buffer(path)
+    other = SkillDDPG(
+        "HFOPolicy",
+        "HFO/EmptyGoal-v0",
+        buffer_size=100,
+        policy_kwargs={"net_arch": [8]},
+        mc_mixing=0.2,
+        gamma=0.9,
+    )
+    with pytest.raises(ValueError, match=r"observations of shape \(3,\), the model's have shape \(58,\)"):
+        other.load_replay_buffer(path)

@@ -319,8 +319,44 @@ def test_router_output_is_validated_at_first_call(mode: str, message: str) -> No
     policy = make_policy(net_arch=[8], n_skills=2, skill_router=BadRouter(mode))
     with pytest.raises(ValueError, match=message):
         policy.predict(np.zeros((5, 58), np.float32))
+    with pytest.raises(ValueError, match=message):
+        policy.numpy_route(np.zeros((5, 58), np.float32))
     with pytest.raises(ValueError, match="must return an array"):
         validate_skills([0, 1], 2, 2, "router")
+
+
+class SwitchableRouter(SkillRouter):
+    """Routes by ``obs[:, 46]`` (FieldHalfRouter's rule) until ``index`` is set, then returns ``index`` everywhere."""
+
+    n_skills = 2
+
+    def __init__(self) -> None:
+        self.index: int | None = None
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        if self.index is None:
+            return FieldHalfRouter()(obs)
+        if isinstance(obs, th.Tensor):
+            return th.full((obs.shape[0],), self.index, dtype=th.long)
+        return np.full(obs.shape[0], self.index, dtype=np.int64)
+
+
+@pytest.mark.parametrize("index", [-1, 2])
+@pytest.mark.parametrize("batch", [1, 4])
+def test_router_output_is_validated_on_every_call(index: int, batch: int) -> None:
+    router = SwitchableRouter()
+    policy = make_policy(net_arch=[8], n_skills=2, skill_router=router)
+    obs = np.zeros((batch, 58), np.float32)
+    policy.predict(obs, deterministic=True)  # a valid first call
+    assert policy.numpy_route(obs).tolist() == [1] * batch
+    router.index = index
+    message = rf"skill indices in \[{index}, {index}\].*\[0, 2\)"
+    with pytest.raises(ValueError, match=message):
+        policy.predict(obs, deterministic=True)  # not routed to the last head
+    with pytest.raises(ValueError, match=message):
+        policy.route(th.as_tensor(obs))
+    with pytest.raises(ValueError, match=message):
+        policy.numpy_route(obs)
 
 
 def test_router_objects_compare_and_pickle() -> None:

@@ -569,13 +569,14 @@ def test_hfo_empty_goal_500_steps_logs_everything(tmp_path: Path) -> None:
         "train/learning_rate_actor",
         "train/learning_rate_critic",
         "rollout/ep_rew_mean",
-        "rollout/goal_rate",
+        "rollout/success_rate",
         "rollout/epsilon",
         "rollout/skill_0_fraction",
         "rollout/skill_1_fraction",
     ):
         assert columns.get(key), key
     assert any(key.startswith("train/actor_loss_skill_") and values for key, values in columns.items())
+    assert "rollout/goal_rate" not in columns  # the goal rate has one name: SB3's rollout/success_rate
     fractions = [
         float(row["rollout/skill_0_fraction"]) + float(row["rollout/skill_1_fraction"])
         for row in rows
@@ -696,6 +697,106 @@ def test_bad_inputs_raise_clear_errors() -> None:
     model = make_model(2, learning_starts=0, policy_kwargs=dict(skill_router=OutOfRangeRouter()))
     with pytest.raises(ValueError, match=r"skill indices in \[5, 5\]"):
         model.learn(5)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"gamma": 2.0}, r"gamma must lie in \[0, 1\], got 2.0"),
+        ({"gamma": -1.0}, r"gamma must lie in \[0, 1\], got -1.0"),
+        ({"gamma": float("nan")}, r"gamma must lie in \[0, 1\], got nan"),
+        ({"tau": float("nan")}, r"tau must lie in \[0, 1\], got nan"),
+        ({"buffer_size": 0}, r"buffer_size must be an integer >= 1 .*got 0"),
+        ({"buffer_size": 1e6}, r"buffer_size must be an integer >= 1 .*got 1000000.0"),
+        ({"learning_starts": -1}, r"learning_starts must be an integer >= 0 .*got -1"),
+        ({"batch_size": 0}, r"batch_size must be an integer >= 1 .*got 0"),
+        ({"learning_rate_actor": float("nan")}, "learning_rate_actor must be a finite float >= 0"),
+        ({"learning_rate_critic": float("inf")}, "learning_rate_critic must be a finite float >= 0"),
+        ({"preactivation_penalty": float("nan")}, "preactivation_penalty must be a finite number >= 0"),
+        ({"exploration_fraction": float("nan")}, r"exploration_fraction must lie in \[0, 1\]"),
+    ],
+)
+def test_bad_values_raise_an_error_naming_the_argument(kwargs: dict[str, object], message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        make_model(1, **kwargs)
+
+
+def test_boundary_values_are_accepted() -> None:
+    model = make_model(1, gamma=1.0, buffer_size=1, learning_starts=0, tau=0.0)
+    assert model.gamma == 1.0 and model.learning_starts == 0
+
+
+def test_load_rejects_a_bad_override(tmp_path: Path) -> None:
+    make_model(1).save(tmp_path / "model.zip")
+    with pytest.raises(ValueError, match=r"gamma must lie in \[0, 1\]"):
+        SkillDDPG.load(tmp_path / "model.zip", env=HybridTargetEnv(), gamma=float("nan"))
+
+
+class LaterBadRouter(SkillRouter):
+    """Valid on its first ``valid_calls`` calls, then every index is -1."""
+
+    n_skills = 2
+
+    def __init__(self, valid_calls: int) -> None:
+        self.valid_calls = valid_calls
+        self.calls = 0
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        self.calls += 1
+        bad = self.calls > self.valid_calls
+        if isinstance(obs, th.Tensor):
+            return th.full((obs.shape[0],), -1 if bad else 0, dtype=th.long)
+        return np.full(obs.shape[0], -1 if bad else 0, dtype=np.int64)
+
+
+def test_router_output_is_checked_in_every_update() -> None:
+    model = make_model(2, learning_starts=64, policy_kwargs=dict(skill_router=LaterBadRouter(10**6)))
+    model.learn(64)  # warm-up only: the buffer fills, no update
+    model.train(gradient_steps=2, batch_size=8)
+    model.policy.skill_router.valid_calls = model.policy.skill_router.calls  # type: ignore[attr-defined]
+    with pytest.raises(ValueError, match=r"skill indices in \[-1, -1\]"):
+        model.train(gradient_steps=1, batch_size=8)
+
+
+def test_router_output_is_checked_on_every_rollout_step() -> None:
+    model = make_model(2, learning_starts=100, policy_kwargs=dict(skill_router=LaterBadRouter(3)))
+    with pytest.raises(ValueError, match=r"skill indices in \[-1, -1\]"):
+        model.learn(10)
+
+
+class ThreadRecorder(BaseCallback):
+    def _on_training_start(self) -> None:
+        self.threads = th.get_num_threads()
+
+    def _on_step(self) -> bool:
+        return True
+
+
+@pytest.mark.parametrize(
+    ("variable", "chosen", "expected"),
+    [
+        (None, False, 1),  # nobody chose: the CLI's one thread during learn
+        ("OMP_NUM_THREADS", False, 2),
+        ("MKL_NUM_THREADS", False, 2),
+        (None, True, 2),  # torch.set_num_threads was called after sb3_hfo was imported
+    ],
+)
+def test_learn_uses_the_clis_thread_count_unless_the_user_chose_one(
+    monkeypatch: pytest.MonkeyPatch, variable: str | None, chosen: bool, expected: int
+) -> None:
+    import sb3_hfo.skill_ddpg.skill_ddpg as module
+
+    for name in module.TORCH_THREAD_VARIABLES:
+        monkeypatch.delenv(name, raising=False)
+    if variable is not None:
+        monkeypatch.setenv(variable, "2")
+    th.set_num_threads(2)  # the conftest fixture restores the count after the test
+    monkeypatch.setattr(module, "_THREADS_AT_IMPORT", 3 if chosen else 2)
+    model = make_model(1, learning_starts=5)
+    recorder = ThreadRecorder()
+    model.learn(10, callback=recorder)
+    assert recorder.threads == expected
+    assert th.get_num_threads() == 2  # restored
 
 
 def test_router_must_match_obs_layout() -> None:

@@ -491,7 +491,7 @@ def test_time_to_targets_reads_the_first_evaluation_at_each_rate() -> None:
     assert time_to_targets(stored, [0.9])["first_0.9"] == (20_000, 120.0)
 
 
-def test_episode_stats_callback_logs_goal_rate() -> None:
+def test_episode_stats_callback_logs_episodes_and_leaves_the_goal_rate_to_sb3() -> None:
     from sb3_hfo.zoo import HFOEpisodeStatsCallback
 
     class Recorder:
@@ -501,13 +501,16 @@ def test_episode_stats_callback_logs_goal_rate() -> None:
         def record(self, key: str, value: float) -> None:
             self.values[key] = value
 
-    callback = HFOEpisodeStatsCallback(window=2)
+    callback = HFOEpisodeStatsCallback()
     recorder = Recorder()
     callback.model = SimpleNamespace(logger=recorder)  # type: ignore[assignment]  (BaseCallback.logger reads it)
-    for status in ("GOAL", "OUT_OF_BOUNDS", "GOAL"):
-        callback.locals = {"dones": np.array([True]), "infos": [{"status": status}]}
+    for dones in ([True], [False], [True, True]):
+        callback.locals = {
+            "dones": np.array(dones),
+            "infos": [{"status": "GOAL", "is_success": True}] * len(dones),
+        }
         callback._on_step()
-    assert recorder.values == {"rollout/goal_rate": 0.5, "rollout/episodes": 3}
+    assert recorder.values == {"rollout/episodes": 3}
 
 
 def test_keeper_skill_curriculum_ramps_the_training_envs_only() -> None:
@@ -751,7 +754,7 @@ def test_plot_writes_a_png_with_the_runs(trained_runs: tuple[Path, dict[str, str
     runs = collect_runs(logdirs, ["no skills", "skills"])
     assert [run.label for run in runs] == ["no skills", "skills"]
     for run in runs:
-        for tag in ("train/critic_loss", "rollout/ep_rew_mean", "rollout/goal_rate", "rollout/episodes"):
+        for tag in ("train/critic_loss", "rollout/ep_rew_mean", "rollout/success_rate", "rollout/episodes"):
             assert tag in run.scalars, f"{run.label}: {tag} not logged ({sorted(run.scalars)})"
     out = root / "figure.png"
     result = _run(

@@ -11,7 +11,8 @@ A router is a plain (picklable) object with an ``n_skills`` attribute and ``__ca
 * returns integer skill indices of shape ``(batch,)`` in ``[0, n_skills)``, of the same kind as ``obs``
   (``np.int64`` array for numpy input, ``torch.long`` tensor on ``obs.device`` for tensor input).
 
-Routers must be vectorised (no Python loop over the batch): they run on every training minibatch.
+Routers must be vectorised (no Python loop over the batch): they run on every training minibatch. The policy
+checks their output on every call (:func:`check_skills`: type, shape and range), when acting and in every update.
 Routers can be named by string in ``HFOPolicy(skill_router=...)`` so that YAML configs can select them; see
 :data:`ROUTERS` and :func:`make_router`.
 """
@@ -28,6 +29,7 @@ __all__ = [
     "FieldHalfRouter",
     "SingleSkillRouter",
     "SkillRouter",
+    "check_skills",
     "make_router",
     "validate_skills",
 ]
@@ -164,15 +166,21 @@ def make_router(skill_router: SkillRouter | str | None, n_skills: int) -> SkillR
     return router
 
 
-def validate_skills(skills: Any, batch_size: int, n_skills: int, router: object) -> th.Tensor:
-    """Check a router's output once and return it as a ``torch.long`` tensor of shape ``(batch_size,)``.
+def check_skills(skills: Any, batch_size: int, n_skills: int, router: object) -> None:
+    """Check a router's output: a numpy array or torch tensor of integers, shape ``(batch_size,)``, in
+    ``[0, n_skills)``. Cheap enough for every call (one reduction for the range): the policy checks every routing,
+    when acting and in every update, so that a bad index is never routed to a wrong head.
 
     :raises ValueError: wrong type, shape, non-integer values or values outside ``[0, n_skills)``; the message
         names the router and what it returned.
     """
-    if isinstance(skills, np.ndarray):
-        skills = th.as_tensor(skills)
-    if not isinstance(skills, th.Tensor):
+    if isinstance(skills, th.Tensor):
+        dtype = skills.dtype
+        integer = not (dtype.is_floating_point or dtype.is_complex or dtype == th.bool)
+    elif isinstance(skills, np.ndarray):
+        dtype = skills.dtype
+        integer = np.issubdtype(dtype, np.integer)
+    else:
         raise ValueError(
             f"skill_router {router!r} must return an array/tensor of skill indices, got {type(skills).__name__}"
         )
@@ -181,15 +189,33 @@ def validate_skills(skills: Any, batch_size: int, n_skills: int, router: object)
             f"skill_router {router!r} returned shape {tuple(skills.shape)} for a batch of {batch_size} "
             f"observations; expected ({batch_size},)"
         )
-    if skills.dtype.is_floating_point or skills.dtype.is_complex or skills.dtype == th.bool:
-        raise ValueError(
-            f"skill_router {router!r} must return integer skill indices, got dtype {skills.dtype}"
-        )
+    if not integer:
+        raise ValueError(f"skill_router {router!r} must return integer skill indices, got dtype {dtype}")
     if batch_size > 0:
-        low, high = int(skills.min()), int(skills.max())
+        if batch_size == 1:  # acting in one env: one read
+            low = high = int(skills.item())
+        elif isinstance(skills, th.Tensor):
+            extremes = th.aminmax(skills)
+            low, high = int(extremes.min), int(extremes.max)
+        else:
+            low, high = int(skills.min()), int(skills.max())
         if low < 0 or high >= n_skills:
             raise ValueError(
                 f"skill_router {router!r} returned skill indices in [{low}, {high}]; they must lie in "
                 f"[0, {n_skills}) because n_skills={n_skills}"
             )
-    return skills.long()
+
+
+def validate_skills(
+    skills: Any, batch_size: int, n_skills: int, router: object, device: th.device | str | None = None
+) -> th.Tensor:
+    """:func:`check_skills`, then the skills as a ``torch.long`` tensor of shape ``(batch_size,)`` (on ``device``
+    when given, else where they are; numpy input goes to the CPU).
+
+    :raises ValueError: as :func:`check_skills`.
+    """
+    check_skills(skills, batch_size, n_skills, router)
+    tensor = skills if isinstance(skills, th.Tensor) else th.from_numpy(np.ascontiguousarray(skills))
+    if device is not None:
+        tensor = tensor.to(device)
+    return tensor if tensor.dtype == th.long else tensor.long()

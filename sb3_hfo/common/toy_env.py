@@ -12,7 +12,8 @@ features, the rest are zeros:
 Action: ``Box(0, 1, (8,))`` like ``HFO/*-v0`` (``[pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir,
 kick_power, kick_dir]``); the argmax of the first three entries is the chosen discrete action. Reward: ``1 - 2 |p -
 target|`` (in [0.2, 1]) for the right discrete action, ``-1`` otherwise. ``info["status"]`` is ``"GOAL"`` when the
-discrete action is right and ``|p - target| < 0.1``, ``"OUT_OF_TIME"`` otherwise (so ``rollout/goal_rate`` works).
+discrete action is right and ``|p - target| < 0.1``, ``"OUT_OF_TIME"`` otherwise, and ``info["is_success"]`` is true
+at a ``"GOAL"`` (as in HFO: SB3 logs it as ``rollout/success_rate``).
 A correct agent needs both halves of a parameterised action: a discrete choice and a continuous parameter.
 """
 
@@ -82,5 +83,5 @@ class HybridTargetEnv(gym.Env[np.ndarray, np.ndarray]):
             status = "GOAL" if error < GOAL_TOLERANCE else "OUT_OF_TIME"
         else:
             reward, status = -1.0, "OUT_OF_TIME"
-        info = {"status": status, "chosen": chosen, "error": error}
+        info = {"status": status, "is_success": status == "GOAL", "chosen": chosen, "error": error}
         return self._obs.copy(), reward, True, False, info

@@ -133,7 +133,7 @@ from hfo2d.features import (
 )
 from hfo2d.hfo_env import FLAT_ACTION_DIRECTIONS, KICK
 from sb3_hfo.common.mirror import Mirror, make_mirror
-from sb3_hfo.common.routers import SkillRouter, make_router, validate_skills
+from sb3_hfo.common.routers import SkillRouter, check_skills, make_router, validate_skills
 
 __all__ = [
     "DEFAULT_NET_ARCH",
@@ -845,7 +845,6 @@ class HFOPolicy(BasePolicy):
             critic_kick_relative_to, self.critic_direction_frequencies, self.obs_dim
         )
         self.critic_kick_relative_to = tuple(critic_kick_relative_to)
-        self._router_checked = False
         self._build(lr_schedule)
 
     def _optimizer_kwargs(self) -> dict[str, Any]:
@@ -1085,25 +1084,30 @@ class HFOPolicy(BasePolicy):
         """Parameters skill ``skill`` trains: the shared trunk followed by its own output layer."""
         return list(self.actor.trunk.parameters()) + list(self.actor.heads[skill].parameters())
 
-    @property
-    def router_checked(self) -> bool:
-        """Whether :meth:`route` has validated the router's output (it does so on its first call)."""
-        return self._router_checked
-
     def route(self, obs: th.Tensor) -> th.Tensor | None:
-        """Skill index per row of ``obs (B, obs_dim)`` as a long tensor ``(B,)``; ``None`` when ``n_skills == 1``.
+        """Skill index per row of ``obs (B, obs_dim)`` as a long tensor ``(B,)`` on ``obs``'s device; ``None`` when
+        ``n_skills == 1``.
 
-        The router's output is validated (type, shape, range) on the first call.
+        The router's output is checked on every call (:func:`~sb3_hfo.common.routers.check_skills`: type, shape,
+        range), so that an index outside ``[0, n_skills)`` raises instead of being routed to some head.
         """
         if self.n_skills == 1:
             return None
+        return validate_skills(
+            self.skill_router(obs), obs.shape[0], self.n_skills, self.skill_router, obs.device
+        )
+
+    def numpy_route(self, obs: np.ndarray) -> np.ndarray:
+        """:meth:`route` for a numpy batch ``(B, obs_dim)``: ``np.int64`` skill indices ``(B,)``, checked the same
+        way (all zeros when ``n_skills == 1``)."""
+        obs = np.asarray(obs, dtype=np.float32)
+        if self.n_skills == 1:
+            return np.zeros(obs.shape[0], dtype=np.int64)
         skills = self.skill_router(obs)
-        if not self._router_checked:
-            skills = validate_skills(skills, obs.shape[0], self.n_skills, self.skill_router)
-            self._router_checked = True
-        elif not isinstance(skills, th.Tensor):
-            skills = th.as_tensor(skills, device=obs.device)
-        return skills if skills.dtype == th.long else skills.long()
+        if isinstance(skills, th.Tensor):
+            skills = skills.detach().cpu().numpy()
+        check_skills(skills, obs.shape[0], self.n_skills, self.skill_router)
+        return skills.astype(np.int64, copy=False)
 
     def _get_constructor_parameters(self) -> dict[str, Any]:
         data = super()._get_constructor_parameters()

@@ -58,15 +58,21 @@ maximum (1 in the buffer scale) so that the environment's argmax picks it. Epsil
 flat layout) and 0 (no epsilon-greedy) otherwise, e.g. Pendulum. With ``exploration_keep_parameters=True`` an
 exploring step only re-picks the discrete action (its preference set to 1, the others to -1) and keeps the policy's
 (noisy) continuous parameters, so that a randomly chosen KICK is taken with the kick the actor would make.
+
+Threads: ``learn`` trains with one torch thread, as ``python -m sb3_hfo.train`` does, unless the user has chosen a
+count (:func:`training_threads` gives the rule). Logging: besides SB3's ``rollout/*`` and ``time/*`` (the goal rate
+is SB3's ``rollout/success_rate``, from HFO's ``info["is_success"]``), ``train/critic_loss``, ``train/actor_loss``
+(and per skill), ``train/max_q``, ``train/mean_q``, both learning rates, ``rollout/skill_<k>_fraction`` and
+``rollout/epsilon``.
 """
 
 from __future__ import annotations
 
 import io
 import math
+import os
 import pathlib
 import warnings
-from collections import deque
 from collections.abc import Iterable, Sequence
 from typing import Any, ClassVar, TypeVar
 
@@ -100,8 +106,11 @@ __all__ = [
     "PARAMETER_LOSSES",
     "HFO_FLAT_ACTION_DIM",
     "HFO_N_DISCRETE_ACTIONS",
+    "TORCH_THREAD_VARIABLES",
+    "TRAINING_THREADS",
     "SkillDDPG",
     "adam_step",
+    "training_threads",
 ]
 
 #: Values of ``SkillDDPG(discrete_target=...)``.
@@ -235,6 +244,48 @@ def adam_step(optimizer: th.optim.Optimizer, params: list[th.Tensor], grads: Seq
         param.grad = None
 
 
+#: torch threads ``SkillDDPG.learn`` trains with unless the user has chosen a count: what ``python -m
+#: sb3_hfo.train`` passes to rl-zoo3 (``--num-threads 1``, :func:`sb3_hfo.zoo.default_algo_argv`).
+TRAINING_THREADS = 1
+#: Environment variables from which torch takes its thread count at start-up; one that is set is the user's choice.
+TORCH_THREAD_VARIABLES = ("OMP_NUM_THREADS", "MKL_NUM_THREADS")
+# torch's thread count when sb3_hfo was imported: a different count at learn() was set by the user.
+_THREADS_AT_IMPORT = th.get_num_threads()
+
+
+def training_threads() -> int | None:
+    """The torch thread count ``SkillDDPG.learn`` switches to, or ``None`` to leave torch's count as it is.
+
+    ``None`` when the user has chosen a count: ``OMP_NUM_THREADS`` or ``MKL_NUM_THREADS`` is set, or
+    ``torch.get_num_threads()`` differs from its value when this module was imported (``torch.set_num_threads`` was
+    called since; a count set before ``sb3_hfo`` was imported looks like torch's own). Else :data:`TRAINING_THREADS`.
+    """
+    if any(os.environ.get(variable) for variable in TORCH_THREAD_VARIABLES):
+        return None
+    if th.get_num_threads() != _THREADS_AT_IMPORT:
+        return None
+    return TRAINING_THREADS
+
+
+def _is_real(value: object) -> bool:
+    """A real number (Python or numpy; not a bool, which would pass as 0 / 1 by mistake)."""
+    if isinstance(value, (bool, np.bool_)):
+        return False
+    return isinstance(value, (int, float, np.integer, np.floating))
+
+
+def _check_unit_interval(name: str, value: object) -> None:
+    """``ValueError`` naming ``name`` unless ``value`` is a number in [0, 1] (NaN is not)."""
+    if not (_is_real(value) and 0.0 <= value <= 1.0):  # type: ignore[operator]
+        raise ValueError(f"{name} must lie in [0, 1], got {value!r}")
+
+
+def _check_int(name: str, value: object, minimum: int, meaning: str) -> None:
+    """``ValueError`` naming ``name`` unless ``value`` is an integer >= ``minimum``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) or value < minimum:
+        raise ValueError(f"{name} must be an integer >= {minimum} {meaning}, got {value!r}")
+
+
 class SkillDDPG(OffPolicyAlgorithm):
     """DDPG with skills (seed paper) for Box-action environments, HFO's flat 8-dimensional action in particular.
 
@@ -291,7 +342,9 @@ class SkillDDPG(OffPolicyAlgorithm):
         is symmetric that way (checked against the simulator in ``tests/test_symmetry.py``), so a mirrored
         transition is one the environment could have produced. 0 (default): the paper. Needs HFO's feature
         vector (58 + 8 per other player) and 8-dimensional flat action.
-    :param stats_window_size: episodes averaged in ``rollout/*`` statistics (also ``rollout/goal_rate``).
+    :param stats_window_size: episodes averaged in ``rollout/*`` statistics, the goal rate among them: SB3's
+        ``rollout/success_rate`` from the env's ``info["is_success"]`` (HFO's GOAL status), the one name the
+        training goal rate is logged under.
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
     :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
         ``inverting_gradients``, ...).
@@ -386,23 +439,27 @@ class SkillDDPG(OffPolicyAlgorithm):
     # Set-up
 
     def _check_arguments(self) -> None:
-        """Reject inconsistent arguments with a message naming the argument."""
+        """Reject bad or inconsistent arguments (NaN included) with a ``ValueError`` naming the argument."""
         for name in ("exploration_initial_eps", "exploration_final_eps", "exploration_fraction"):
-            value = getattr(self, name)
-            if not 0.0 <= float(value) <= 1.0:
-                raise ValueError(f"{name} must lie in [0, 1], got {value}")
-        if not 0.0 <= self.tau <= 1.0:
-            raise ValueError(f"tau must lie in [0, 1], got {self.tau}")
-        if self.batch_size < 1:
-            raise ValueError(f"batch_size must be >= 1, got {self.batch_size}")
+            _check_unit_interval(name, getattr(self, name))
+        _check_unit_interval("tau", self.tau)
+        _check_unit_interval("gamma", self.gamma)
+        _check_int("batch_size", self.batch_size, 1, "(transitions per minibatch)")
+        _check_int("buffer_size", self.buffer_size, 1, "(transitions the replay buffer holds)")
+        _check_int(
+            "learning_starts", self.learning_starts, 0, "(random-action steps before the first update)"
+        )
         for name in ("learning_rate_actor", "learning_rate_critic"):
             value = getattr(self, name)
-            if not callable(value) and (not isinstance(value, (int, float)) or value < 0):
-                raise ValueError(f"{name} must be a float >= 0 or a schedule (callable), got {value!r}")
-        if self.preactivation_penalty < 0:
-            raise ValueError(f"preactivation_penalty must be >= 0, got {self.preactivation_penalty}")
-        if not 0.0 <= self.mc_mixing <= 1.0:
-            raise ValueError(f"mc_mixing must lie in [0, 1], got {self.mc_mixing}")
+            if not callable(value) and not (_is_real(value) and 0 <= value < math.inf):
+                raise ValueError(
+                    f"{name} must be a finite float >= 0 or a schedule (callable), got {value!r}"
+                )
+        if not (_is_real(self.preactivation_penalty) and 0 <= self.preactivation_penalty < math.inf):
+            raise ValueError(
+                f"preactivation_penalty must be a finite number >= 0, got {self.preactivation_penalty!r}"
+            )
+        _check_unit_interval("mc_mixing", self.mc_mixing)
         if self.discrete_target not in DISCRETE_TARGETS:
             raise ValueError(
                 f"discrete_target must be one of {DISCRETE_TARGETS}, got {self.discrete_target!r}"
@@ -535,8 +592,6 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._stat_updates = 0
         self._skill_updates = [0] * n_skills
         self._skill_steps = np.zeros(n_skills, dtype=np.int64)
-        if not hasattr(self, "_goal_buffer"):
-            self._goal_buffer: deque[bool] = deque(maxlen=self._stats_window_size)
 
     # ------------------------------------------------------------------------------------------------------
     # Training
@@ -770,12 +825,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         if self.policy.n_skills > 1 and self._last_obs is not None:
             # Counted for the rollout statistics only: routed in numpy (~5 us) rather than through a tensor (~30 us).
             obs = np.asarray(self._last_obs, dtype=np.float32).reshape(n_envs, -1)
-            if self.policy.router_checked:
-                skills = self.policy.skill_router.numpy_route(obs)
-            else:  # the policy checks the router's output on its first call
-                routed = self.policy.route(th.as_tensor(obs))
-                assert routed is not None
-                skills = routed.cpu().numpy()
+            skills = self.policy.numpy_route(obs)
             self._skill_steps += np.bincount(skills, minlength=self.policy.n_skills)
         else:
             self._skill_steps[0] += n_envs
@@ -803,14 +853,6 @@ class SkillDDPG(OffPolicyAlgorithm):
     # ------------------------------------------------------------------------------------------------------
     # Logging
 
-    def _update_info_buffer(self, infos: list[dict[str, Any]], dones: np.ndarray | None = None) -> None:
-        super()._update_info_buffer(infos, dones)
-        if dones is None:
-            return
-        for info, done in zip(infos, dones, strict=True):
-            if done and "status" in info:
-                self._goal_buffer.append(info["status"] == "GOAL")
-
     def dump_logs(self) -> None:
         """Record the statistics gathered since the last dump (training means, rollout fractions), then dump."""
         self._record_stats()
@@ -834,8 +876,6 @@ class SkillDDPG(OffPolicyAlgorithm):
         if total_steps > 0:
             for k in range(n_skills):
                 self.logger.record(f"rollout/skill_{k}_fraction", float(self._skill_steps[k]) / total_steps)
-        if len(self._goal_buffer) > 0:
-            self.logger.record("rollout/goal_rate", float(np.mean(self._goal_buffer)))
         self.logger.record("rollout/epsilon", self.exploration_rate if self._n_discrete > 0 else 0.0)
         self._reset_stats()
 
@@ -854,6 +894,46 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.policy_kwargs = {**self.policy_kwargs, **self.policy.acting_options()}
         super().save(path, exclude=exclude, include=include)
 
+    def load_replay_buffer(
+        self, path: str | pathlib.Path | io.BufferedIOBase, truncate_last_traj: bool = True
+    ) -> None:
+        """SB3's ``load_replay_buffer``, refusing a buffer this model cannot train from, with a ``ValueError``
+        (the model keeps its previous buffer): one that is not an instance of the model's ``replay_buffer_class``
+        (with ``mc_mixing > 0``: a :class:`~sb3_hfo.common.buffers.MonteCarloReplayBuffer`, whose episode returns
+        the target mixes in), a Monte Carlo buffer whose returns were discounted by another ``gamma``, or one whose
+        observation or action shape, or number of environments, differs from the model's."""
+        previous = self.replay_buffer
+        super().load_replay_buffer(path, truncate_last_traj)
+        problem = self._replay_buffer_problem(self.replay_buffer)
+        if problem is not None:
+            self.replay_buffer = previous
+            raise ValueError(f"load_replay_buffer({path!r}): {problem}")
+
+    def _replay_buffer_problem(self, buffer: Any) -> str | None:
+        """Why ``buffer`` cannot be this model's replay buffer, or ``None``."""
+        name = type(buffer).__name__
+        if self.mc_mixing > 0 and not isinstance(buffer, MonteCarloReplayBuffer):
+            return (
+                f"mc_mixing={self.mc_mixing} needs a MonteCarloReplayBuffer (the episode returns its targets mix "
+                f"in), got a {name}"
+            )
+        expected = self.replay_buffer_class
+        if expected is not None and not isinstance(buffer, expected):
+            return f"the model's replay_buffer_class is {expected.__name__}, got a {name}"
+        if self.mc_mixing > 0 and not math.isclose(buffer.gamma, self.gamma):
+            return (
+                f"the buffer's returns were discounted with gamma={buffer.gamma}, the model's is {self.gamma}"
+            )
+        obs_shape, model_obs_shape = tuple(buffer.obs_shape), tuple(self.observation_space.shape)
+        if obs_shape != model_obs_shape:
+            return f"the buffer holds observations of shape {obs_shape}, the model's have shape {model_obs_shape}"
+        action_dim = int(np.prod(self.action_space.shape))
+        if buffer.action_dim != action_dim:
+            return f"the buffer holds {buffer.action_dim}-entry actions, the model's have {action_dim}"
+        if buffer.n_envs != self.n_envs:
+            return f"the buffer was filled by {buffer.n_envs} env(s), the model has n_envs={self.n_envs}"
+        return None
+
     def learn(
         self: SelfSkillDDPG,
         total_timesteps: int,
@@ -863,15 +943,34 @@ class SkillDDPG(OffPolicyAlgorithm):
         reset_num_timesteps: bool = True,
         progress_bar: bool = False,
     ) -> SelfSkillDDPG:
+        """SB3's ``learn``, with torch's thread count chosen as ``python -m sb3_hfo.train`` chooses it.
+
+        Unless the user has chosen a thread count, ``learn`` runs with :data:`TRAINING_THREADS` (1) torch threads,
+        what the CLI sets (``--num-threads 1``), and restores the previous count when it returns. SkillDDPG's
+        networks are small: torch's default of one thread per core only makes the threads contend with each
+        other and with the environment (``benchmarks/python_vs_cli.py``). The user has chosen when
+        ``OMP_NUM_THREADS`` or ``MKL_NUM_THREADS`` is set (torch takes its count from them), or when
+        ``torch.get_num_threads()`` differs from its value when ``sb3_hfo`` was imported (``torch.set_num_threads``
+        was called since): then the count is left as it is. See :func:`training_threads`.
+        """
         self._warn_if_shaping_discount_differs()
-        return super().learn(
-            total_timesteps=total_timesteps,
-            callback=callback,
-            log_interval=log_interval,
-            tb_log_name=tb_log_name,
-            reset_num_timesteps=reset_num_timesteps,
-            progress_bar=progress_bar,
-        )
+        threads = training_threads()
+        previous = th.get_num_threads()
+        if threads is not None and threads != previous:
+            th.set_num_threads(threads)
+        try:
+            return super().learn(
+                total_timesteps=total_timesteps,
+                callback=callback,
+                log_interval=log_interval,
+                tb_log_name=tb_log_name,
+                reset_num_timesteps=reset_num_timesteps,
+                progress_bar=progress_bar,
+            )
+        finally:
+            # Restored unless something (a callback) chose another count during learn.
+            if threads is not None and th.get_num_threads() == threads:
+                th.set_num_threads(previous)
 
     def _warn_if_shaping_discount_differs(self) -> None:
         """Warn when the hfo2d env's ``potential_gap`` reward (not HFO's) is discounted by another gamma than the agent's.
