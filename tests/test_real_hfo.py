@@ -15,6 +15,7 @@ import math
 import os
 import subprocess
 import sys
+import time
 import warnings
 from pathlib import Path
 from typing import Any
@@ -59,7 +60,13 @@ def test_import_needs_neither_torch_nor_a_build() -> None:
 
 
 def test_registered_lazily() -> None:
-    for env_id, task in (("HFO/RealEmptyGoal-v0", "empty_goal"), ("HFO/RealKeeper-v0", "keeper")):
+    ids = (
+        ("HFO/RealEmptyGoal-v0", "empty_goal"),
+        ("HFO/RealStaticKeeper-v0", "static_keeper"),
+        ("HFO/RealKeeper-v0", "keeper"),
+    )
+    assert set(hfo2d.REAL_ENV_IDS.items()) == set(ids)
+    for env_id, task in ids:
         spec = gym.spec(env_id)
         assert spec.entry_point == "hfo2d.real:RealHFOEnv"
         assert spec.kwargs == {"task": task}
@@ -93,7 +100,7 @@ def test_build_from_env_var(monkeypatch: pytest.MonkeyPatch, fake_build: Path) -
 @pytest.mark.parametrize(
     ("kwargs", "match"),
     [
-        ({"task": "static_keeper"}, "unknown task"),
+        ({"task": "penalty"}, "unknown task"),
         ({"action_format": "discrete"}, "unknown action_format"),
         ({"reward": "dense"}, "unknown reward"),
         ({"frames_per_trial": 0}, "frames_per_trial"),
@@ -140,13 +147,25 @@ def test_hfo_command_line(fake_build: Path) -> None:
     assert pairs["--frames-per-trial"] == "300" and pairs["--untouched-time"] == "50"
     assert pairs["--seed"] == "7" and pairs["--log-dir"] == str(fake_build / "logs")
     assert "--deterministic" in args and "--fullstate" not in args and "--no-logging" not in args
+    assert "--defense-agents" not in args and "--agent-play-goalie" not in args
+    # the still goalie: no NPC, one defense agent playing goalie (unum 1, placed at (52.5, 0) by HFO's referee)
+    args = real.RealHFOEnv(task="static_keeper", hfo_dir=fake_build).hfo_args()
+    pairs = {args[i]: args[i + 1] for i in range(len(args) - 1) if not args[i + 1].startswith("--")}
+    assert (
+        pairs["--defense-npcs"] == "0" and pairs["--defense-agents"] == "1" and "--agent-play-goalie" in args
+    )
+    assert pairs["--offense-agents"] == "1" and "--fullstate" in args
+    assert "--defense-agents" not in real.RealHFOEnv(task="keeper", hfo_dir=fake_build).hfo_args()
 
 
 # ---------------------------------------------------------------------------------------------------------------
 # Spaces and actions: hfo2d's
 # ---------------------------------------------------------------------------------------------------------------
 @pytest.mark.parametrize("action_format", ["flat", "parameterized"])
-@pytest.mark.parametrize(("task", "hfo2d_task"), [("empty_goal", "empty_goal"), ("keeper", "keeper")])
+@pytest.mark.parametrize(
+    ("task", "hfo2d_task"),
+    [("empty_goal", "empty_goal"), ("static_keeper", "static_keeper"), ("keeper", "keeper")],
+)
 def test_spaces_are_hfo2ds(fake_build: Path, action_format: str, task: str, hfo2d_task: str) -> None:
     env = real.RealHFOEnv(task=task, hfo_dir=fake_build, action_format=action_format)
     reference = HFOEnv(task=hfo2d_task, action_format=action_format)
@@ -184,6 +203,61 @@ def test_hfo_commands() -> None:
     assert real.hfo_command(DASH, 40.0, -90.0) == (0, 40.0, -90.0)
     assert real.hfo_command(TURN, 0.0, 30.0) == (1, 30.0, 0.0)
     assert real.hfo_command(KICK, 100.0, 12.5) == (3, 100.0, 12.5)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# The still goalie
+# ---------------------------------------------------------------------------------------------------------------
+def _goalie_state(body_deg: float, valid: bool = True) -> list[float]:
+    """The goalie's own HFO master vector (68 entries) with only the self-valid flag and the body angle set."""
+    state = [0.0] * real.hfo_num_features(0, 1)
+    state[0] = 1.0 if valid else -1.0
+    state[5], state[6] = math.sin(math.radians(body_deg)), math.cos(math.radians(body_deg))
+    return state
+
+
+def test_still_goalie_faces_the_field_and_stays() -> None:
+    noop = (real.HFO_NOOP, 0.0)
+    assert real.GOALIE_OWN_BODY_DEG == 0.0 and real.GOALIE_BODY_DEG == 180.0
+    for body in (0.0, 0.49, -0.49, 360.0):  # facing the field: NOOP
+        assert real.still_goalie_command(_goalie_state(body)) == noop
+    for body, moment in (
+        (180.0, 180.0),
+        (-180.0, 180.0),
+        (90.0, -90.0),
+        (-30.0, 30.0),
+        (0.6, -0.6),
+        (-179.0, 179.0),
+    ):
+        code, turn = real.still_goalie_command(_goalie_state(body))
+        assert code == real.HFO_TURN and turn == pytest.approx(moment, abs=1e-6), body
+    assert real.still_goalie_command(_goalie_state(90.0, valid=False)) == noop  # not localised: wait
+    # rcssserver's turn at rest: body += (1 + U(-player_rand, player_rand)) * moment, player_rand 0.1
+    rng = np.random.default_rng(0)
+    worst = 0
+    for start in np.linspace(-180.0, 180.0, 73):
+        body = float(start)
+        turns = 0
+        while (command := real.still_goalie_command(_goalie_state(body)))[0] == real.HFO_TURN and turns < 10:
+            body = (body + (1.0 + rng.uniform(-0.1, 0.1)) * command[1] + 180.0) % 360.0 - 180.0
+            turns += 1
+        assert abs(body) <= real.GOALIE_TURN_THRESHOLD_DEG
+        worst = max(worst, turns)
+    assert (
+        worst == 3
+    )  # from its initial body (facing its own goal) the goalie faces the field in three cycles
+
+
+def test_static_keeper_state_is_hfo2ds_static_keeper() -> None:
+    # the learning agent's view of hfo2d's still goalie, as HFO master sends it, recovers the goalie at (52.5, 0)
+    # facing the field (global 180 degrees)
+    sim = HFOEnv(task="static_keeper")
+    sim.reset(seed=2)
+    state = real.state_from_hfo_features(_hfo_vector(sim).tolist(), 1)
+    keeper = state["keeper"]
+    assert keeper is not None
+    assert keeper[:2] == pytest.approx((52.5, 0.0), abs=2e-3)
+    assert abs((keeper[4] - real.GOALIE_BODY_DEG + 180.0) % 360.0 - 180.0) < 1e-3
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -272,18 +346,27 @@ class FakeSession:
     instances: list[FakeSession] = []
 
     def __init__(
-        self, hfo_dir: Path, args: list[str], port: int | None, log_dir: Path | None, rng: Any
+        self,
+        hfo_dir: Path,
+        args: list[str],
+        port: int | None,
+        log_dir: Path | None,
+        rng: Any,
+        still_goalie: bool = False,
     ) -> None:
         value = {args[i]: args[i + 1] for i in range(len(args) - 1)}
         self.args = args
+        self.still_goalie = still_goalie
         self.frames = int(value["--frames-per-trial"])
-        self.num_opponents = int(value["--defense-npcs"])
+        defense_agents = int(value.get("--defense-agents", 0))
+        assert still_goalie == (defense_agents == 1)
+        self.num_opponents = int(value["--defense-npcs"]) + defense_agents
         self.num_teammates = 0
         self.unum = 11
         self.port = 40000 + len(FakeSession.instances)
         self.seed = int(value.get("--seed", 0))
         self.sim = HFOEnv(
-            task="keeper" if self.num_opponents else "empty_goal",
+            task="static_keeper" if still_goalie else "keeper" if self.num_opponents else "empty_goal",
             feature_set="hfo",
             action_format="parameterized",
             frames_per_trial=self.frames - 2,
@@ -369,7 +452,8 @@ def _play(env: real.RealHFOEnv, episodes: int, seed: int) -> list[dict[str, Any]
 
 
 @pytest.mark.parametrize(
-    ("task", "frames", "untouched"), [("keeper", 500, 100), ("empty_goal", 500, 30), ("keeper", 30, 1000)]
+    ("task", "frames", "untouched"),
+    [("keeper", 500, 100), ("empty_goal", 500, 30), ("keeper", 30, 1000), ("static_keeper", 500, 100)],
 )
 def test_episodes_match_the_simulator_served(
     fake_build: Path, fake_sessions: list[FakeSession], task: str, frames: int, untouched: int
@@ -379,7 +463,8 @@ def test_episodes_match_the_simulator_served(
     )
     steps = _play(env, episodes=4, seed=1)
     (session,) = fake_sessions
-    assert session.seed == 4
+    assert session.seed == 4 and session.still_goalie == (task == "static_keeper")
+    assert env.observation_space.shape == ((58,) if task == "empty_goal" else (66,))
     records = iter(session.records)
     resets = iter(session.resets)
     previous_obs = None
@@ -404,6 +489,9 @@ def test_episodes_match_the_simulator_served(
             np.testing.assert_allclose(entry["obs"], record["features"], atol=2e-5)
             np.testing.assert_allclose(info["player"][:2], record["player"][:2], atol=2e-3)
             assert not info["stale_observation"]
+            if task == "static_keeper":  # the still goalie, as the striker's features show it
+                assert info["keeper"][:2] == pytest.approx((52.5, 0.0), abs=2e-3)
+                assert abs(abs(info["keeper"][4]) - real.GOALIE_BODY_DEG) < 1e-3
         previous_obs = entry["obs"]
     assert len(ends) == 4
     if frames == 30:  # HFO's clock: the first episode has 28 steps, later ones 29
@@ -491,11 +579,16 @@ FAKE_LAUNCHER = """\
 import sys, time
 open(sys.argv[0] + ".args", "w").write(" ".join(sys.argv[1:]))
 print("Waiting for player-controlled agent base_left-0", flush=True)
+if "--defense-agents" in sys.argv:
+    print("Waiting for player-controlled agent base_right-0", flush=True)
 time.sleep(600)
 """
 FAKE_BINDING = """\
+import math, os, time
+
 LOW_LEVEL_FEATURE_SET = 0
 DASH, TURN, KICK, NOOP = 0, 1, 3, 13
+HERE = os.path.dirname(os.path.abspath(__file__))
 
 
 class _OnBall:
@@ -504,35 +597,47 @@ class _OnBall:
 
 
 class HFOEnvironment:
-    # 59 features: the basic 58 (zeros, self valid) and the last-action flag. Each step writes the step count
-    # into feature 7, the action's params into 55 and 56 and its code into the flag. A full-power KICK scores,
-    # a TURN to exactly -180 takes the server down.
+    # The offense agent: 59 features (68 with the still goalie): the basic 58 (zeros, self valid), [the goalie's
+    # block and unum,] the last-action flag. Each step writes the step count into feature 7, the action's params
+    # into 55 and 56 and its code into the flag. A full-power KICK scores, a TURN to exactly -180 takes the server
+    # down. The goalie (base_right, play_goalie): 68 features, valid self and its body (own frame, 180 at first:
+    # facing its own goal), which a TURN turns exactly; each cycle takes 5 ms and its first 8 commands are
+    # written to HFO_DIR/goalie_commands.
     def __init__(self):
         self.count = 0
         self.code, self.params = NOOP, (0.0, 0.0)
+        self.goalie = False
+        self.body = 180.0
 
     def connectToServer(self, feature_set, config_dir, port, host, team, goalie, record):
-        assert feature_set == 0 and team == "base_left" and not goalie and config_dir.endswith("formations-dt")
+        assert feature_set == 0 and config_dir.endswith("formations-dt")
+        assert (team, goalie) in (("base_left", False), ("base_right", True))
+        self.goalie = goalie
+        args = open(os.path.join(HERE, "..", "bin", "HFO.args")).read().split()
+        self.opponents = 1 if goalie or "--defense-agents" in args else 0
 
     def getStateSize(self):
-        return 59
+        return 58 + 9 * self.opponents + 1
 
     def getNumTeammates(self):
         return 0
 
     def getNumOpponents(self):
-        return 0
+        return self.opponents
 
     def getUnum(self):
-        return 11
+        return 1 if self.goalie else 11
 
     def getState(self, out):
         out[:] = 0.0
         out[0] = out[1] = out[6] = 1.0
+        if self.goalie:
+            out[5], out[6] = math.sin(math.radians(self.body)), math.cos(math.radians(self.body))
+            return out
         out[7] = self.count / 1000.0
         out[55] = self.params[0] / 100.0 if len(self.params) > 0 else 0.0
         out[56] = self.params[1] / 180.0 if len(self.params) > 1 else 0.0
-        out[58] = -1.0 if self.code == KICK else 1.0
+        out[-1] = -1.0 if self.code == KICK else 1.0
         return out
 
     def act(self, code, *params):
@@ -540,6 +645,14 @@ class HFOEnvironment:
 
     def step(self):
         self.count += 1
+        if self.goalie:
+            if self.count <= 8:
+                with open(os.path.join(HERE, "..", "goalie_commands"), "a") as f:
+                    f.write(" ".join(str(v) for v in (self.code, *self.params)) + "\\n")
+            if self.code == TURN:
+                self.body = (self.body + self.params[0] + 180.0) % 360.0 - 180.0
+            time.sleep(0.005)
+            return 0
         if self.code == TURN and self.params[0] == -180.0:
             return 5
         if self.code == KICK and self.params[0] == 100.0:
@@ -621,6 +734,43 @@ def test_session_processes_and_wire(stand_in_build: Path) -> None:
     assert _group_gone(server.pid) and _group_gone(worker.pid)
 
 
+def test_still_goalie_worker(stand_in_build: Path) -> None:
+    env = real.RealHFOEnv(task="static_keeper", hfo_dir=stand_in_build, seed=9)
+    obs, info = env.reset()
+    assert obs.shape == (66,)
+    session = env._session
+    assert session is not None and session.goalie is not None and session.goalie.poll() is None
+    args = (stand_in_build / "bin" / "HFO.args").read_text().split()
+    assert args[args.index("--defense-npcs") + 1] == "0" and args[args.index("--defense-agents") + 1] == "1"
+    assert "--agent-play-goalie" in args
+    obs, *_ = env.step(_flat(DASH, 40.0, 90.0))
+    assert obs[55] == pytest.approx(0.4)  # the learning agent's worker serves the env as before
+    commands_file = stand_in_build / "goalie_commands"
+    deadline = time.monotonic() + 20.0
+    while (
+        time.monotonic() < deadline
+        and len(commands_file.read_text().splitlines() if commands_file.exists() else []) < 8
+    ):
+        time.sleep(0.05)
+    commands = [line.split() for line in commands_file.read_text().splitlines()]
+    # one turn to face the field (its features: 180 degrees, facing its own goal), then NOOP every cycle
+    assert commands[0] == [str(real.HFO_TURN), "180.0"]
+    assert commands[1:] == [[str(real.HFO_NOOP)]] * 7
+    goalie, server, worker = session.goalie, session.server, session.worker
+    env.close()
+    assert goalie.returncode == 0  # it quit when asked, on its own
+    assert _group_gone(goalie.pid) and _group_gone(server.pid) and _group_gone(worker.pid)
+    # a dead goalie takes the session down at the next step (rcssserver may play on without it)
+    env.reset()
+    goalie = env._session.goalie
+    os.killpg(goalie.pid, 9)
+    goalie.wait(timeout=10)
+    with pytest.warns(RuntimeWarning, match="still goalie's worker exited"):
+        *_, truncated, info = env.step(_flat(DASH, 40.0, 90.0))
+    assert truncated and info["status"] == "SERVER_DOWN"
+    env.close()
+
+
 # ---------------------------------------------------------------------------------------------------------------
 # The real HFO (opt-in: inside a loopback-only network namespace, or HFO_TESTS=1)
 # ---------------------------------------------------------------------------------------------------------------
@@ -696,3 +846,42 @@ def test_real_keeper_session() -> None:
             obs, info = env.reset()
     assert info["episode"] == 3 and info["session_restarts"] == 0
     env.close()
+
+
+@needs_real_hfo
+def test_real_static_keeper_session() -> None:
+    env = gym.make("HFO/RealStaticKeeper-v0", hfo_dir=REAL_BUILD, untouched_time=20)
+    unwrapped = env.unwrapped
+    obs, info = env.reset(seed=1)
+    assert obs.shape == (66,) and np.all(np.abs(obs) <= 1.0)
+    keepers = [info["keeper"]]
+    rng = np.random.default_rng(0)
+    ends = 0
+    while ends < 2:
+        obs, reward, terminated, truncated, info = env.step(rng.random(8, dtype=np.float32))
+        assert obs.shape == (66,) and info["status"] in real.STATUS_NAMES[:5]
+        if not info["stale_observation"]:
+            keepers.append(info["keeper"])
+        if terminated or truncated:
+            ends += 1
+            obs, info = env.reset()
+            keepers.append(info["keeper"])
+    # the goalie stands on the goal line facing the field from the first observation on
+    for keeper in keepers:
+        assert keeper is not None and math.hypot(keeper[0] - 52.5, keeper[1]) < 1e-3
+        assert keeper[2:4] == (0.0, 0.0)
+        assert abs(abs(keeper[4]) - real.GOALIE_BODY_DEG) <= real.GOALIE_TURN_THRESHOLD_DEG
+    session = unwrapped._session
+    turns = [line for line in session._log_text().splitlines() if line.startswith("still goalie:")]
+    assert 1 <= len(turns) <= 3 and "episode 0 cycle 0: body 180.000" in turns[0]  # HFO's initial body
+    # a dead goalie takes the session down (the env checks it every step)
+    os.killpg(session.goalie.pid, 9)
+    with pytest.warns(RuntimeWarning, match="still goalie's worker exited"):
+        for _ in range(100):
+            *_, truncated, info = env.step(np.zeros(8, dtype=np.float32))
+            if truncated:
+                break
+    assert info["status"] == "SERVER_DOWN"
+    server, worker = session.server, session.worker
+    env.close()
+    assert server.poll() is not None and worker.poll() is not None

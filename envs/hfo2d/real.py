@@ -14,9 +14,18 @@ Process model (one HFO session per env, started lazily by the first ``reset``):
 * ``bin/HFO`` (HFO's launcher: rcssserver, the trainer, the NPCs), in its own process group;
 * a worker: ``python -m hfo2d.real --worker ...``, which loads HFO's ctypes binding, calls ``connectToServer``
   (allowed once per process, HFO's strategy.cpp refuses a second) and then serves one ``act`` + ``step`` per
-  request over a socket pair, in its own process group.
+  request over a socket pair, in its own process group;
+* for task ``"static_keeper"`` (``bin/HFO --defense-agents 1 --agent-play-goalie``, no NPC goalie) a second
+  worker, ``python -m hfo2d.real --goalie ...``, connected as the defence goalie (team base_right, unum 1, HFO's
+  ``play_goalie``), in a third process group. It plays on its own: every cycle it turns its body to face the field
+  (global 180 degrees, toward -x) when it is off by more than GOALIE_TURN_THRESHOLD_DEG, read from its own
+  features, and otherwise sends NOOP (:func:`still_goalie_command`). rcssserver's sync mode keeps it in lock-step
+  with the learning agent (the server advances a cycle once both players have sent their command). HFO's referee
+  places a goalie at (52.5, 0) every episode without touching its body angle (rcssserver Player::place(pos)), so
+  it turns only at the start of a session (HFO's initial body angle faces its own goal) and after anything else
+  turned it.
 
-Both process groups are killed on ``close()``, when the env is garbage collected and at interpreter exit; on Linux
+All process groups are killed on ``close()``, when the env is garbage collected and at interpreter exit; on Linux
 they also receive SIGTERM when the thread that made the env dies. A session that goes down (HFO's SERVER_DOWN, a
 dead worker, no answer) ends the episode (truncated, ``info["status"] == "SERVER_DOWN"``) with a warning, and the
 next ``reset`` starts a new session.
@@ -125,9 +134,11 @@ from hfo2d.reward import DEFAULT_SHAPING_GAMMA, REWARD_NAMES, make_reward
 # ---------------------------------------------------------------------------------------------------------------
 # Tasks, HFO's numbers, session settings
 # ---------------------------------------------------------------------------------------------------------------
-TASKS: tuple[str, ...] = ("empty_goal", "keeper")
+TASKS: tuple[str, ...] = ("empty_goal", "static_keeper", "keeper")
 #: Defense NPCs per task: the keeper task is HFO's agent2d goalie (bin/HFO --defense-npcs 1: unum 1 plays goalie).
-DEFENSE_NPCS: dict[str, int] = {"empty_goal": 0, "keeper": 1}
+DEFENSE_NPCS: dict[str, int] = {"empty_goal": 0, "static_keeper": 0, "keeper": 1}
+#: Defense agents per task: the static keeper is this module's still goalie (bin/HFO --defense-agents 1).
+DEFENSE_AGENTS: dict[str, int] = {"empty_goal": 0, "static_keeper": 1, "keeper": 0}
 HFO_DIR_ENV = "HFO_DIR"
 
 # HFO's action codes (hfo/hfo.py and src/common.hpp: DASH, TURN, TACKLE, KICK, ..., NOOP = 13, QUIT = 14)
@@ -143,6 +154,7 @@ STATUS_NAMES: tuple[str, ...] = (IN_GAME, GOAL, CAPTURED_BY_DEFENSE, OUT_OF_BOUN
 SIDE_LETTERS: dict[int, str] = {-1: "R", 0: "U", 1: "L"}
 HFO_LOW_LEVEL_FEATURE_SET = 0  # hfo/hfo.py LOW_LEVEL_FEATURE_SET
 HFO_TEAM_NAME = "base_left"  # the offense team of bin/HFO's Trainer.py (agent2d, "base")
+HFO_DEFENSE_TEAM_NAME = "base_right"  # its defense team (bin/Trainer.py createTeam: 'base_' + 'right')
 HFO_CONFIG_SUBDIR = "bin/teams/base/config/formations-dt"  # the config dir bin/HFO gives its agents
 #: NOOPs HFO's step() plays after an episode's last cycle (src/HFO.cpp); the first episode is started alike.
 START_NOOPS = 3
@@ -150,6 +162,9 @@ START_NOOPS = 3
 SESSION_TRIALS = 2_000_000_000
 #: A line bin/HFO's Trainer.py prints when it waits for the learning agent to connect.
 WAITING_FOR_AGENT = "Waiting for player-controlled agent"
+#: ... and for the defense agent, which it waits for once the offense agent has connected (bin/Trainer.py run:
+#: offense first, then defense; the agent's team and its number in the team, from 0).
+WAITING_FOR_GOALIE = f"{WAITING_FOR_AGENT} {HFO_DEFENSE_TEAM_NAME}-0"
 #: A line bin/HFO prints when rcssserver did not start (e.g. its port is taken).
 SERVER_FAILED = "Failed to launch Server"
 START_TIMEOUT_S = 90.0  # bin/HFO start-up, agent connection (several processes start on a loaded 2-core box)
@@ -157,6 +172,15 @@ STEP_TIMEOUT_S = 60.0  # one synchronous cycle; HFO's own client gives up on a s
 PORT_RANGE = (20000, 60000)  # where a free port (and the two after it) is looked for
 PORT_TRIES = 3  # sessions started on freshly picked ports before giving up (another program may take one)
 MAX_SEED = 2**31 - 1  # rcssserver's random_seed is an int
+#: The still goalie's body, global: facing the field (toward -x), as hfo2d's HFO/StaticKeeper-v0 keeper.
+GOALIE_BODY_DEG = 180.0
+#: ... in its own features: librcsc's world model turns a right-side player's world round (its team always
+#: attacks +x), so facing the field is 0 degrees there (HFO's lowlevel_feature_extractor.cpp: wm.self().body()).
+GOALIE_OWN_BODY_DEG = 0.0
+#: The still goalie turns while its body is further than this from GOALIE_OWN_BODY_DEG. A turn at rest turns by
+#: the moment times 1 + U(-player_rand, player_rand) (rcssserver player.cpp Player::turn; player_rand 0.1), so
+#: from HFO's initial body (facing its own goal) it takes at most three turns: 180 -> 18 -> 1.8 -> 0.18 degrees.
+GOALIE_TURN_THRESHOLD_DEG = 0.5
 
 # Wire format between env and worker (little-endian): request (code, param0, param1); reply (status, side of the
 # player on the ball, its unum) + the state as float32; handshake (state size, teammates, opponents, own unum) + state.
@@ -351,26 +375,27 @@ def _kill_group(process: subprocess.Popen[bytes] | None, grace_s: float = 1.0) -
 
 
 def _shutdown(
-    worker: subprocess.Popen[bytes] | None,
+    workers: Sequence[tuple[subprocess.Popen[bytes] | None, socket.socket | None]],
     server: subprocess.Popen[bytes] | None,
-    sock: socket.socket | None,
     log: IO[bytes] | None,
     log_path: str | None,
     delete_log: bool,
     workdir: str | None,
 ) -> None:
-    """Stop a session: ask the worker to quit, kill both process groups, close the socket and the log, remove the
-    working directory."""
-    if sock is not None:
-        with contextlib.suppress(OSError):
-            sock.settimeout(0.5)
-            sock.sendall(_REQUEST.pack(_QUIT, 0.0, 0.0))
-        with contextlib.suppress(OSError):
-            sock.close()
-    if worker is not None:
-        with contextlib.suppress(subprocess.TimeoutExpired):
-            worker.wait(timeout=0.5)
-    _kill_group(worker, grace_s=0.5)
+    """Stop a session: ask the workers to quit, kill every process group, close the sockets and the log, remove
+    the working directory."""
+    for _, sock in workers:
+        if sock is not None:
+            with contextlib.suppress(OSError):
+                sock.settimeout(0.5)
+                sock.sendall(_REQUEST.pack(_QUIT, 0.0, 0.0))
+            with contextlib.suppress(OSError):
+                sock.close()
+    for worker, _ in workers:
+        if worker is not None:
+            with contextlib.suppress(subprocess.TimeoutExpired):
+                worker.wait(timeout=0.5)
+        _kill_group(worker, grace_s=0.5)
     _kill_group(server)
     if log is not None:
         with contextlib.suppress(OSError):
@@ -387,7 +412,8 @@ class SessionDown(Exception):
 
 
 class _Session:
-    """One running HFO: ``bin/HFO`` and the worker connected to it as the offense agent."""
+    """One running HFO: ``bin/HFO``, the worker connected to it as the offense agent and, with ``still_goalie``,
+    the still goalie's worker connected as the defense goalie (``args`` must then ask bin/HFO for that agent)."""
 
     def __init__(
         self,
@@ -396,11 +422,15 @@ class _Session:
         port: int | None,
         log_dir: Path | None,
         rng: np.random.Generator,
+        still_goalie: bool = False,
     ) -> None:
         self.hfo_dir = hfo_dir
+        self.still_goalie = bool(still_goalie)
         self.worker: subprocess.Popen[bytes] | None = None
         self.server: subprocess.Popen[bytes] | None = None
         self.sock: socket.socket | None = None
+        self.goalie: subprocess.Popen[bytes] | None = None
+        self.goalie_sock: socket.socket | None = None
         # the launcher's and the worker's output: kept in log_dir, else a temporary file removed at close
         if log_dir is not None:
             log_dir.mkdir(parents=True, exist_ok=True)
@@ -429,18 +459,43 @@ class _Session:
             _kill_group(self.server)
             if attempt == tries - 1:
                 raise HFOSessionError(f"rcssserver did not start on port {self.port}:\n{self.log_tail()}")
-        self._start_worker()
+        self.worker, self.sock = self._spawn_worker("--worker")
+        if self.still_goalie:
+            # bin/HFO asks for the defense agent once the offense agent has joined (its connectToServer then
+            # waits for the game to start, which needs the goalie)
+            self._wait_for_line(WAITING_FOR_GOALIE, "wait for the goalie agent")
+            self.goalie, self.goalie_sock = self._spawn_worker("--goalie")
         self._finalizer = weakref.finalize(
             self,
             _shutdown,
-            self.worker,
+            self._workers(),
             self.server,
-            self.sock,
             self.log,
             self.log_path,
             self._delete_log,
             self.workdir,
         )
+        self._handshake()
+        if self.goalie_sock is not None:
+            head = self._receive(
+                _HANDSHAKE_HEAD.size,
+                START_TIMEOUT_S,
+                "the goalie's connection to HFO",
+                self.goalie_sock,
+                self.goalie,
+            )
+            size, _, goalie_opponents, goalie_unum = _HANDSHAKE_HEAD.unpack(head)
+            self._receive(
+                4 * size, START_TIMEOUT_S, "the goalie's first state", self.goalie_sock, self.goalie
+            )
+            if goalie_unum != 1 or goalie_opponents != 1:
+                raise HFOSessionError(
+                    f"the still goalie joined as unum {goalie_unum} against {goalie_opponents} opponent(s); expected"
+                    f" unum 1 (HFO's goalie) against 1:\n{self.log_tail()}"
+                )
+
+    def _workers(self) -> list[tuple[subprocess.Popen[bytes] | None, socket.socket | None]]:
+        return [(self.worker, self.sock), (self.goalie, self.goalie_sock)]
 
     def _environment(self) -> dict[str, str]:
         env = dict(os.environ)
@@ -483,20 +538,34 @@ class _Session:
             f"bin/HFO did not wait for an agent within {START_TIMEOUT_S:g} s:\n{self.log_tail()}"
         )
 
-    def _start_worker(self) -> None:
+    def _wait_for_line(self, line: str, what: str) -> None:
+        """Wait until bin/HFO's output holds ``line``; HFOSessionError when it exits or takes too long."""
+        assert self.server is not None
+        deadline = time.monotonic() + START_TIMEOUT_S
+        while time.monotonic() < deadline:
+            if line in self._log_text():
+                return
+            if self.server.poll() is not None:
+                raise HFOSessionError(
+                    f"bin/HFO exited ({self.server.returncode}) during start-up:\n{self.log_tail()}"
+                )
+            time.sleep(0.02)
+        raise HFOSessionError(f"bin/HFO did not {what} within {START_TIMEOUT_S:g} s:\n{self.log_tail()}")
+
+    def _spawn_worker(self, role: str) -> tuple[subprocess.Popen[bytes], socket.socket]:
+        """Start ``python -m hfo2d.real ROLE FD HFO_DIR PORT`` in its own process group, with a socket pair."""
         parent, child = socket.socketpair()
-        self.sock = parent
         command = [
             sys.executable,
             "-m",
             "hfo2d.real",
-            "--worker",
+            role,
             str(child.fileno()),
             str(self.hfo_dir),
             str(self.port),
         ]
         try:
-            self.worker = subprocess.Popen(
+            worker = subprocess.Popen(
                 command,
                 stdin=subprocess.DEVNULL,
                 stdout=self.log,
@@ -507,8 +576,15 @@ class _Session:
                 start_new_session=True,
                 preexec_fn=_die_with_parent,  # noqa: PLW1509
             )
+        except BaseException:
+            parent.close()
+            raise
         finally:
             child.close()
+        return worker, parent
+
+    def _handshake(self) -> None:
+        """The offense worker's handshake (state size, team sizes, unum) and first state."""
         head = self._receive(_HANDSHAKE_HEAD.size, START_TIMEOUT_S, "the worker's connection to HFO")
         self.state_size, self.num_teammates, self.num_opponents, self.unum = _HANDSHAKE_HEAD.unpack(head)
         # one buffer for a reply: the head, then the state (float32, aligned at 12 bytes)
@@ -518,30 +594,48 @@ class _Session:
         self._receive_into(self._reply_view[_REPLY_HEAD.size :], START_TIMEOUT_S, "the first state")
 
     # --- talking to the worker ----------------------------------------------------------------------------------------
-    def _receive(self, size: int, timeout_s: float, what: str) -> bytes:
+    def _receive(
+        self,
+        size: int,
+        timeout_s: float,
+        what: str,
+        sock: socket.socket | None = None,
+        worker: subprocess.Popen[bytes] | None = None,
+    ) -> bytes:
         buffer = bytearray(size)
-        self._receive_into(memoryview(buffer), timeout_s, what)
+        self._receive_into(memoryview(buffer), timeout_s, what, sock, worker)
         return bytes(buffer)
 
-    def _receive_into(self, view: memoryview, timeout_s: float, what: str) -> None:
-        """Fill ``view`` from the worker; SessionDown when it exits, closes the socket or stays silent."""
-        assert self.sock is not None
+    def _receive_into(
+        self,
+        view: memoryview,
+        timeout_s: float,
+        what: str,
+        sock: socket.socket | None = None,
+        worker: subprocess.Popen[bytes] | None = None,
+    ) -> None:
+        """Fill ``view`` from a worker (default: the offense worker); SessionDown when it exits, closes the socket
+        or stays silent, or when the still goalie's worker exits."""
+        if sock is None:
+            sock, worker = self.sock, self.worker
+        assert sock is not None
         got = 0
         size = len(view)
         deadline = time.monotonic() + timeout_s
-        self.sock.settimeout(1.0)
+        sock.settimeout(1.0)
         while got < size:
             try:
-                count = self.sock.recv_into(view[got:], size - got)
+                count = sock.recv_into(view[got:], size - got)
             except TimeoutError:
                 if time.monotonic() >= deadline:
                     raise SessionDown(
                         f"no answer from HFO within {timeout_s:g} s waiting for {what}"
                     ) from None
-                if self.worker is not None and self.worker.poll() is not None:
-                    raise SessionDown(
-                        f"the HFO worker exited ({self.worker.returncode}) waiting for {what}"
-                    ) from None
+                for name, process in (("HFO worker", worker), ("still goalie's worker", self.goalie)):
+                    if process is not None and process.poll() is not None:
+                        raise SessionDown(
+                            f"the {name} exited ({process.returncode}) waiting for {what}"
+                        ) from None
                 continue
             if count == 0:
                 raise SessionDown(f"the HFO worker closed the connection waiting for {what}")
@@ -564,6 +658,10 @@ class _Session:
             self._receive_into(self._reply_view, STEP_TIMEOUT_S - 1.0, "a step")
         except OSError as error:
             raise SessionDown(f"connection to the HFO worker failed: {error}") from error
+        # A dead still goalie need not stop the server (rcssserver may stop waiting for a player it cannot
+        # reach), so check it every cycle (a waitpid, microseconds).
+        if self.goalie is not None and self.goalie.poll() is not None:
+            raise SessionDown(f"the still goalie's worker exited ({self.goalie.returncode})")
         return _REPLY_HEAD.unpack_from(self._reply)
 
     # --- diagnostics, shutdown ------------------------------------------------------------------------------------
@@ -582,10 +680,9 @@ class _Session:
         if self._finalizer is not None:
             self._finalizer()
         else:  # start-up failed before the finalizer existed
-            _shutdown(
-                self.worker, self.server, self.sock, self.log, self.log_path, self._delete_log, self.workdir
-            )
+            _shutdown(self._workers(), self.server, self.log, self.log_path, self._delete_log, self.workdir)
         self.sock = None
+        self.goalie_sock = None
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -594,8 +691,10 @@ class _Session:
 class RealHFOEnv(gym.Env):
     """HFO's 1v0 / 1v1 task in the real rcssserver, with hfo2d's observations, actions and rewards.
 
-    Tasks (``task``): ``"empty_goal"`` (``HFO/RealEmptyGoal-v0``) and ``"keeper"`` (``HFO/RealKeeper-v0``: HFO's
-    agent2d goalie, ``bin/HFO --defense-npcs 1``).
+    Tasks (``task``): ``"empty_goal"`` (``HFO/RealEmptyGoal-v0``), ``"keeper"`` (``HFO/RealKeeper-v0``: HFO's
+    agent2d goalie, ``bin/HFO --defense-npcs 1``) and ``"static_keeper"`` (``HFO/RealStaticKeeper-v0``: a goalie
+    that stands still on the goal line facing the field, as hfo2d's ``HFO/StaticKeeper-v0``: a second worker
+    connected as HFO's defense goalie, ``bin/HFO --defense-agents 1``; see the module docstring).
 
     Observation: ``Box(-1, 1, (58,), float32)``, ``(66,)`` with the goalie: hfo2d's paper-era features (see
     :class:`hfo2d.hfo_env.HFOEnv`), converted from HFO master's 59 / 68 by :func:`hfo2d.features.paper_from_hfo`.
@@ -698,8 +797,8 @@ class RealHFOEnv(gym.Env):
         self.port = None if port is None else int(port)
         self.log_dir = None if log_dir is None else Path(log_dir).expanduser().absolute()
         self.fullstate = bool(fullstate)
-        self.has_keeper = task == "keeper"
-        self.num_opponents = DEFENSE_NPCS[task]
+        self.has_keeper = task != "empty_goal"
+        self.num_opponents = DEFENSE_NPCS[task] + DEFENSE_AGENTS[task]
         self._reward_fn = make_reward(reward, shaping_gamma)
 
         self.observation_space = spaces.Box(
@@ -747,7 +846,7 @@ class RealHFOEnv(gym.Env):
             "--offense-agents",
             "1",
             "--defense-npcs",
-            str(self.num_opponents),
+            str(DEFENSE_NPCS[self.task]),
             "--frames-per-trial",
             str(self.frames_per_trial),
             "--untouched-time",
@@ -755,6 +854,8 @@ class RealHFOEnv(gym.Env):
             "--trials",
             str(SESSION_TRIALS),
         ]
+        if DEFENSE_AGENTS[self.task]:  # the still goalie: a defense agent playing goalie (unum 1)
+            args += ["--defense-agents", str(DEFENSE_AGENTS[self.task]), "--agent-play-goalie"]
         if self.fullstate:
             args.append("--fullstate")
         if not self.noise:
@@ -775,7 +876,12 @@ class RealHFOEnv(gym.Env):
     def _start_session(self) -> None:
         self._close_session()
         session = _Session(
-            self.hfo_dir, self.hfo_args(self._session_seed), self.port, self.log_dir, self._port_rng
+            self.hfo_dir,
+            self.hfo_args(self._session_seed),
+            self.port,
+            self.log_dir,
+            self._port_rng,
+            still_goalie=DEFENSE_AGENTS[self.task] > 0,
         )
         expected = hfo_num_features(0, self.num_opponents)
         if session.state_size != expected or session.num_opponents != self.num_opponents:
@@ -1025,8 +1131,88 @@ def worker_main(argv: Sequence[str]) -> int:
             return 1
 
 
+# ---------------------------------------------------------------------------------------------------------------
+# The still goalie's worker: ``python -m hfo2d.real --goalie FD HFO_DIR PORT``
+# ---------------------------------------------------------------------------------------------------------------
+def still_goalie_command(state: Sequence[float]) -> tuple[int, float]:
+    """The still goalie's command from its own HFO master features: ``(HFO_TURN, moment)`` to face the field while
+    its body is more than GOALIE_TURN_THRESHOLD_DEG off GOALIE_OWN_BODY_DEG, else ``(HFO_NOOP, 0.0)``.
+
+    The moment is the body's error, in (-180, 180]: at rest librcsc's doTurn sends it as it is (its command moment
+    is the angle times 1 + inertia_moment * speed, rounded to 0.001; librcsc action_effector.cpp
+    ActionEffector::setTurn). Without a valid self (no fullstate, not yet localised) the goalie waits (NOOP).
+    """
+    if state[SELF_POS_VALID] <= 0.0:
+        return HFO_NOOP, 0.0
+    body = math.degrees(math.atan2(float(state[SELF_BODY_SIN]), float(state[SELF_BODY_COS])))
+    error = (GOALIE_OWN_BODY_DEG - body + 180.0) % 360.0 - 180.0  # in [-180, 180)
+    if abs(error) <= GOALIE_TURN_THRESHOLD_DEG:
+        return HFO_NOOP, 0.0
+    return HFO_TURN, 180.0 if error == -180.0 else error
+
+
+def goalie_main(argv: Sequence[str]) -> int:
+    """Connect to the HFO server on PORT as the defense goalie and play the still goalie until the env goes away.
+
+    After the handshake (the offense worker's format) it plays :func:`still_goalie_command` every cycle, on its
+    own: HFO's ``step()`` returns once the (sync-mode) server has played the cycle, which it does once the
+    learning agent has sent its command too. It stops when the socket closes or says quit, or at SERVER_DOWN.
+    Every turn is printed (the session's log).
+    """
+    fd, hfo_dir, port = int(argv[0]), argv[1], int(argv[2])
+    sock = socket.socket(fileno=fd)
+    sys.path.insert(0, hfo_dir)
+    import select
+
+    import hfo  # HFO's ctypes binding (DEST/HFO/hfo), loads libhfo_c.so
+
+    env = hfo.HFOEnvironment()
+    env.connectToServer(
+        HFO_LOW_LEVEL_FEATURE_SET,
+        os.path.join(hfo_dir, HFO_CONFIG_SUBDIR),
+        port,
+        "localhost",
+        HFO_DEFENSE_TEAM_NAME,
+        True,  # play_goalie: rcssserver's goalie, which HFO's referee places at (52.5, 0)
+        "",
+    )
+    size = env.getStateSize()
+    state = np.zeros(size, dtype=np.float32)
+    env.getState(state)
+    sock.sendall(_HANDSHAKE_HEAD.pack(size, env.getNumTeammates(), env.getNumOpponents(), env.getUnum()))
+    sock.sendall(state.tobytes())
+    episode = cycle = 0
+    while True:
+        if select.select([sock], [], [], 0.0)[0]:  # the env closed the socket or asked to quit
+            data = sock.recv(_REQUEST.size)
+            if not data or _REQUEST.unpack(data.ljust(_REQUEST.size, b"\0"))[0] == _QUIT:
+                return 0
+        code, moment = still_goalie_command(state)
+        if code == HFO_TURN:
+            body = math.degrees(math.atan2(float(state[SELF_BODY_SIN]), float(state[SELF_BODY_COS])))
+            print(
+                f"still goalie: episode {episode} cycle {cycle}: body {body:.3f} (own frame), turn {moment:.3f}"
+            )
+            env.act(HFO_TURN, moment)
+        else:
+            env.act(HFO_NOOP)
+        status = env.step()
+        cycle += 1
+        env.getState(state)
+        if status == HFO_SERVER_DOWN:
+            return 1
+        if status != 0:
+            episode += 1
+            cycle = 0
+
+
 if __name__ == "__main__":
     if len(sys.argv) == 5 and sys.argv[1] == "--worker":
         sys.exit(worker_main(sys.argv[2:]))
-    print("usage: python -m hfo2d.real --worker FD HFO_DIR PORT (started by RealHFOEnv)", file=sys.stderr)
+    if len(sys.argv) == 5 and sys.argv[1] == "--goalie":
+        sys.exit(goalie_main(sys.argv[2:]))
+    print(
+        "usage: python -m hfo2d.real --worker|--goalie FD HFO_DIR PORT (started by RealHFOEnv)",
+        file=sys.stderr,
+    )
     sys.exit(2)
