@@ -47,6 +47,8 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, check_model_zip, non_negative_int
+
 #: Player speed (m/cycle) above which a step with the ball kickable counts as dribbling. The fastest a player
 #: runs is player_speed_max = 1.05 m/cycle (rcssserver 15.2.2 default, via hfo_reference §4); 0.2 m/cycle (2 m/s)
 #: excludes standing at the ball and slow turning while keeping any purposeful run with the ball.
@@ -82,8 +84,8 @@ def exit_line(ball_x: float, ball_y: float) -> str | None:
     return None
 
 
-class EvaluationError(Exception):
-    """A user error (bad path, unknown env id): reported as one line, exit code 2."""
+class EvaluationError(UserError):
+    """A user error (bad path, damaged model, unknown env id, bad env kwargs): reported as one line, exit code 2."""
 
 
 def wilson_interval(successes: int, trials: int, z: float = Z_95) -> tuple[float, float]:
@@ -432,6 +434,10 @@ def load_for_evaluation(
     :raises EvaluationError: no model there, no or unknown env id, or observations of another shape.
     """
     resolved = resolve_model(model_path)
+    try:
+        check_model_zip(resolved.path)
+    except UserError as error:
+        raise EvaluationError(str(error)) from None
     env_id = env_id or resolved.env_id
     if env_id is None:
         raise EvaluationError("--env is required (the model is not inside an rl-zoo3 run folder)")
@@ -448,11 +454,16 @@ def load_for_evaluation(
     # Small networks, one observation at a time: extra torch threads only contend for the cores.
     torch.set_num_threads(1)
     # A 1-transition replay buffer: evaluation never trains.
-    model = skill_ddpg_class().load(str(resolved.path), device="cpu", buffer_size=1)
+    try:
+        model = skill_ddpg_class().load(str(resolved.path), device="cpu", buffer_size=1)
+    except ValueError as error:  # SB3: data that is not a model's
+        raise EvaluationError(f"cannot load {resolved.path}: {error}") from None
     try:
         env = gym.make(env_id, **kwargs)
     except FileNotFoundError as error:  # e.g. HFO/Real*: no HFO build in hfo_dir / $HFO_DIR (hfo2d.real)
         raise EvaluationError(str(error)) from error
+    except (TypeError, ValueError) as error:  # HFOEnv names the bad kwarg
+        raise EvaluationError(f"cannot make {env_id} with env kwargs {kwargs}: {error}") from None
     if env.observation_space.shape != model.observation_space.shape:
         env.close()
         raise EvaluationError(
@@ -586,7 +597,7 @@ def episodes_parser(description: str, default_episodes: int) -> argparse.Argumen
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineArgumentParser(
         prog="python -m sb3_hfo.evaluate",
         description="Evaluate a SkillDDPG model on an HFO task (scoring rate with Wilson 95% CI, kicks, dribbling).",
     )
@@ -597,7 +608,9 @@ def build_parser() -> argparse.ArgumentParser:
         "--env", default=None, help="env id, e.g. HFO/EmptyGoal-v0 (default: the run folder's)"
     )
     parser.add_argument("--episodes", type=int, default=100, help="number of episodes (default 100)")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the first env reset (default 0)")
+    parser.add_argument(
+        "--seed", type=non_negative_int, default=0, help="seed of the first env reset, >= 0 (default 0)"
+    )
     # Greedy by default, like SB3's evaluate_policy and rl-zoo3's enjoy (which has --stochastic to opt out).
     parser.add_argument(
         "--stochastic",
@@ -670,6 +683,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
     if args.episodes < 1:
         print("error: --episodes must be at least 1", file=sys.stderr)
+        return 2
+    if args.json and Path(args.json).is_dir():
+        print(f"error: --json {args.json} is a folder; give a file name", file=sys.stderr)
         return 2
     try:
         result = evaluate(

@@ -20,16 +20,30 @@ def _run_rl_zoo_record_video() -> None:
     runpy.run_module("rl_zoo3.record_video", run_name="__main__", alter_sys=True)
 
 
+PROG = "python -m sb3_hfo.record_video"
+
+
 def main(argv: Sequence[str] | None = None) -> None:
-    """Run rl-zoo3's record_video with SkillDDPG registered; ``argv`` defaults to ``sys.argv[1:]``."""
+    """Run rl-zoo3's record_video with SkillDDPG registered; ``argv`` defaults to ``sys.argv[1:]``.
+
+    User errors (as for :mod:`sb3_hfo.enjoy`) exit with one line on stderr and code 2.
+    """
     import torch
 
-    from sb3_hfo.zoo import run_rl_zoo_entry_point
+    from sb3_hfo.cli_errors import UserError, check_playback_args, fail, one_line_argparse_errors
+    from sb3_hfo.zoo import ALGO_NAME, run_rl_zoo_entry_point
 
+    args = list(sys.argv[1:] if argv is None else argv)
+    if not any(arg in ("-h", "--help") for arg in args):
+        try:
+            check_playback_args(args, ALGO_NAME)
+        except UserError as error:
+            fail(error)
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     # rl-zoo3's record_video has no --num-threads; small networks run fastest on one torch thread.
     torch.set_num_threads(1)
-    run_rl_zoo_entry_point(_run_rl_zoo_record_video, sys.argv[1:] if argv is None else argv, playback=True)
+    with one_line_argparse_errors(PROG):
+        run_rl_zoo_entry_point(_run_rl_zoo_record_video, args, playback=True)
 
 
 if __name__ == "__main__":

@@ -5,7 +5,8 @@ Every rl-zoo3 ``train.py`` option works (``-n``, ``--seed``, ``--hyperparams``, 
 exists because rl-zoo3 builds its ``--algo`` choices before importing ``--gym-packages``: it registers
 ``skill_ddpg`` (and its Optuna sampler) and the HFO environments first, defaults ``--algo`` to ``skill_ddpg``
 and ``--num-threads`` to 1 (small networks: more torch threads only contend for the cores) and then calls
-``rl_zoo3.train.train()``. A missing ``--conf-file`` or an unknown ``--env`` is reported in one line.
+``rl_zoo3.train.train()``. A user's mistake (a missing ``--conf-file`` or ``--env``, an unknown ``--env``, bad
+``--env-kwargs``, a negative ``--seed``, a bad option) is reported in one line, exit code 2.
 """
 
 from __future__ import annotations
@@ -13,39 +14,29 @@ from __future__ import annotations
 import sys
 from collections.abc import Sequence
 
-
-def _option_value(args: Sequence[str], *names: str) -> str | None:
-    """Value of the last ``--name value`` / ``--name=value`` among ``args`` (None when absent)."""
-    value = None
-    for index, arg in enumerate(args):
-        name, sep, inline = arg.partition("=")
-        if name in names:
-            value = inline if sep else (args[index + 1] if index + 1 < len(args) else None)
-    return value
+PROG = "python -m sb3_hfo.train"
 
 
 def main(argv: Sequence[str] | None = None) -> None:
-    """Run rl-zoo3's training entry point with SkillDDPG registered; ``argv`` defaults to ``sys.argv[1:]``."""
+    """Run rl-zoo3's training entry point with SkillDDPG registered; ``argv`` defaults to ``sys.argv[1:]``.
+
+    User errors (see :func:`sb3_hfo.cli_errors.check_train_args`) exit with one line on stderr and code 2.
+    """
+    from sb3_hfo.cli_errors import UserError, check_train_args, fail, one_line_argparse_errors
+
     args = list(sys.argv[1:] if argv is None else argv)
     if not any(arg in ("-h", "--help") for arg in args):
-        if _option_value(args, "-conf", "--conf-file") is None:
-            # rl-zoo3 would otherwise look for hyperparams/skill_ddpg.yml inside its own package.
-            sys.exit("error: --conf-file is required, e.g. --conf-file zoo_configs/e1_empty_goal_fast.yml")
-        env_id = _option_value(args, "--env")
-        if env_id is not None:
-            import gymnasium as gym
-
-            from sb3_hfo.zoo import hfo_env_ids
-
-            known = hfo_env_ids()
-            if env_id not in gym.registry:
-                sys.exit(f"error: unknown env id {env_id!r}; registered HFO ids: {', '.join(known)}")
+        try:
+            check_train_args(args)
+        except UserError as error:
+            fail(error)
 
     import rl_zoo3.train
 
     from sb3_hfo.zoo import run_rl_zoo_entry_point
 
-    run_rl_zoo_entry_point(rl_zoo3.train.train, args, playback=False, single_thread=True)
+    with one_line_argparse_errors(PROG):
+        run_rl_zoo_entry_point(rl_zoo3.train.train, args, playback=False, single_thread=True)
 
 
 if __name__ == "__main__":

@@ -42,8 +42,10 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 import pymunk
@@ -161,9 +163,15 @@ class ServerParams:
         """HFO's defaults with some parameters replaced, each named by its rcssserver name.
 
         Raises:
-            ValueError: for an unknown name (the message lists the valid ones), a value that is not a finite
-                number, or a non-zero wind (wind is not simulated).
+            ValueError: for overrides that are not a mapping, an unknown name (the message lists the valid
+                ones), a value that is not a finite real number, a value outside its range
+                (:data:`SERVER_PARAM_RANGES`), or a non-zero wind (wind is not simulated).
         """
+        if overrides is not None and not isinstance(overrides, Mapping):
+            raise ValueError(
+                "server_params must be a mapping of rcssserver names to numbers, e.g. {'ball_decay': 0.9}; "
+                f"got {type(overrides).__name__} {overrides!r}"
+            )
         if not overrides:
             return cls()
         valid = cls.field_names()
@@ -172,16 +180,114 @@ class ServerParams:
             raise ValueError(f"unknown server parameter(s) {unknown}; valid names: {', '.join(valid)}")
         values: dict[str, float] = {}
         for name, value in overrides.items():
-            try:
-                number = float(value)
-            except (TypeError, ValueError):
-                raise ValueError(f"server parameter {name!r} must be a number, got {value!r}") from None
+            if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+                raise ValueError(f"server parameter {name!r} must be a real number, got {value!r}")
+            number = float(value)
             if not math.isfinite(number):
                 raise ValueError(f"server parameter {name!r} must be finite, got {value!r}")
             values[name] = number
         if values.get("wind_force", 0.0) != 0.0 or values.get("wind_rand", 0.0) != 0.0:
             raise ValueError("wind_force and wind_rand must stay 0: HFO runs without wind and so does hfo2d")
+        for name, number in values.items():
+            allowed = SERVER_PARAM_RANGES[name]
+            if not allowed.contains(number):
+                raise ValueError(f"server parameter {name!r} must be {allowed.describe()}, got {number!r}")
         return cls(**values)
+
+
+class ParamRange(NamedTuple):
+    """The values a server parameter may take: ``low <= value <= high`` (``low < value`` when ``low_open``)."""
+
+    low: float
+    high: float
+    low_open: bool = False
+
+    def contains(self, value: float) -> bool:
+        """Whether ``value`` lies in the range (NaN never does)."""
+        above = value > self.low if self.low_open else value >= self.low
+        return above and value <= self.high
+
+    def describe(self) -> str:
+        """The range in words: "in [0, 1]", "> 0", ">= 0", "<= 0", "any number"."""
+        low_finite, high_finite = math.isfinite(self.low), math.isfinite(self.high)
+        if low_finite and high_finite:
+            return f"in {'(' if self.low_open else '['}{self.low:g}, {self.high:g}]"
+        if low_finite:
+            return f"{'>' if self.low_open else '>='} {self.low:g}"
+        return f"<= {self.high:g}" if high_finite else "any number"
+
+
+_INF = math.inf
+_POSITIVE = ParamRange(0.0, _INF, low_open=True)
+_NON_NEGATIVE = ParamRange(0.0, _INF)
+_FRACTION = ParamRange(0.0, 1.0)
+#: The range of every :class:`ServerParams` field, checked by :meth:`ServerParams.with_overrides`. Not
+#: rcssserver's (it checks almost nothing): the values for which the rules hfo2d simulates stay meaningful
+#: (sizes, speeds and widths > 0; decays, rands, rates and stamina thresholds fractions; lower limits <= 0 <=
+#: upper ones; no wind).
+SERVER_PARAM_RANGES: dict[str, ParamRange] = {
+    "player_size": _POSITIVE,
+    "ball_size": _POSITIVE,
+    "player_decay": _FRACTION,
+    "ball_decay": _FRACTION,
+    "player_rand": _FRACTION,
+    "ball_rand": _FRACTION,
+    "kick_rand": _FRACTION,
+    "player_speed_max": _POSITIVE,
+    "ball_speed_max": _POSITIVE,
+    "player_accel_max": _POSITIVE,
+    "ball_accel_max": _POSITIVE,
+    "dash_power_rate": _NON_NEGATIVE,
+    "kick_power_rate": _NON_NEGATIVE,
+    "kickable_margin": _NON_NEGATIVE,
+    "inertia_moment": _NON_NEGATIVE,
+    "min_moment": ParamRange(-180.0, 0.0),
+    "max_moment": ParamRange(0.0, 180.0),
+    "minpower": ParamRange(-_INF, 0.0),
+    "maxpower": _POSITIVE,
+    "min_dash_angle": ParamRange(-180.0, 0.0),
+    "max_dash_angle": ParamRange(0.0, 180.0),
+    # dash directions are rounded to multiples of dash_angle_step
+    "dash_angle_step": ParamRange(0.0, 360.0, low_open=True),
+    "side_dash_rate": _FRACTION,
+    "back_dash_rate": _FRACTION,
+    "stamina_max": _POSITIVE,
+    "stamina_inc_max": _NON_NEGATIVE,
+    "extra_stamina": _NON_NEGATIVE,
+    # rcssserver player.cpp (updateStamina): a negative stamina_capacity means no capacity limit
+    "stamina_capacity": ParamRange(-_INF, _INF),
+    "effort_init": _FRACTION,
+    "effort_min": _FRACTION,
+    "effort_dec_thr": _FRACTION,
+    "effort_dec": _NON_NEGATIVE,
+    "effort_inc_thr": _FRACTION,
+    "effort_inc": _NON_NEGATIVE,
+    "recover_init": _FRACTION,
+    "recover_dec_thr": _FRACTION,
+    "recover_dec": _NON_NEGATIVE,
+    "recover_min": _FRACTION,
+    "wind_force": ParamRange(0.0, 0.0),
+    "wind_rand": ParamRange(0.0, 0.0),
+    "catchable_area_l": _POSITIVE,
+    "catchable_area_w": _POSITIVE,
+    "catch_probability": _FRACTION,
+    "catch_ban_cycle": _NON_NEGATIVE,
+    "tackle_dist": _NON_NEGATIVE,
+    "tackle_back_dist": _NON_NEGATIVE,
+    "tackle_width": _POSITIVE,
+    "tackle_exponent": _NON_NEGATIVE,
+    "tackle_cycles": _NON_NEGATIVE,
+    "tackle_power_rate": _NON_NEGATIVE,
+    "max_tackle_power": _NON_NEGATIVE,
+    "max_back_tackle_power": _NON_NEGATIVE,
+    "slowness_on_top_for_left_team": _NON_NEGATIVE,
+    "slowness_on_top_for_right_team": _NON_NEGATIVE,
+    "goal_width": _POSITIVE,
+    # rcssserver playerparam.cpp: catchable_area_l_stretch_min 1.0 (heterogeneous types stretch, never shrink)
+    "catch_area_l_stretch": ParamRange(1.0, _INF),
+    "foul_exponent": _NON_NEGATIVE,
+    "tackle_rand_factor": _NON_NEGATIVE,
+}
 
 
 @dataclass(slots=True)

@@ -10,6 +10,7 @@ Field geometry (metres) from rcssserver's constants via hfo_reference §1.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -45,9 +46,10 @@ GOAL_AREA_HALF_WIDTH = 9.16
 CENTRE_CIRCLE_RADIUS = 9.15
 PENALTY_SPOT_DIST = 11.0
 
-# Players and the ball are drawn at true size but never smaller than these radii (pixels), so they stay visible.
-MIN_PLAYER_RADIUS_PX = 5
-MIN_BALL_RADIUS_PX = 3
+# Players and the ball are drawn at true size but never smaller than these radii (pixels), so they stay visible:
+# at 10 px/m the ball (0.085 m) would be under 1 px, so it is drawn 12 px across with a black rim.
+MIN_PLAYER_RADIUS_PX = 6
+MIN_BALL_RADIUS_PX = 6
 
 COLOR_GRASS = (40, 130, 50)
 COLOR_GRASS_STRIPE = (46, 140, 56)
@@ -63,6 +65,41 @@ COLOR_BODY_DIR = (20, 20, 20)
 COLOR_BALL = (255, 255, 255)
 COLOR_BALL_EDGE = (0, 0, 0)
 COLOR_TEXT = (255, 255, 255)
+COLOR_OVERLAY = (0, 0, 0)
+OVERLAY_ALPHA = 150  # of the dark strip behind the overlay text
+COLOR_GOAL_STATUS = (90, 230, 90)
+COLOR_OTHER_STATUS = (255, 120, 80)
+
+
+@dataclass(frozen=True)
+class Overlay:
+    """What the env shows over the pitch (``HFOEnv`` fills it; every field is from the env's own counters).
+
+    Args:
+        episode: number of the current episode (1 for the first ``reset``).
+        cycle: cycles played in it.
+        goals: goals in the episodes ended so far.
+        ended: episodes ended so far (terminated or truncated).
+        status: the current episode's final status once it has ended (drawn large), else None.
+        previous: (number, final status) of the last episode that ended before this one, or None.
+    """
+
+    episode: int
+    cycle: int
+    goals: int
+    ended: int
+    status: str | None = None
+    previous: tuple[int, str] | None = None
+
+    def lines(self) -> list[str]:
+        """The overlay's small text lines, top to bottom."""
+        lines = [
+            f"episode {self.episode}   cycle {self.cycle}",
+            f"goals {self.goals} / {self.ended} episodes",
+        ]
+        if self.status is None and self.previous is not None:
+            lines.append(f"episode {self.previous[0]}: {self.previous[1]}")
+        return lines
 
 
 def _import_pygame() -> Any:
@@ -103,11 +140,16 @@ class HFORenderer:
         self._clock: Any = None
         self._field: Any = None  # static background, drawn once
         self._font: Any = None
+        self._big_font: Any = None
         self._font_failed = False
 
     # ---------------------------------------------------------------------------------------------------------
-    def render(self, world: World) -> np.ndarray | None:
-        """Draw the current state; an (H, W, 3) uint8 frame in ``"rgb_array"`` mode, None in ``"human"``."""
+    def render(self, world: World, overlay: Overlay | None = None) -> np.ndarray | None:
+        """Draw the current state; an (H, W, 3) uint8 frame in ``"rgb_array"`` mode, None in ``"human"``.
+
+        ``overlay``: episode, cycle, goals and status to show in the top-left corner (without it, only the
+        world's own cycle counter is shown).
+        """
         pygame = self._pygame
         if self.render_mode == "human" and self._screen is None:
             pygame.display.init()  # display only: pygame.init() would also open an audio device
@@ -120,6 +162,7 @@ class HFORenderer:
 
         canvas = self._field.copy()
         self._draw_objects(canvas, world)
+        self._draw_overlay(canvas, world, overlay)
 
         if self.render_mode == "human":
             assert self._screen is not None and self._clock is not None
@@ -263,13 +306,35 @@ class HFORenderer:
         ball_centre = to_screen(ball.x, ball.y)
         ball_px = max(MIN_BALL_RADIUS_PX, round(params.ball_size * scale))
         pygame.draw.circle(canvas, COLOR_BALL, ball_centre, ball_px)
-        pygame.draw.circle(canvas, COLOR_BALL_EDGE, ball_centre, ball_px, 1)
+        pygame.draw.circle(canvas, COLOR_BALL_EDGE, ball_centre, ball_px, 2)
 
-        text = self._text(f"cycle {world.cycle}")
-        if text is not None:
-            canvas.blit(text, (6, 4))
+    def _draw_overlay(self, canvas: Any, world: World, overlay: Overlay | None) -> None:
+        """The text lines on a translucent strip in the top-left corner, and a finished episode's status."""
+        pygame = self._pygame
+        lines = [f"cycle {world.cycle}"] if overlay is None else overlay.lines()
+        texts = [self._text(line) for line in lines]
+        if any(text is None for text in texts):
+            return
+        width = max(text.get_width() for text in texts) + 12
+        height = sum(text.get_height() + 2 for text in texts) + 6
+        strip = pygame.Surface((width, height), pygame.SRCALPHA)
+        strip.fill((*COLOR_OVERLAY, OVERLAY_ALPHA))
+        canvas.blit(strip, (0, 0))
+        row = 4
+        for text in texts:
+            canvas.blit(text, (6, row))
+            row += text.get_height() + 2
+        if overlay is not None and overlay.status is not None:
+            color = COLOR_GOAL_STATUS if overlay.status == "GOAL" else COLOR_OTHER_STATUS
+            banner = self._text(overlay.status.replace("_", " "), big=True, color=color)
+            if banner is not None:
+                back = pygame.Surface((banner.get_width() + 20, banner.get_height() + 8), pygame.SRCALPHA)
+                back.fill((*COLOR_OVERLAY, OVERLAY_ALPHA))
+                left = (SCREEN_WIDTH - back.get_width()) // 2
+                canvas.blit(back, (left, height + 6))
+                canvas.blit(banner, (left + 10, height + 10))
 
-    def _text(self, message: str) -> Any:
+    def _text(self, message: str, big: bool = False, color: tuple[int, int, int] = COLOR_TEXT) -> Any:
         """Render a short label, or None where pygame's font module is unavailable."""
         if self._font_failed:
             return None
@@ -277,8 +342,9 @@ class HFORenderer:
         if self._font is None:
             try:
                 pygame.font.init()
-                self._font = pygame.font.Font(None, 18)
+                self._font = pygame.font.Font(None, 22)
+                self._big_font = pygame.font.Font(None, 44)
             except Exception:  # pygame built without SDL_ttf: draw without the label
                 self._font_failed = True
                 return None
-        return self._font.render(message, True, COLOR_TEXT)
+        return (self._big_font if big else self._font).render(message, True, color)

@@ -1,0 +1,295 @@
+"""User errors of the command-line tools: one line ``error: <what is wrong>`` on stderr, exit code 2.
+
+``train``, ``evaluate``, ``plot``, ``enjoy`` and ``record_video`` check what a user can get wrong (a missing or
+damaged model, a missing ``--conf-file``, a missing ``--env``, bad env kwargs, a negative seed, a bad option)
+before the work starts and report it with :func:`fail`. Tracebacks are left for bugs.
+
+rl-zoo3's own parsers (``train``, ``enjoy``, ``record_video`` hand their command line to rl-zoo3) are checked by
+:func:`check_train_args` and :func:`check_playback_args` first; :func:`one_line_argparse_errors` turns the
+option errors that rl-zoo3's parser still finds into one line as well.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import importlib.util
+import io
+import sys
+import zipfile
+import zlib
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+from typing import Any, NoReturn
+
+#: Exit status of a user error (argparse's).
+USAGE_EXIT_CODE = 2
+
+
+class UserError(Exception):
+    """A mistake in what the user asked for; the message names it in one line."""
+
+
+class UsageExit(SystemExit):
+    """``SystemExit(2)`` whose ``str()`` is the one-line message (already written to stderr)."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(USAGE_EXIT_CODE)
+        self.message = message
+
+    def __str__(self) -> str:
+        return self.message
+
+
+def one_line(message: object) -> str:
+    """``message`` with its whitespace (newlines included) collapsed to single spaces."""
+    return " ".join(str(message).split())
+
+
+def fail(message: object) -> NoReturn:
+    """Write ``error: <message>`` (one line) to stderr and exit with code 2."""
+    line = f"error: {one_line(message)}"
+    print(line, file=sys.stderr)
+    raise UsageExit(line)
+
+
+class OneLineArgumentParser(argparse.ArgumentParser):
+    """An ArgumentParser whose errors are one line (no usage block), exit code 2."""
+
+    def error(self, message: str) -> NoReturn:
+        fail(f"{message} (see {self.prog} --help)")
+
+
+@contextlib.contextmanager
+def one_line_argparse_errors(prog: str) -> Iterator[None]:
+    """While active, every ArgumentParser (rl-zoo3's included) reports an error in one line naming ``prog``."""
+    original = argparse.ArgumentParser.error
+
+    def error(parser: argparse.ArgumentParser, message: str) -> NoReturn:
+        fail(f"{message} (see {prog} --help)")
+
+    argparse.ArgumentParser.error = error  # type: ignore[method-assign]
+    try:
+        yield
+    finally:
+        argparse.ArgumentParser.error = original  # type: ignore[method-assign]
+
+
+def non_negative_int(text: str) -> int:
+    """argparse type of a seed: an integer >= 0."""
+    try:
+        value = int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"must be an integer, got {text!r}") from None
+    if value < 0:
+        raise argparse.ArgumentTypeError(f"must be >= 0, got {value}")
+    return value
+
+
+# --------------------------------------------------------------------------------------------------------------
+# Models, env kwargs
+
+
+def check_model_zip(path: str | Path) -> None:
+    """UserError unless ``path`` is a readable zip that holds SB3's ``data`` entry (a saved model)."""
+    path = Path(path)
+    if not path.is_file():
+        raise UserError(f"model file not found: {path}")
+    if not zipfile.is_zipfile(path):
+        raise UserError(f"{path} is not a model .zip: not a zip archive, or cut short")
+    try:
+        with zipfile.ZipFile(path) as archive:
+            if "data" not in archive.namelist():
+                raise UserError(f"{path} is not a saved SB3 model: the zip has no 'data' entry")
+            damaged = archive.testzip()
+    except (zipfile.BadZipFile, EOFError, OSError, zlib.error) as error:
+        raise UserError(f"{path} is a damaged zip ({one_line(error)}): truncated or corrupted?") from None
+    if damaged is not None:
+        raise UserError(f"{path} is a damaged zip: its entry {damaged!r} fails the CRC check")
+
+
+def check_env_kwargs(env_id: str, env_kwargs: dict[str, Any], what: str = "--env-kwargs") -> None:
+    """UserError when an hfo2d env ``env_id`` cannot be made with ``env_kwargs`` (other ids are not checked:
+    making a real-HFO env would start a server)."""
+    import gymnasium as gym
+
+    import hfo2d
+
+    if env_id not in hfo2d.ENV_IDS:
+        return
+    try:
+        env = gym.make(env_id, **env_kwargs)
+    except (TypeError, ValueError) as error:
+        raise UserError(f"bad {what} for {env_id} {env_kwargs}: {one_line(error)}") from None
+    env.close()
+
+
+def parse_zoo_dict(items: Sequence[str], option: str) -> dict[str, Any]:
+    """``KEY:VALUE`` items as rl-zoo3's ``StoreDict`` reads them (VALUE evaluated as Python); UserError naming
+    the item that fails."""
+    from rl_zoo3.utils import StoreDict
+
+    action = StoreDict(option_strings=[option], dest="parsed", nargs="+")
+    parsed: dict[str, Any] = {}
+    for item in items:
+        namespace = argparse.Namespace()
+        if ":" not in item:
+            raise UserError(f"{option} expects KEY:VALUE items, got {item!r}")
+        try:
+            action(argparse.ArgumentParser(), namespace, [item])
+        except Exception as error:  # StoreDict evaluates the value: any error is the item's
+            raise UserError(
+                f"{option} {item!r}: the value is not a Python literal ({one_line(error)})"
+            ) from None
+        parsed.update(namespace.parsed)
+    return parsed
+
+
+# --------------------------------------------------------------------------------------------------------------
+# rl-zoo3 command lines
+
+
+def option_value(args: Sequence[str], *names: str) -> str | None:
+    """Value of the last ``--name value`` / ``--name=value`` among ``args`` (None when absent)."""
+    value = None
+    for index, arg in enumerate(args):
+        name, sep, inline = arg.partition("=")
+        if name in names:
+            value = inline if sep else (args[index + 1] if index + 1 < len(args) else None)
+    return value
+
+
+def option_values(args: Sequence[str], *names: str) -> list[str] | None:
+    """The items after the last ``--name`` (``nargs="+"``: up to the next option); None when absent."""
+    values = None
+    for index, arg in enumerate(args):
+        if arg in names:
+            values = []
+            for item in args[index + 1 :]:
+                if item.startswith("-"):
+                    break
+                values.append(item)
+    return values
+
+
+def _known_ids() -> str:
+    from sb3_hfo.zoo import hfo_env_ids
+
+    return ", ".join(hfo_env_ids())
+
+
+def check_env_option(args: Sequence[str], example: str) -> str:
+    """The ``--env`` of an rl-zoo3 command line: UserError when it is missing (rl-zoo3 would fall back to
+    CartPole-v1) or not registered."""
+    import gymnasium as gym
+
+    env_id = option_value(args, "--env")
+    if env_id is None:
+        raise UserError(
+            f"--env is required (rl-zoo3 would fall back to CartPole-v1), e.g. {example}; "
+            f"registered HFO ids: {_known_ids()}"
+        )
+    if env_id not in gym.registry:
+        raise UserError(f"unknown env id {env_id!r}; registered HFO ids: {_known_ids()}")
+    return env_id
+
+
+def check_seed_option(args: Sequence[str], hint: str = "") -> None:
+    """UserError for a negative ``--seed`` (a non-integer one is left to the parser)."""
+    seed = option_value(args, "--seed")
+    try:
+        negative = seed is not None and int(seed) < 0
+    except ValueError:
+        return
+    if negative:
+        raise UserError(f"--seed must be >= 0, got {seed}{hint}")
+
+
+def _load_yaml(path: Path) -> Any:
+    import yaml
+
+    try:
+        with open(path) as f:
+            return yaml.safe_load(f)
+    except yaml.YAMLError as error:
+        raise UserError(f"--conf-file {path} is not valid YAML: {one_line(error)}") from None
+
+
+def check_train_args(args: Sequence[str]) -> None:
+    """The user errors of a ``train`` command line, before rl-zoo3 starts (see the module docstring)."""
+    conf = option_value(args, "-conf", "--conf-file")
+    if conf is None:
+        # rl-zoo3 would otherwise look for hyperparams/skill_ddpg.yml inside its own package.
+        raise UserError("--conf-file is required, e.g. --conf-file zoo_configs/e1_empty_goal_fast.yml")
+    is_path = conf.endswith((".yml", ".yaml", ".py")) or "/" in conf
+    if is_path and not Path(conf).is_file():
+        raise UserError(f"--conf-file {conf}: no such file")
+    if not is_path:
+        try:
+            found = importlib.util.find_spec(conf) is not None
+        except (ImportError, ValueError):
+            found = False
+        if not found:
+            raise UserError(f"--conf-file {conf}: no such file, nor an importable Python module")
+    env_id = check_env_option(args, "--env HFO/EmptyGoal-v0")
+    check_seed_option(args, " (leave --seed out for a random one)")
+    zoo_dicts = {}
+    for option in ("--env-kwargs", "--eval-env-kwargs", "-params", "--hyperparams"):
+        items = option_values(args, option)
+        if items is not None:
+            zoo_dicts[option] = parse_zoo_dict(items, option)
+    config_kwargs: dict[str, Any] = {}
+    if conf.endswith((".yml", ".yaml")):
+        config = _load_yaml(Path(conf))
+        if not isinstance(config, dict):
+            raise UserError(f"--conf-file {conf}: expected a mapping of env ids to hyperparameters")
+        section = config.get(env_id, config.get("default"))
+        if not isinstance(section, dict):
+            raise UserError(
+                f"--conf-file {conf} has no hyperparameters for {env_id} (it has: {', '.join(map(str, config))})"
+            )
+        config_kwargs = dict(section.get("env_kwargs") or {})
+    if "--env-kwargs" in zoo_dicts:
+        # rl-zoo3: the command line's env_kwargs replace the config's
+        check_env_kwargs(env_id, zoo_dicts["--env-kwargs"])
+    else:
+        check_env_kwargs(env_id, config_kwargs, what=f"env_kwargs in {conf}")
+    if "--eval-env-kwargs" in zoo_dicts:
+        check_env_kwargs(env_id, zoo_dicts["--eval-env-kwargs"], what="--eval-env-kwargs")
+
+
+def check_playback_args(args: Sequence[str], algo: str) -> Path:
+    """The user errors of an ``enjoy`` / ``record_video`` command line; returns the model rl-zoo3 will load."""
+    from huggingface_sb3 import EnvironmentName
+    from rl_zoo3.utils import get_model_path
+
+    env_id = check_env_option(args, "--env HFO/EmptyGoal-v0")
+    check_seed_option(args)
+    items = option_values(args, "--env-kwargs")
+    if items is not None:
+        check_env_kwargs(env_id, parse_zoo_dict(items, "--env-kwargs"))
+    folder = option_value(args, "-f", "--folder")
+    if folder is None:
+        raise UserError(
+            "-f/--folder is required: the rl-zoo3 log folder of the run, e.g. -f logs/ (the folder train's -f wrote)"
+        )
+    try:
+        exp_id = int(option_value(args, "--exp-id") or 0)
+        checkpoint = option_value(args, "--load-checkpoint")
+    except ValueError:
+        return Path(folder)  # rl-zoo3's parser names the bad --exp-id
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):  # it prints "Loading latest experiment"
+            _, model_path, _ = get_model_path(
+                exp_id,
+                folder,
+                option_value(args, "--algo") or algo,
+                EnvironmentName(env_id),
+                "--load-best" in args,
+                checkpoint,
+                "--load-last-checkpoint" in args,
+            )
+    except (AssertionError, ValueError) as error:
+        raise UserError(one_line(error)) from None
+    check_model_zip(model_path)
+    return Path(model_path)
