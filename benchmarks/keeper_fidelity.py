@@ -51,8 +51,12 @@ Timing rules that both sides follow (measured on this build, see the report of i
 
 * after an episode ends, HFO's agent library takes three NOOPs (``turn 0``) before it returns the status
   (src/HFO.cpp ``HFOEnvironment::step``): one in the wait cycle, two in the next episode. The striker's first
-  command of an episode therefore executes in the episode's third cycle; in hfo2d the benchmark sends the same
-  two idle turns first (``LEAD_IDLE``);
+  command of an episode therefore executes in the episode's third cycle. ``HFO/Keeper-v1`` plays those two
+  cycles inside ``reset`` (``hfo_env.AGENT2D_FIRST_OBSERVATION_DELAY``: the goalie acts, the agent sends nothing),
+  so the benchmark sends the striker's actions from the first step, replays the log from the placement plus that
+  delay and compares the goalie's commands and positions of the delay cycles too (recorded by wrapping the
+  World's methods during the reset); for ``HFO/Keeper-v0`` (no delay) it sends the two idle turns first
+  (``LEAD_IDLE``). Lengths are cycles from the placement on both sides;
 * HFO's first episode is special (the agent's first observation precedes the placement, the goalie's first body
   angle depends on its pre-kick-off scan turns); every real session plays one extra trial and drops the first.
 
@@ -86,7 +90,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import real_hfo_logs  # noqa: E402  (the helper module next to this script)
 
 import hfo2d  # noqa: E402, F401  (registers the HFO/* ids)
-from hfo2d.features import low_level_features, paper_from_hfo  # noqa: E402
+from hfo2d.features import paper_from_hfo  # noqa: E402
 from hfo2d.strikers import STRIKERS, Striker, make_striker  # noqa: E402
 
 STATUSES = ("GOAL", "CAPTURED_BY_DEFENSE", "OUT_OF_BOUNDS", "OUT_OF_TIME")
@@ -394,10 +398,27 @@ def idle_flat() -> np.ndarray:
     return flat
 
 
+def first_observation_delay(env: Any) -> int:
+    """Cycles ``env.reset`` itself plays between the placement and the first observation (the goalie acts, the
+    agent sends nothing): ``AGENT2D_FIRST_OBSERVATION_DELAY`` for ``goalie="agent2d"`` (HFO/Keeper-v1), else 0."""
+    if getattr(env, "goalie", None) != "agent2d":
+        return 0
+    from hfo2d import hfo_env
+
+    return int(getattr(hfo_env, "AGENT2D_FIRST_OBSERVATION_DELAY", 0))
+
+
+def sim_idle_turns(env: Any) -> int:
+    """Idle turns the benchmark sends before the striker's first command: HFO's ``LEAD_IDLE`` less the cycles the
+    env already plays in its reset."""
+    return max(0, LEAD_IDLE - first_observation_delay(env))
+
+
 def reset_env(env: Any, options: dict[str, Any] | None, seed: int | None) -> np.ndarray:
     """``env.reset`` with hand placements; the first observation. HFO's ``--offense-on-ball`` puts the agent 0.1 m
-    behind the ball, which ``HFOEnv`` refuses as overlapping; such a player is placed on the World right after
-    the reset, and the observation recomputed."""
+    behind the ball, which ``HFOEnv`` refuses as overlapping; such a player is checked at a place away from the
+    ball and then placed where HFO puts it *inside* the reset (before the cycles the env plays in its reset, in
+    which the goalie already sees the agent)."""
     player = (options or {}).get("player")
     ball = (options or {}).get("ball")
     overlap = (
@@ -405,36 +426,63 @@ def reset_env(env: Any, options: dict[str, Any] | None, seed: int | None) -> np.
         and ball is not None
         and math.dist(player[:2], ball[:2]) < env.params.player_size + env.params.ball_size
     )
-    if overlap:
-        assert options is not None and player is not None and ball is not None
-        away = {**options, "player": (ball[0] - 1.0, ball[1], *player[2:])}
-        env.reset(seed=seed, options=away)
-        env.world.place_player(env.agent, *player)
-        return low_level_features(env.world, env.agent)
-    return env.reset(seed=seed, options=options)[0]
+    if not overlap:
+        return env.reset(seed=seed, options=options)[0]
+    assert options is not None and player is not None and ball is not None
+    away = {**options, "player": (ball[0] - 1.0, ball[1], *player[2:])}
+    parse = env._parse_reset_options
+    padded = tuple(float(v) for v in player) + (0.0,) * (5 - len(player))
+
+    def parse_then_overlap(raw: Any) -> dict[str, tuple[float, ...]]:
+        return {**parse(raw), "player": padded}
+
+    env._parse_reset_options = parse_then_overlap  # an instance attribute, removed below
+    try:
+        return env.reset(seed=seed, options=away)[0]
+    finally:
+        del env._parse_reset_options
 
 
 def play_sim_episode(
     env: Any, striker: Striker, options: dict[str, Any] | None, seed: int | None
 ) -> dict[str, Any]:
-    """One hfo2d episode: LEAD_IDLE idle turns, then the striker; end status and length."""
+    """One hfo2d episode: the idle turns HFO's agent sends first (:func:`sim_idle_turns`), then the striker; end
+    status and length in cycles from the placement (the env's first-observation delay included)."""
     obs = reset_env(env, options, seed)
     striker.reset()
+    idle = sim_idle_turns(env)
     steps = 0
     while True:
-        action = idle_flat() if steps < LEAD_IDLE else striker(obs)
+        action = idle_flat() if steps < idle else striker(obs)
         obs, _, terminated, truncated, info = env.step(action)
         steps += 1
         if terminated or truncated:
-            return {"status": info["status"], "steps": steps}
+            return {"status": info["status"], "steps": steps + first_observation_delay(env)}
 
 
 # ---------------------------------------------------------------------------------------------------------------
 # deterministic: replay logged episodes in hfo2d
 # ---------------------------------------------------------------------------------------------------------------
+@dataclass
+class CycleRecord:
+    """What one server step of hfo2d did for the goalie: its command(s), its policy's decision, the positions."""
+
+    commands: list[tuple[str, tuple[float, ...]]]
+    decision: dict[str, Any] | None = None
+    goalie: tuple[float, float] = (0.0, 0.0)  # after the step
+    agent: tuple[float, float] = (0.0, 0.0)
+    ball: tuple[float, float] = (0.0, 0.0)
+
+
 @contextmanager
-def recording_goalie_commands(env: Any) -> Iterator[list[tuple[str, tuple[float, ...]]]]:
-    """Record the server commands the World receives for the goalie (turn, dash, kick, catch, tackle)."""
+def recording_goalie_commands(
+    env: Any, cycles: list[CycleRecord] | None = None
+) -> Iterator[list[tuple[str, tuple[float, ...]]]]:
+    """Record the server commands the World receives for the goalie (turn, dash, kick, catch, tackle).
+
+    With ``cycles``, ``World.step`` is wrapped too: each step appends a :class:`CycleRecord` of the commands sent
+    since the previous step, the goalie policy's decision and the positions after the step (for the cycles that
+    ``env.reset`` plays itself)."""
     world, keeper = env.world, env.keeper
     record: list[tuple[str, tuple[float, ...]]] = []
     originals: dict[str, Callable[..., Any]] = {}
@@ -450,6 +498,26 @@ def recording_goalie_commands(env: Any) -> Iterator[list[tuple[str, tuple[float,
             return _method(p, *args)
 
         setattr(world, name, wrapper)
+    if cycles is not None:
+        step = world.step
+        originals["step"] = step
+
+        def step_wrapper(*args: Any, **kwargs: Any) -> Any:
+            decision = policy_snapshot(env)
+            result = step(*args, **kwargs)
+            cycles.append(
+                CycleRecord(
+                    list(record),
+                    decision,
+                    (keeper.x, keeper.y),
+                    (env.agent.x, env.agent.y),
+                    (world.ball.x, world.ball.y),
+                )
+            )
+            record.clear()
+            return result
+
+        world.step = step_wrapper
     try:
         yield record
     finally:
@@ -537,10 +605,45 @@ def agent_flat(env: Any, command: real_hfo_logs.BodyCommand | None) -> np.ndarra
     return np.clip(flat, 0.0, 1.0)
 
 
+def view_input_error(
+    view: dict[str, Any] | None, cycle: real_hfo_logs.ClientCycle | None
+) -> dict[str, float] | None:
+    """How far hfo2d's goalie view was from what the real goalie read in the same cycle (its fullstate message,
+    mirrored into GF): the largest position (m), velocity (m/cycle) and body angle (deg) differences."""
+    if view is None or cycle is None or ("r", 1) not in cycle.players or ("l", 11) not in cycle.players:
+        return None
+    me, opp = cycle.players[("r", 1)], cycle.players[("l", 11)]
+    bx, by, bvx, bvy = cycle.ball
+    positions = [(view["px"], -me.x), (view["py"], -me.y), (view["bx"], -bx), (view["by"], -by)]
+    positions += [(view["ox"], -opp.x), (view["oy"], -opp.y)]
+    velocities = [
+        (view["vx"], -me.vx),
+        (view["vy"], -me.vy),
+        (view["true_wx"], -bvx),
+        (view["true_wy"], -bvy),
+    ]
+    velocities += [(view["ux"], -opp.vx), (view["uy"], -opp.vy)]
+    body = abs((view["body"] - (me.body + 180.0) + 180.0) % 360.0 - 180.0)
+    return {
+        "position": max(abs(a - b) for a, b in positions),
+        "velocity": max(abs(a - b) for a, b in velocities),
+        "body": body,
+        "stamina": abs(view["stamina"] - me.stamina),
+    }
+
+
 def replay_episode(
-    env: Any, logs: real_hfo_logs.GameLogs, episode: real_hfo_logs.Episode, first: bool, tol: float
+    env: Any,
+    logs: real_hfo_logs.GameLogs,
+    episode: real_hfo_logs.Episode,
+    first: bool,
+    tol: float,
+    client: dict[int, real_hfo_logs.ClientCycle] | None = None,
 ) -> dict[str, Any] | None:
-    """Replay one logged episode in hfo2d; None when its reset is not in the log."""
+    """Replay one logged episode in hfo2d; None when its reset is not in the log. With the goalie's client log
+    (``client``), the start state comes from the goalie's fullstate message of the reset cycle (6 significant
+    digits: finer than the game log's 1e-4 m and 1e-3 degrees wherever |x| < 10 or |angle| < 100), and a command
+    mismatch also reports how far hfo2d's goalie view was from the real goalie's."""
     start = logs.shows.get(episode.start)
     if start is None or ("l", 11) not in start.players or ("r", 1) not in start.players:
         return None
@@ -550,7 +653,17 @@ def replay_episode(
         "player": (agent_show.x, agent_show.y, agent_show.body, agent_show.vx, agent_show.vy),
         "keeper": (goalie_show.x, goalie_show.y, goalie_show.body),
     }
-    reset_env(env, options, 0 if first else None)
+    fs = (client or {}).get(episode.start)
+    if fs is not None and ("l", 11) in fs.players and ("r", 1) in fs.players:
+        a, g = fs.players[("l", 11)], fs.players[("r", 1)]
+        options = {"ball": fs.ball, "player": (a.x, a.y, a.body, a.vx, a.vy), "keeper": (g.x, g.y, g.body)}
+    delay = first_observation_delay(env)
+    reset_cycles: list[CycleRecord] = []
+    with recording_goalie_commands(env, reset_cycles):
+        reset_env(env, options, 0 if first else None)
+    # the last `delay` steps of the reset are the episode's first cycles (a carried-over goalie's wait frame of
+    # the last episode comes before them)
+    delay_cycles = reset_cycles[len(reset_cycles) - delay :] if delay else []
     agent_cmds = logs.commands["base_left_11"]
     goalie_cmds = logs.commands["base_right_1"]
     length = episode.end - episode.start
@@ -564,16 +677,11 @@ def replay_episode(
     first_cmd_mismatch: dict[str, Any] | None = None
     sim_goalie_commands: list[str] = []
     status = "IN_GAME"
-    steps = 0
-    for k in range(length):
-        t = episode.start + k
-        action = agent_flat(env, agent_cmds.get(t))
-        with recording_goalie_commands(env) as record:
-            _, _, terminated, truncated, info = env.step(action)
-        steps += 1
-        sim_cmd = record[0] if record else None
+
+    def compare_command(k: int, sim_cmd: tuple[str, tuple[float, ...]] | None, decision: Any) -> None:
+        nonlocal first_cmd_mismatch
+        real_cmd = goalie_cmds.get(episode.start + k)
         sim_goalie_commands.append(command_text(sim_cmd))
-        real_cmd = goalie_cmds.get(t)
         if first_cmd_mismatch is None and not commands_agree(real_cmd, sim_cmd):
             first_cmd_mismatch = {
                 "cycle": k,
@@ -581,23 +689,43 @@ def replay_episode(
                 "sim": command_text(sim_cmd),
                 "input_error": dict(err),  # how far hfo2d's state was from the log when the goalie decided
                 "inputs_agree": err["ball"] <= tol and err["agent"] <= tol and err["goalie"] <= tol,
-                "sim_decision": policy_snapshot(env),
+                "sim_decision": decision,
+                "view_error": view_input_error(
+                    (decision or {}).get("last_view"), (client or {}).get(episode.start + k)
+                ),
             }
-        show = logs.shows.get(t + 1)
-        if show is not None:
-            logged = {"goalie": show.players.get(("r", 1)), "agent": show.players.get(("l", 11))}
-            for key, real_xy, sim_xy in (
-                ("goalie", logged["goalie"], info["keeper"]),
-                ("agent", logged["agent"], info["player"]),
-                ("ball", None, info["ball"]),
-            ):
-                if key != "ball" and real_xy is None:
-                    continue
-                rx, ry = show.ball[:2] if real_xy is None else (real_xy.x, real_xy.y)
-                err[key] = math.hypot(rx - sim_xy[0], ry - sim_xy[1])
-                max_err[key] = max(max_err[key], err[key])
-                if first_div[key] is None and err[key] > tol:
-                    first_div[key] = k + 1
+
+    def compare_state(k: int, positions: dict[str, tuple[float, float]]) -> None:
+        """Positions after the step k -> k + 1 against ``show start + k + 1``."""
+        show = logs.shows.get(episode.start + k + 1)
+        if show is None:
+            return
+        for key, logged in (
+            ("goalie", show.players.get(("r", 1))),
+            ("agent", show.players.get(("l", 11))),
+            ("ball", None),
+        ):
+            if key != "ball" and logged is None:
+                continue
+            rx, ry = show.ball[:2] if logged is None else (logged.x, logged.y)
+            sim_xy = positions[key]
+            err[key] = math.hypot(rx - sim_xy[0], ry - sim_xy[1])
+            max_err[key] = max(max_err[key], err[key])
+            if first_div[key] is None and err[key] > tol:
+                first_div[key] = k + 1
+
+    for k, cycle in enumerate(delay_cycles):  # the cycles env.reset played: the goalie alone acts
+        compare_command(k, cycle.commands[0] if cycle.commands else None, cycle.decision)
+        compare_state(k, {"goalie": cycle.goalie, "agent": cycle.agent, "ball": cycle.ball})
+    steps = delay
+    for k in range(delay, length):
+        t = episode.start + k
+        action = agent_flat(env, agent_cmds.get(t))
+        with recording_goalie_commands(env) as record:
+            _, _, terminated, truncated, info = env.step(action)
+        steps += 1
+        compare_command(k, record[0] if record else None, policy_snapshot(env))
+        compare_state(k, {"goalie": info["keeper"], "agent": info["player"], "ball": info["ball"]})
         if terminated or truncated:
             status = info["status"]
             break
@@ -677,6 +805,9 @@ def run_deterministic_sessions(args: argparse.Namespace) -> list[SessionConfig]:
                 targets=tuple(args.targets) if name == "aimed_shot" else (),
             )
             configs.append(SessionConfig(**{**asdict(config), **placement}))
+    if getattr(args, "client_logs", False):  # the goalie's client log too, for `views --replay-dir WORK`
+        copy_dir = str(client_logging_hfo(Path(args.hfo_dir), work))
+        configs = [SessionConfig(**{**asdict(c), "hfo_dir": copy_dir}) for c in configs]
     real_episodes(args, work, configs)
     return configs
 
@@ -695,9 +826,11 @@ def cmd_deterministic(args: argparse.Namespace) -> dict[str, Any]:
     rows: list[dict[str, Any]] = []
     for config in configs:
         logs = real_hfo_logs.read_logs(Path(config.log_dir))
+        client_log = Path(config.log_dir) / GOALIE_CLIENT_LOG
+        client = real_hfo_logs.parse_client_log(client_log) if client_log.exists() else None
         first = True  # each session's first replayed episode starts a fresh hfo2d goalie (reset with a seed)
         for episode in logs.episodes:
-            replay = replay_episode(env, logs, episode, first=first, tol=args.tol)
+            replay = replay_episode(env, logs, episode, first=first, tol=args.tol, client=client)
             if replay is not None:
                 first = False
                 target = None
@@ -732,6 +865,9 @@ def cmd_deterministic(args: argparse.Namespace) -> dict[str, Any]:
         where = ""
         if m:
             where = f"{m['real']} | {m['sim']} (ball {m['input_error']['ball']:.1e}, agent {m['input_error']['agent']:.1e})"
+            if m.get("view_error"):
+                ve = m["view_error"]
+                where += f" view: pos {ve['position']:.1e} vel {ve['velocity']:.1e} body {ve['body']:.1e}"
         start = f"{r['start_ball'][0]:.1f},{r['start_ball'][1]:.1f}"
         if r["target"] is not None:
             start += f">{r['target']:+g}"
@@ -768,6 +904,262 @@ def _median(values: Sequence[int | None]) -> float | None:
 
 def _opt(value: Any) -> str:
     return "-" if value is None else str(value)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# views: hfo2d's goalie decision on the real goalie's own inputs
+# ---------------------------------------------------------------------------------------------------------------
+GOALIE_CLIENT_LOG = "base_right-1.ocl"  # the goalie's offline client log (librcsc: LOG_DIR/TEAM-UNUM + ext)
+
+
+def client_logging_hfo(hfo_dir: Path, work: Path) -> Path:
+    """A copy of the HFO build (symbolic links; bin/*.py copied so that bin/HFO finds the copy's teams) whose
+    base team's player.conf has librcsc's ``offline_logging`` on: every NPC writes the messages it receives to
+    ``LOG_DIR/TEAM-UNUM.ocl``. The real build is not touched."""
+    copy = work / "hfo_client_logging"
+    if (copy / "bin" / "HFO").exists():
+        return copy
+
+    def mirror(src: Path, dst: Path, real: set[str]) -> None:
+        dst.mkdir(parents=True, exist_ok=True)
+        for entry in src.iterdir():
+            if entry.name not in real:
+                (dst / entry.name).symlink_to(entry.resolve())
+
+    mirror(hfo_dir, copy, {"bin"})
+    mirror(hfo_dir / "bin", copy / "bin", {"teams", "HFO", *(f.name for f in (hfo_dir / "bin").glob("*.py"))})
+    for script in ["HFO", *(f.name for f in (hfo_dir / "bin").glob("*.py"))]:
+        (copy / "bin" / script).write_bytes((hfo_dir / "bin" / script).read_bytes())
+        (copy / "bin" / script).chmod(0o755)
+    mirror(hfo_dir / "bin" / "teams", copy / "bin" / "teams", {"base"})
+    base = hfo_dir / "bin" / "teams" / "base"
+    mirror(base, copy / "bin" / "teams" / "base", {"config"})
+    mirror(base / "config", copy / "bin" / "teams" / "base" / "config", {"player.conf"})
+    conf = (base / "config" / "player.conf").read_text()
+    conf = conf.replace("#offline_logging", "offline_logging").replace("#offline_log_ext", "offline_log_ext")
+    (copy / "bin" / "teams" / "base" / "config" / "player.conf").write_text(conf)
+    return copy
+
+
+class _StubPlayer:
+    """A player of a fullstate message as hfo2d's goalie policy reads it (PlayerState's attributes)."""
+
+    def __init__(self, side: str, unum: int, fs: real_hfo_logs.FullstatePlayer, tackle_cycles: int) -> None:
+        self.side, self.unum = side, unum
+        self.x, self.y, self.vx, self.vy = fs.x, fs.y, fs.vx, fs.vy
+        self.body_deg = fs.body
+        self.stamina, self.effort, self.recovery = fs.stamina, fs.effort, fs.recovery
+        self.tackle_cycles = tackle_cycles
+
+
+class _StubWorld:
+    """The World interface Agent2dGoalie uses, holding one fullstate message; records the goalie's command."""
+
+    def __init__(self, cycle: real_hfo_logs.ClientCycle, params: Any, noise: bool) -> None:
+        self.cycle = cycle.time
+        bx, by, bvx, bvy = cycle.ball
+        self.ball = type("Ball", (), {"x": bx, "y": by, "vx": bvx, "vy": bvy})()
+        self.players = [
+            _StubPlayer(side, unum, fs, cycle.tackle_expires if (side, unum) == ("r", 1) else 0)
+            for (side, unum), fs in sorted(cycle.players.items())
+        ]
+        self.params = params
+        self.noise = noise
+        self.sent: tuple[str, tuple[float, ...]] | None = None
+
+    @property
+    def keeper(self) -> _StubPlayer:
+        return next(p for p in self.players if (p.side, p.unum) == ("r", 1))
+
+    def turn(self, _p: Any, moment: float) -> None:
+        self.sent = ("turn", (moment,))
+
+    def dash(self, _p: Any, power: float, direction: float = 0.0) -> None:
+        self.sent = ("dash", (power, direction))
+
+    def catch(self, _p: Any, direction: float) -> bool:
+        self.sent = ("catch", (direction,))
+        return False  # the referee's goalie_catch_ball message, heard next cycle, tells the client
+
+    def tackle(self, _p: Any, direction: float, foul: bool = False) -> None:
+        self.sent = ("tackle", (direction,))
+
+
+def decision_path(goalie: Any, world: _StubWorld) -> list[str]:
+    """The public functions of hfo2d.agent2d's decision modules that one decision of ``goalie`` (a copy taken
+    before the decision) calls: the branch taken, for a mismatch report."""
+    calls: list[str] = []
+    keep = ("decision.py", "actions.py", "tackle.py")
+
+    def tracer(frame: Any, event: str, arg: Any) -> Any:
+        if event == "call" and frame.f_code.co_filename.endswith(keep):
+            name = frame.f_code.co_name
+            if not name.startswith("_") or name in (
+                "_go_to_point_look_ball",
+                "_go_to_move_point",
+                "_wait_turn",
+            ):
+                calls.append(name)
+        return tracer
+
+    sys.settrace(tracer)
+    try:
+        goalie.decide(world, world.keeper)
+    finally:
+        sys.settrace(None)
+    return calls
+
+
+def replay_views(
+    logs: real_hfo_logs.GameLogs, client: dict[int, real_hfo_logs.ClientCycle], noise: bool
+) -> list[dict[str, Any]]:
+    """hfo2d's goalie decision on each of the real goalie's fullstate inputs, against the real goalie's command.
+
+    One Agent2dGoalie carries the client state (catch time, last body command, last kicker, game mode) from cycle
+    to cycle: ``reset`` at every episode start (the referee's before_kick_off / play_on), GoalieCatch from the
+    heard ``goalie_catch_ball_r``. Physics plays no part: every decision sees exactly what the real goalie saw.
+    One row per cycle of the episodes after HFO's first (their wait frames included)."""
+    import copy
+
+    from hfo2d.agent2d.goalie import Agent2dGoalie
+    from hfo2d.physics import ServerParams
+
+    params = ServerParams()
+    goalie = Agent2dGoalie(params, np.random.default_rng(0))
+    starts = {e.start for e in logs.episodes}
+    episode_of: dict[int, real_hfo_logs.Episode] = {}
+    for e in logs.episodes:
+        for t in range(e.start, e.end + 1):  # the end cycle is the wait frame (decided before the next reset)
+            episode_of[t] = e
+    goalie_cmds = logs.commands["base_right_1"]
+    rows: list[dict[str, Any]] = []
+    started = False
+    for t in sorted(client):
+        cycle = client[t]
+        started = started or cycle.mode == "play_on"
+        if not started:
+            continue
+        if t in starts:
+            goalie.reset()
+        if cycle.mode_changed and cycle.mode == "goalie_catch_ball_r":
+            goalie._catch_pending = True
+        world = _StubWorld(cycle, params, noise)
+        before = copy.deepcopy(goalie)
+        goalie.apply(world, world.keeper, goalie.decide(world, world.keeper))
+        episode = episode_of.get(t)
+        if episode is None or episode.number < 2:
+            continue
+        real = goalie_cmds.get(t)
+        sim = world.sent
+        real_text = real.text() if real else "(none)"
+        agree = commands_agree(real, sim)
+        exact = real_text == command_text(sim) or (real is None and sim == ("turn", (0.0,)))
+        row: dict[str, Any] = {
+            "cycle": t,
+            "episode": episode.number,
+            "k": t - episode.start,
+            "wait_frame": t == episode.end,
+            "real": real_text,
+            "sim": command_text(sim),
+            "agree": agree,
+            "exact": agree and exact,
+        }
+        if not agree:
+            view = goalie.last_view
+            row["view"] = dataclasses.asdict(view) if view is not None else None
+            row["path"] = decision_path(before, _StubWorld(cycle, params, noise))
+        rows.append(row)
+    return rows
+
+
+def cmd_views(args: argparse.Namespace) -> dict[str, Any]:
+    """Run (or re-read) logged sessions with the goalie's client log and replay its decisions in hfo2d."""
+    if args.replay_dir:
+        work = Path(args.replay_dir)
+        sessions = sorted(work.glob("session_*.json"), key=lambda path: int(path.stem.split("_")[1]))
+        configs = [SessionConfig(**json.loads(path.read_text())) for path in sessions]
+    else:
+        check_network_namespace()
+        work = Path(tempfile.mkdtemp(prefix="keeper_fidelity_", dir=args.work_dir))
+        copy_dir = client_logging_hfo(Path(args.hfo_dir), work)
+        configs = []
+        for name in args.strikers:
+            for spot in parse_spots(args.spots):
+                index = len(configs)
+                log_dir = work / f"logs_{index}_{name}"
+                log_dir.mkdir()
+                placement: dict[str, Any] = {}
+                if spot is not None:
+                    placement = {
+                        "ball_x": (spot[0], spot[0]),
+                        "ball_y": (spot[1], spot[1]),
+                        "offense_on_ball": True,
+                    }
+                config = session_config(
+                    args,
+                    work,
+                    index,
+                    name,
+                    args.episodes + 1,
+                    deterministic=args.deterministic,
+                    logging=True,
+                    log_dir=str(log_dir),
+                    targets=tuple(args.targets) if name == "aimed_shot" else (),
+                )
+                configs.append(SessionConfig(**{**asdict(config), "hfo_dir": str(copy_dir), **placement}))
+        real_episodes(args, work, configs)
+    sessions_out = []
+    all_rows: list[dict[str, Any]] = []
+    for config in configs:
+        log_dir = Path(config.log_dir)
+        client_log = log_dir / GOALIE_CLIENT_LOG
+        if not client_log.exists():
+            raise SystemExit(
+                f"keeper_fidelity: no goalie client log {client_log} (run `views` without --replay-dir)"
+            )
+        logs = real_hfo_logs.read_logs(log_dir)
+        rows = replay_views(logs, real_hfo_logs.parse_client_log(client_log), noise=not config.deterministic)
+        for row in rows:
+            row["striker"] = config.striker
+        all_rows.extend(rows)
+        sessions_out.append(
+            {
+                "striker": config.striker,
+                "port": config.port,
+                "deterministic": config.deterministic,
+                "cycles": len(rows),
+                "agree": sum(r["agree"] for r in rows),
+                "exact": sum(r["exact"] for r in rows),
+            }
+        )
+    mismatches = [r for r in all_rows if not r["agree"]]
+    n = len(all_rows)
+    summary = {
+        "cycles": n,
+        "agree": sum(r["agree"] for r in all_rows),
+        "exact": sum(r["exact"] for r in all_rows),
+        "mismatches": len(mismatches),
+        "mismatch_kinds": dict(
+            Counter(f"{r['real'].split()[0]}) | {r['sim'].split()[0]})" for r in mismatches)
+        ),
+    }
+    print("\nhfo2d's goalie decision on the real goalie's own fullstate inputs (no physics), cycle by cycle")
+    print(f"{'striker':<14}{'port':>6}{'noise':>7}{'cycles':>8}{'agree':>8}{'exact':>8}")
+    for row in sessions_out:
+        print(
+            f"{row['striker']:<14}{row['port']:>6}{'off' if row['deterministic'] else 'on':>7}{row['cycles']:>8}"
+            f"{row['agree']:>8}{row['exact']:>8}"
+        )
+    print(
+        f"commands agree in {summary['agree']}/{n} cycles ({summary['agree'] / max(1, n):.2%}), "
+        f"identical text in {summary['exact']}/{n}; mismatches by kind (real | hfo2d): {summary['mismatch_kinds']}"
+    )
+    for r in mismatches[:40]:
+        print(
+            f"  {r['striker']:<14} cycle {r['cycle']:>5} ep {r['episode']:>3} k {r['k']:>3}"
+            f"{' (wait frame)' if r['wait_frame'] else ''}: {r['real']} | {r['sim']}  via {' > '.join(r['path'])}"
+        )
+    return {"summary": summary, "sessions": sessions_out, "mismatches": mismatches, "work_dir": str(work)}
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -975,6 +1367,25 @@ def build_parser() -> argparse.ArgumentParser:
         help="exact starts: the ball at X * 52.5, Y * 34 with the agent on it, one session per striker and spot "
         "(default: HFO's random start, whose logged reset state is rounded to 1e-4 m)",
     )
+    views = sub.add_parser(
+        "views",
+        help="hfo2d's goalie decisions on the real goalie's own inputs (its client log), cycle by cycle",
+    )
+    common(views)
+    strikers(views, 5, extra=("aimed_shot",))
+    views.add_argument("--deterministic", action="store_true", help="HFO --deterministic (default: noise on)")
+    views.add_argument(
+        "--spots", nargs="+", default=None, metavar="X,Y", help="exact starts, as for deterministic"
+    )
+    views.add_argument(
+        "--targets", type=float, nargs="+", default=list(SHOT_TARGETS), help="aimed_shot targets"
+    )
+    views.add_argument("--replay-dir", default=None, help="re-read an earlier `views` run's work directory")
+    det.add_argument(
+        "--client-logs",
+        action="store_true",
+        help="also write the NPCs' client logs (an HFO copy with librcsc offline_logging on), for `views`",
+    )
     noise = sub.add_parser("noise", help="goal rates with noise on, real vs hfo2d")
     common(noise)
     strikers(noise, 1000)
@@ -1021,7 +1432,13 @@ def main(argv: Sequence[str] | None = None) -> None:
         args.hfo_dir = hfo_dir_of(args.hfo_dir)
     args.env_id = args.env_id or default_env_id()
     started = time.monotonic()
-    result = {"deterministic": cmd_deterministic, "noise": cmd_noise, "shots": cmd_shots}[args.command](args)
+    commands = {
+        "deterministic": cmd_deterministic,
+        "views": cmd_views,
+        "noise": cmd_noise,
+        "shots": cmd_shots,
+    }
+    result = commands[args.command](args)
     result["command"] = " ".join(sys.argv)
     result["hfo2d_version"] = hfo2d_version()
     result["seconds"] = time.monotonic() - started

@@ -12,6 +12,13 @@ Formats (rcssserver 15.2.2 as HFO builds it; facts from its sources, no code):
   T; the body command among them is executed in the step T -> T+1. librcsc prints the numbers with the stream's
   default 6 significant digits, and the server parses that text, so the logged value is the executed one.
   Referee messages appear as ``T,sub<TAB>(referee MSG)``.
+* ``.ocl``, a client's offline log (librcsc ``offline_logging``; the player.conf of HFO's base team has it commented
+  out): every message the client received, one per line, in order. Per cycle T: ``(sense_body T ...)``, ``(fullstate
+  T ...)`` (numbers printed with 6 significant digits, rcssserver serializerplayerstdv1.cpp), ``(see T ...)``,
+  ``(hear T referee MSG)`` and ``(think)``, the synch_see mode's signal to decide. rcssserver's HFO mode keeps its
+  own play mode PlayOn, so the client's game mode comes from the referee messages it hears
+  (``goalie_catch_ball_r``, ``before_kick_off``, ``play_on``). A client killed at the end of a session loses the
+  last few kB of it.
 * ``.hfo`` (src/referee.cpp HFORef::logEpisode): ``episode<TAB>start<TAB>end<TAB>duration<TAB>result`` per episode;
   ``start`` is the cycle of the reset (``show start`` has the new placement), ``end`` the cycle after whose step
   the referee ended it. The result is ``GOAL-unum``, ``CAPTURED_BY_DEFENSE-unum``, ``OUT_OF_BOUNDS`` or
@@ -165,6 +172,104 @@ def parse_hfo(path: Path) -> list[Episode]:
             number, start, end, _, result = line.rstrip("\n").split("\t")[:5]
             episodes.append(Episode(int(number), int(start), int(end), result.split("-")[0]))
     return episodes
+
+
+@dataclass(frozen=True)
+class FullstatePlayer:
+    """A player of a fullstate message, in the server's (left-team) frame, as printed."""
+
+    x: float
+    y: float
+    vx: float
+    vy: float
+    body: float
+    neck: float
+    stamina: float
+    effort: float
+    recovery: float
+    flags: str  # "t" tackling, "k" kicked, "f" charged (fullstate v13+), "" else
+
+
+@dataclass(frozen=True)
+class ClientCycle:
+    """What a client knew when it decided in cycle ``time`` (at its ``(think)``), from its offline log."""
+
+    time: int
+    ball: tuple[float, float, float, float]
+    players: dict[tuple[str, int], FullstatePlayer]
+    tackle_expires: int  # sense_body (tackle (expires N)): cycles the client stays frozen by its own tackle
+    mode: str  # the last play-mode message heard (referee): "play_on", "goalie_catch_ball_r", ...
+    mode_changed: bool  # a play-mode message changed the mode since the previous decision
+    referee: tuple[str, ...]  # the referee messages heard since the previous decision
+
+
+_FS_HEAD = re.compile(r"^\(fullstate (\d+) ")
+_FS_PLAYER = re.compile(
+    r"\(\(p ([lr]) (\d+)(?: g)? \d+\) "
+    + " ".join([_NUMBER] * 6)
+    + r"(?: [-0-9.e+]+ [-0-9.e+]+)? \(stamina "
+    + " ".join([_NUMBER] * 3)
+    + r"(?: [-0-9.e+]+)?\)((?: [tkfyr])*)\)"
+)
+_SENSE_HEAD = re.compile(r"^\(sense_body (\d+) ")
+_TACKLE_EXPIRES = re.compile(r"\(tackle \(expires (\d+)\)")
+_HEAR_REFEREE = re.compile(r"^\(hear (\d+) referee ([^)\s]+)\)")
+# referee messages that set a play mode in librcsc (the others, such as HFO's IN_GAME-L11, set none)
+PLAY_MODES = ("play_on", "before_kick_off", "goalie_catch_ball_l", "goalie_catch_ball_r", "time_over")
+
+
+def parse_fullstate(
+    line: str,
+) -> tuple[int, tuple[float, float, float, float], dict[tuple[str, int], FullstatePlayer]]:
+    """One ``(fullstate T ...)`` line: its time, the ball and the players."""
+    head = _FS_HEAD.match(line)
+    if head is None:
+        raise ValueError(f"not a fullstate message: {line[:40]!r}")
+    ball_match = _BALL.search(line)
+    if ball_match is None:
+        raise ValueError(f"fullstate without a ball: {line[:80]!r}")
+    ball = tuple(float(v) for v in ball_match.groups())
+    players = {}
+    for m in _FS_PLAYER.finditer(line):
+        side, unum = m.group(1), int(m.group(2))
+        values = [float(v) for v in m.groups()[2:11]]
+        players[(side, unum)] = FullstatePlayer(*values, flags=m.group(12).replace(" ", ""))
+    return int(head.group(1)), ball, players  # type: ignore[return-value]
+
+
+def parse_client_log(path: Path) -> dict[int, ClientCycle]:
+    """A client's offline log (.ocl): what it knew at each of its decisions, by cycle."""
+    cycles: dict[int, ClientCycle] = {}
+    fullstate: (
+        tuple[int, tuple[float, float, float, float], dict[tuple[str, int], FullstatePlayer]] | None
+    ) = None
+    tackle_expires = 0
+    mode = ""
+    changed = False
+    referee: list[str] = []
+    with open(path, encoding="ascii", errors="replace") as handle:
+        for line in handle:
+            if line.startswith("(fullstate "):
+                try:
+                    fullstate = parse_fullstate(line)
+                except ValueError:
+                    fullstate = None  # a line cut short by the end of the log
+            elif line.startswith("(sense_body "):
+                m = _TACKLE_EXPIRES.search(line)
+                tackle_expires = int(m.group(1)) if m else 0
+            elif line.startswith("(hear "):
+                m = _HEAR_REFEREE.match(line)
+                if m is not None:
+                    referee.append(m.group(2))
+                    if m.group(2) in PLAY_MODES:
+                        changed = changed or m.group(2) != mode
+                        mode = m.group(2)
+            elif line.startswith("(think)") and fullstate is not None:
+                time, ball, players = fullstate
+                cycles[time] = ClientCycle(time, ball, players, tackle_expires, mode, changed, tuple(referee))
+                changed = False
+                referee = []
+    return cycles
 
 
 def read_logs(log_dir: Path) -> GameLogs:

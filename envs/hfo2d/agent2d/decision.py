@@ -12,12 +12,14 @@ replaces an earlier one, as in librcsc's ActionEffector.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 from hfo2d.agent2d.actions import (
     body_go_to_point,
     body_intercept,
     body_stop_dash,
     body_turn_to_angle,
+    body_turn_to_point,
     go_to_point_look_ball,
 )
 from hfo2d.agent2d.common import (
@@ -34,6 +36,7 @@ from hfo2d.agent2d.common import (
     PLAYER_DECAY,
     STAMINA_INC_MAX,
     STAMINA_MAX,
+    Command,
     Effector,
     GoalieView,
     InterceptTable,
@@ -136,12 +139,24 @@ def can_catch(v: GoalieView, last_catch_cycle: int) -> bool:
     )
 
 
-def decide(eff: Effector, v: GoalieView, table: InterceptTable, last_catch_cycle: int) -> None:
-    """One cycle of the goalie in PlayOn or after a non-terminal catch (SamplePlayer::actionImpl's goalie part)."""
+def decide(
+    eff: Effector,
+    v: GoalieView,
+    table: InterceptTable,
+    last_catch_cycle: int,
+    catch_command_cycle: int = 0,
+    free_kick: FreeKickState | None = None,
+) -> None:
+    """One cycle of the goalie in PlayOn or in GoalieCatch mode after a catch (SamplePlayer::actionImpl's goalie
+    part). ``catch_command_cycle`` is the cycle of the goalie's last catch command (librcsc ActionEffector's
+    catch time, 0 before any), ``free_kick`` Bhv_GoalieFreeKick's flags (kept by the caller across decisions)."""
     if not v.play_on:
-        # Bhv_SetPlay -> Bhv_GoalieFreeKick, which falls back to the basic move unless the goalie is kickable
-        # (never in a live HFO episode): bhv_goalie_free_kick.cpp.
-        basic_move(eff, v, table)
+        # Bhv_SetPlay -> Bhv_GoalieFreeKick: its routine when the goalie is kickable (in HFO: the wait frame after
+        # a catch that ended the episode with the ball within 1.03 m), else the basic move.
+        if v.self_kickable:
+            goalie_free_kick(eff, v, v.cycle - catch_command_cycle, free_kick or FreeKickState())
+        else:
+            basic_move(eff, v, table)
         return
     if can_catch(v, last_catch_cycle):
         eff.catch(norm_deg(angle_of(v.bx - v.px, v.by - v.py) - v.body + CATCH_DIR_OFFSET))
@@ -154,6 +169,85 @@ def decide(eff: Effector, v: GoalieView, table: InterceptTable, last_catch_cycle
         chase_ball(eff, v, table)
     else:
         basic_move(eff, v, table)
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# Bhv_GoalieFreeKick (bhv_goalie_free_kick.cpp): GoalieCatch mode for our side with the ball kickable
+# ---------------------------------------------------------------------------------------------------------------
+FREE_KICK_WAIT_CYCLES = 2  # bhv_goalie_free_kick.cpp: time_diff <= 2 -> wait (and clear the flags)
+FREE_KICK_FIRST_MOVE_X = PENALTY_AREA_X - 1.5  # ourPenaltyAreaLineX - 1.5, y -13 or 13 (away from the ball)
+FREE_KICK_FIRST_MOVE_Y = 13.0
+FREE_KICK_MIN_WAIT = 50  # time_diff < 50 -> wait after the first move
+FREE_KICK_DROP_WAIT = 100 - 15  # rcssserver serverparam.cpp drop_ball_time 100, less 15
+FREE_KICK_KICK_POINTS = ((-43.0, 10.0), (-43.0, -10.0), (-43.0, 0.0))  # getKickPoint candidates, in order
+FREE_KICK_SECOND_WAITS = 5  # s_second_wait_count < 5 -> wait
+# doWait: face (ourPenaltyAreaLineX - 1, 0) when beyond ourPenaltyAreaLineX - ball_size - player_size - 0.5
+# (rcssserver serverparam.cpp: ball_size 0.085, player_size 0.3)
+FREE_KICK_FACE_LINE_X = PENALTY_AREA_X - 0.085 - 0.3 - 0.5
+
+
+@dataclass(slots=True)
+class FreeKickState:
+    """Bhv_GoalieFreeKick's static flags (``s_first_move``, ``s_second_move``, ``s_second_wait_count``)."""
+
+    first_move: bool = False
+    second_move: bool = False
+    second_wait_count: int = 0
+
+
+def free_kick_wait(eff: Effector, v: GoalieView) -> None:
+    """Bhv_GoalieFreeKick::doWait: Body_TurnToPoint toward the halfway spot (0, 0), or toward
+    (ourPenaltyAreaLineX - 1, 0) when the goalie stands beyond ourPenaltyAreaLineX - 0.885."""
+    fx = PENALTY_AREA_X - 1.0 if v.px > FREE_KICK_FACE_LINE_X else 0.0
+    body_turn_to_point(eff, v, fx, 0.0)
+
+
+def goalie_free_kick(eff: Effector, v: GoalieView, time_diff: int, state: FreeKickState) -> None:
+    """Bhv_GoalieFreeKick::execute once GoalieCatch (our side) holds and the goalie is kickable; ``time_diff`` is
+    the cycles since its catch command.
+
+    A ``move`` is written as ``Command("move", x, y)``: rcssserver accepts it only in its own free-kick mode after
+    a catch, which HFO's server never enters (its play mode stays PlayOn), so the server ignores it. The kick of
+    the routine's end (Body_Pass / Body_ClearBall) needs six such cycles with the ball kickable and no episode
+    end in between, which HFO never gives; it is written as ``turn 0`` like RoleGoalie's clear-ball branch."""
+    if time_diff <= FREE_KICK_WAIT_CYCLES:
+        state.first_move = state.second_move = False
+        state.second_wait_count = 0
+        free_kick_wait(eff, v)
+        return
+    if not state.first_move:
+        state.first_move = True
+        state.second_move = False
+        state.second_wait_count = 0
+        y = -FREE_KICK_FIRST_MOVE_Y if v.by > 0.0 else FREE_KICK_FIRST_MOVE_Y
+        eff.command = Command("move", FREE_KICK_FIRST_MOVE_X, y)
+        return
+    # (the set-play count, cycles since GoalieCatch began, is >= 3 whenever time_diff >= 50; no teammates)
+    if time_diff < FREE_KICK_MIN_WAIT or (time_diff < FREE_KICK_DROP_WAIT and v.stamina < STAMINA_MAX * 0.9):
+        free_kick_wait(eff, v)
+        return
+    if not state.second_move:
+        best = FREE_KICK_KICK_POINTS[0]
+        best_cong = 10000.0
+        for kx, ky in FREE_KICK_KICK_POINTS:
+            cong = 0.0
+            if v.has_opp:
+                d2 = (v.ox - kx) ** 2 + (v.oy - ky) ** 2
+                cong = 1.0 / d2 if d2 > 0.0 else math.inf
+            if cong < best_cong:
+                best, best_cong = (kx, ky), cong
+        eff.command = Command("move", best[0], best[1])
+        state.second_move = True
+        state.second_wait_count = 0
+        return
+    state.second_wait_count += 1
+    # (or no see this cycle: with synch_see there is one every cycle)
+    if state.second_wait_count < FREE_KICK_SECOND_WAITS:
+        free_kick_wait(eff, v)
+        return
+    state.first_move = state.second_move = False
+    state.second_wait_count = 0
+    eff.turn(0.0)
 
 
 # ---------------------------------------------------------------------------------------------------------------

@@ -27,7 +27,7 @@ from hfo2d.agent2d.common import (
     angle_of,
     norm_deg,
 )
-from hfo2d.agent2d.decision import decide
+from hfo2d.agent2d.decision import FreeKickState, decide
 from hfo2d.agent2d.intercept import build_intercept_table
 from hfo2d.agent2d.tackle import client_tackle_dir
 from hfo2d.physics import PlayerState, ServerParams, World
@@ -41,6 +41,14 @@ LAST_KICKER_DIST = 6.0
 BALL_VEL_CHANGE_SPEED = 0.1
 BALL_VEL_CHANGE_ANGLE = 20.0
 NEVER_CAUGHT = -1000
+
+
+def fullstate_value(x: float) -> float:
+    """A number as the client reads it from a fullstate message: rcssserver 15 (fullstatesender.cpp, protocol
+    >= 8; serializerplayerstdv1.cpp serializeFSBegin sets ``precision(6)``) prints positions, velocities, body
+    angles (degrees), stamina, effort and recovery unquantised with 6 significant digits (``%g``), and librcsc
+    fullstate_sensor.cpp parses them with strtod."""
+    return float(f"{x:.6g}")
 
 
 class Agent2dGoalie:
@@ -73,6 +81,8 @@ class Agent2dGoalie:
         # starts long after cycle 0, so the ban test of the client never bites before a first catch)
         self._last_catch_cycle = NEVER_CAUGHT
         self._last_body_kind: str | None = None  # ActionEffector::lastBodyCommandType
+        self._catch_command_cycle = 0  # ActionEffector::getCatchTime: the cycle of the last catch command
+        self._free_kick = FreeKickState()  # Bhv_GoalieFreeKick's static flags
         self._last_kicker_ours = False  # WorldModel::M_last_kicker_side == our side (neutral at the start)
         self._prev_ball_vel: tuple[float, float] | None = None
         self._play_on = True
@@ -110,10 +120,13 @@ class Agent2dGoalie:
             table = build_intercept_table(view, full=False)
             table.complete = False
             eff = Effector()
-            decide(eff, view, table, self._last_catch_cycle)
+            decide(eff, view, table, self._last_catch_cycle, self._catch_command_cycle, self._free_kick)
             command = eff.command
-            if command is not None and command.kind == "catch" and not view.play_on:
-                command = None  # the client refuses a catch outside PlayOn
+            if command is not None and command.kind == "catch":
+                if view.play_on:
+                    self._catch_command_cycle = cycle  # ActionEffector::setCatch
+                else:
+                    command = None  # the client refuses a catch outside PlayOn
         self.last_command = command
         return command
 
@@ -134,14 +147,21 @@ class Agent2dGoalie:
                 self._catch_pending = True
         elif kind == "tackle":
             world.tackle(keeper, client_tackle_dir(command.a), command.foul)
+        # kind "move" (Bhv_GoalieFreeKick): rcssserver player.cpp Player::move ignores it in PlayOn, the only
+        # server play mode of an HFO episode
         self._last_body_kind = kind
 
     # -------------------------------------------------------------------------------------------------------------
     def _view(self, world: World, keeper: PlayerState) -> GoalieView:
-        """librcsc's world model just before the decision, converted to GF."""
+        """librcsc's world model just before the decision, converted to GF.
+
+        Every number is what the client parses from rcssserver's fullstate message: printed with a C++ stream's
+        default 6 significant digits (:func:`fullstate_value`), then mirrored for the right side as librcsc's
+        FullstateSensor::reverse does (positions and velocities negated, body angle normalize(body + 180))."""
         ball = world.ball
-        px, py, vx, vy = -keeper.x, -keeper.y, -keeper.vx, -keeper.vy
-        bx, by, wx, wy = -ball.x, -ball.y, -ball.vx, -ball.vy
+        fs = fullstate_value
+        px, py, vx, vy = -fs(keeper.x), -fs(keeper.y), -fs(keeper.vx), -fs(keeper.vy)
+        bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
         d_b = math.hypot(bx - px, by - py)
         attacker = None
         for player in world.players:
@@ -154,10 +174,10 @@ class Agent2dGoalie:
             py=py,
             vx=vx,
             vy=vy,
-            body=norm_deg(keeper.body_deg - 180.0),
-            stamina=keeper.stamina,
-            effort=keeper.effort,
-            recovery=keeper.recovery,
+            body=norm_deg(fs(keeper.body_deg) + 180.0),
+            stamina=fs(keeper.stamina),
+            effort=fs(keeper.effort),
+            recovery=fs(keeper.recovery),
             bx=bx,
             by=by,
             wx=wx,
@@ -170,9 +190,9 @@ class Agent2dGoalie:
             player_rand=world.params.player_rand if world.noise else 0.0,
         )
         if attacker is not None:
-            view.ox, view.oy = -attacker.x, -attacker.y
-            view.ux, view.uy = -attacker.vx, -attacker.vy
-            view.obody = norm_deg(attacker.body_deg - 180.0)
+            view.ox, view.oy = -fs(attacker.x), -fs(attacker.y)
+            view.ux, view.uy = -fs(attacker.vx), -fs(attacker.vy)
+            view.obody = norm_deg(fs(attacker.body_deg) + 180.0)
             frozen = getattr(attacker, "tackle_cycles", 0)
             view.opp_tackle_count = frozen
             if frozen <= 0:
@@ -182,11 +202,12 @@ class Agent2dGoalie:
                     KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
                 ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
         if self._catch_pending:
-            # the referee's goalie_catch_ball message: GoalieCatch mode until the next episode, and librcsc zeroes
-            # the ball velocity on the play-mode change
+            # the referee's goalie_catch_ball message: GoalieCatch mode until the next episode. The ball velocity
+            # stays the fullstate's: librcsc ball_object.cpp BallObject::update zeroes it only in the set plays
+            # other than GoalieCatch, and updateByFullstate overwrites it anyway (measured: real HFO's goalie
+            # decided on the unzeroed velocity in the cycle its catch was announced)
             self._catch_pending = False
             self._play_on = False
-            view.wx = view.wy = 0.0
         view.play_on = self._play_on
         self._update_last_kicker(view, attacker is not None)
         view.lk_not_ours = not self._last_kicker_ours
