@@ -5,9 +5,10 @@
 
 Four panels against training episodes: average critic loss (``train/critic_loss``), maximum Q-value
 (``train/max_q``), accumulated reward per episode (``rollout/ep_rew_mean``, SB3's mean over the last 100
-episodes) and goal rate (``rollout/goal_rate``, logged by ``sb3_hfo.zoo.HFOEpisodeStatsCallback``, with the greedy
-evaluations ``eval/success_rate`` dashed when rl-zoo3's ``--eval-freq`` wrote them). Each LOGDIR
-is searched recursively; every folder holding ``events.out.tfevents.*`` files is one run (one curve).
+episodes) and goal rate (``rollout/success_rate``, SB3's, from HFO's ``info["is_success"]``; older runs'
+``rollout/goal_rate``), with the greedy evaluations ``eval/success_rate`` dashed when rl-zoo3's ``--eval-freq``
+wrote them). Each LOGDIR is searched recursively; every folder holding ``events.out.tfevents.*`` files is one run
+(one curve).
 
 The x axis is episodes: ``rollout/episodes`` (or ``time/episodes``) when logged; otherwise episodes are estimated
 from the step counter as sum(delta steps / ep_len_mean), and failing that the axis is environment steps.
@@ -28,8 +29,15 @@ from typing import Any
 
 import numpy as np
 
-#: The training goal rate (with exploration); its panel also shows the greedy evaluations (EVAL_SUCCESS_TAG).
-GOAL_RATE_TAG = "rollout/goal_rate"
+from sb3_hfo.cli_errors import OneLineArgumentParser
+
+#: The training goal rate (with exploration; SB3's, from HFO's ``info["is_success"]``); its panel also shows the
+#: greedy evaluations (EVAL_SUCCESS_TAG).
+GOAL_RATE_TAG = "rollout/success_rate"
+
+#: Tags older runs logged the training goal rate under (SkillDDPG and HFOEpisodeStatsCallback before they left it
+#: to SB3): read as GOAL_RATE_TAG when a run has no GOAL_RATE_TAG.
+LEGACY_GOAL_RATE_TAGS: tuple[str, ...] = ("rollout/goal_rate",)
 
 #: (tag, panel title) of the four panels, in the paper's order plus the goal rate.
 PANELS: tuple[tuple[str, str], ...] = (
@@ -100,6 +108,10 @@ def load_run(run_dir: Path, label: str) -> Run:
         steps = np.array(sorted(points), dtype=float)
         run.scalars[tag] = (steps, np.array([points[int(s)][0] for s in steps], dtype=float))
         run.wall_clock[tag] = np.array([points[int(s)][1] - start for s in steps], dtype=float)
+    for legacy in LEGACY_GOAL_RATE_TAGS:
+        if GOAL_RATE_TAG not in run.scalars and legacy in run.scalars:
+            run.scalars[GOAL_RATE_TAG] = run.scalars[legacy]
+            run.wall_clock[GOAL_RATE_TAG] = run.wall_clock[legacy]
     return run
 
 
@@ -236,8 +248,21 @@ def plot_runs(runs: Sequence[Run], out: Path, smooth: int = 1, title: str | None
     plt.close(figure)
 
 
+def check_out(out: Path) -> str | None:
+    """What is wrong with ``out`` as the figure's file (a folder, a format matplotlib cannot write), or None."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    if out.is_dir():
+        return "is a folder; give a file name such as figure.png"
+    formats = FigureCanvasBase.get_supported_filetypes()
+    suffix = out.suffix.lstrip(".").lower()
+    if suffix not in formats:
+        return f"unknown image format {out.suffix or '(none)'!r}; use one of .{', .'.join(sorted(formats))}"
+    return None
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    parser = OneLineArgumentParser(
         prog="python -m sb3_hfo.plot",
         description="Plot loss, max Q, accumulated reward and goal rate against episodes (paper Figures 3/4).",
     )
@@ -277,6 +302,10 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 2
     if any(not 0.0 < target <= 1.0 for target in args.targets):
         print(f"error: --targets must lie in (0, 1], got {args.targets}", file=sys.stderr)
+        return 2
+    out_problem = check_out(Path(args.out))
+    if out_problem:
+        print(f"error: --out {args.out}: {out_problem}", file=sys.stderr)
         return 2
     plot_runs(runs, Path(args.out), smooth=args.smooth, title=args.title)
     print(f"wrote {args.out} ({len(runs)} run(s))")

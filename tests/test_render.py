@@ -15,14 +15,18 @@ import pytest
 from gymnasium.error import DependencyNotInstalled
 
 import hfo2d  # noqa: F401  (registers the environments)
+from hfo2d.hfo_env import HFOEnv
 from hfo2d.physics import ServerParams, World
 from hfo2d.rendering import (
     COLOR_BALL,
+    COLOR_BALL_EDGE,
+    COLOR_GOAL_STATUS,
     COLOR_GOALIE,
     COLOR_OFFENSE,
     SCREEN_HEIGHT,
     SCREEN_WIDTH,
     HFORenderer,
+    Overlay,
     to_screen,
 )
 
@@ -92,3 +96,59 @@ def test_missing_pygame_raises_dependency_not_installed(monkeypatch: pytest.Monk
     monkeypatch.setitem(sys.modules, "pygame", None)  # makes `import pygame` raise ImportError
     with pytest.raises(DependencyNotInstalled, match=r"sb3-hfo\[render\]"):
         HFORenderer("rgb_array", ServerParams())
+
+
+def test_ball_is_clearly_visible_at_the_default_size() -> None:
+    params = ServerParams()
+    world = World(params, np.random.default_rng(0))
+    world.place_ball(30.0, 12.0)
+    renderer = HFORenderer("rgb_array", params)
+    frame = renderer.render(world)
+    assert frame is not None
+    column, row = to_screen(30.0, 12.0)
+    patch = frame[row - 8 : row + 9, column - 8 : column + 9].reshape(-1, 3)
+    ball_pixels = np.all(patch == COLOR_BALL, axis=-1) | np.all(patch == COLOR_BALL_EDGE, axis=-1)
+    assert ball_pixels.sum() >= 90  # a disc about 12 px across (the true 0.085 m would be under 1 px)
+
+
+def _play_to_a_goal(env: HFOEnv) -> dict:
+    env.reset(seed=0, options={"player": (48.0, 0.0, 0.0), "ball": (48.6, 0.0)})
+    kick = np.array([0, 0, 1, 0, 0.5, 0.5, 1.0, 0.5], dtype=np.float32)
+    turn = np.array([0, 1, 0, 0, 0.5, 0.5, 0, 0.5], dtype=np.float32)
+    _, _, terminated, _, info = env.step(kick)
+    while not terminated:
+        _, _, terminated, _, info = env.step(turn)
+    return info
+
+
+def test_overlay_counts_episodes_cycles_goals_and_shows_the_end(monkeypatch: pytest.MonkeyPatch) -> None:
+    overlays: list[Overlay | None] = []
+    original = HFORenderer.render
+
+    def spy(self: HFORenderer, world: World, overlay: Overlay | None = None) -> np.ndarray | None:
+        overlays.append(overlay)
+        return original(self, world, overlay)
+
+    monkeypatch.setattr(HFORenderer, "render", spy)
+    env = HFOEnv(noise=False, render_mode="rgb_array")
+    env.reset(seed=0)
+    env.render()
+    assert overlays[-1] == Overlay(episode=1, cycle=0, goals=0, ended=0)
+    assert _play_to_a_goal(env)["status"] == "GOAL"  # a reset in mid-episode: episode 2, not an ended one
+    cycles = env.steps
+    end_frame = env.render()
+    assert overlays[-1] == Overlay(episode=2, cycle=cycles, goals=1, ended=1, status="GOAL")
+    env.reset(seed=3)
+    for _ in range(3):
+        env.step(env.action_space.sample())
+    frame = env.render()
+    assert env.world.cycle > 3  # the world's clock runs on; the overlay's cycle is the episode's
+    assert overlays[-1] == Overlay(episode=3, cycle=3, goals=1, ended=1, previous=(2, "GOAL"))
+    assert overlays[-1].lines() == ["episode 3   cycle 3", "goals 1 / 1 episodes", "episode 2: GOAL"]
+    # the end status is drawn large, in the goal colour, only once the episode has ended
+    assert end_frame is not None and frame is not None
+    assert np.all(end_frame == COLOR_GOAL_STATUS, axis=-1).sum() > 50
+    assert not np.all(frame == COLOR_GOAL_STATUS, axis=-1).any()
+    # the overlay sits on a dark strip in the top-left corner
+    assert frame[2, 2].tolist() != frame[SCREEN_HEIGHT // 2, 2].tolist()
+    env.close()

@@ -513,6 +513,22 @@ def test_episode_stats_callback_logs_episodes_and_leaves_the_goal_rate_to_sb3() 
     assert recorder.values == {"rollout/episodes": 3}
 
 
+def test_plot_reads_the_goal_rate_of_older_runs(tmp_path: Path) -> None:
+    from stable_baselines3.common.logger import configure
+
+    from sb3_hfo.plot import GOAL_RATE_TAG, load_run
+
+    assert GOAL_RATE_TAG == "rollout/success_rate"
+    for name, tag, value in (("old", "rollout/goal_rate", 0.25), ("new", GOAL_RATE_TAG, 0.75)):
+        logger = configure(str(tmp_path / name), ["tensorboard"])
+        logger.record(tag, value)
+        logger.dump(step=100)
+        logger.close()
+        run = load_run(tmp_path / name, name)
+        steps, values = run.scalars[GOAL_RATE_TAG]
+        assert steps.tolist() == [100.0] and values.tolist() == [value]
+
+
 def test_keeper_skill_curriculum_ramps_the_training_envs_only() -> None:
     from stable_baselines3.common.callbacks import BaseCallback
     from stable_baselines3.common.env_util import make_vec_env

@@ -8,11 +8,15 @@ Importing the package registers these environments (no TimeLimit wrapper; episod
 * ``HFO/Keeper-v1``: HFO's own goalie, agent2d's, as HFO runs it (66 features; ``keeper_skill`` in [0, 1]);
 * ``HFO/RealEmptyGoal-v0``, ``HFO/RealKeeper-v0``: the same tasks in the real HFO (agent2d's goalie), through a
   local HFO build (``hfo2d.real.RealHFOEnv``; ``hfo_dir`` or ``$HFO_DIR``; nothing of it is imported until made).
+* ``HFO/RealStaticKeeper-v0``: the real HFO against a goalie that stands still on the goal line facing the field
+  (a defense agent of ``hfo2d.real``, as ``HFO/StaticKeeper-v0``'s keeper).
 
 Only numpy, gymnasium and pymunk are imported here; pygame is imported when rendering starts.
 """
 
 from __future__ import annotations
+
+from typing import Any
 
 import gymnasium
 
@@ -20,9 +24,8 @@ from hfo2d.heuristic import heuristic
 from hfo2d.hfo_env import HFOEnv
 from hfo2d.physics import ServerParams, World
 
-__all__ = ["ENV_IDS", "HFOEnv", "ServerParams", "World", "heuristic"]
+__all__ = ["ENV_IDS", "HFOEnv", "RegisteredEnvCreator", "ServerParams", "World", "heuristic"]
 
-ENV_ENTRY_POINT = "hfo2d.hfo_env:HFOEnv"
 ENV_IDS: dict[str, str] = {
     "HFO/EmptyGoal-v0": "empty_goal",
     "HFO/StaticKeeper-v0": "static_keeper",
@@ -30,19 +33,64 @@ ENV_IDS: dict[str, str] = {
     "HFO/Keeper-v1": "keeper",
 }
 
-# A re-import (importlib.reload, a second interpreter path) must not warn about re-registration.
 #: Keyword arguments of each registered id beyond its task.
 ENV_EXTRA_KWARGS: dict[str, dict[str, str]] = {"HFO/Keeper-v1": {"goalie": "agent2d"}}
 
+
+def _defining_kwargs(env_id: str) -> dict[str, str]:
+    """The kwargs that make ``env_id`` what it is: its task and, for task "keeper", its goalie."""
+    return _defining(ENV_IDS[env_id], ENV_EXTRA_KWARGS.get(env_id, {}).get("goalie", "hfo2d"))
+
+
+def _defining(task: Any, goalie: Any) -> dict[str, Any]:
+    return {"task": task, "goalie": goalie} if task == "keeper" else {"task": task}
+
+
+class RegisteredEnvCreator:
+    """What ``gym.make`` calls for a registered HFO id: an :class:`HFOEnv` with the id's own task (and goalie).
+
+    A kwarg that would turn the id into another environment (``gym.make("HFO/EmptyGoal-v0", task="keeper")``)
+    is a ValueError naming the id to use instead; every other kwarg goes to :class:`HFOEnv` as given.
+    """
+
+    metadata = HFOEnv.metadata  # gym.make checks render_mode against it
+
+    def __init__(self, env_id: str) -> None:
+        self.env_id = env_id
+        self.fixed = _defining_kwargs(env_id)
+
+    def __call__(self, **kwargs: Any) -> HFOEnv:
+        for key, value in self.fixed.items():
+            given = kwargs.get(key, value)
+            if given != value:
+                wanted = _defining(kwargs.get("task", self.fixed["task"]), kwargs.get("goalie", "hfo2d"))
+                others = [other for other in ENV_IDS if _defining_kwargs(other) == wanted]
+                instead = f"make {others[0]}" if others else f"use hfo2d.HFOEnv({key}={given!r}, ...)"
+                raise ValueError(
+                    f"{self.env_id} is {key}={value!r}; {key}={given!r} would make another environment: {instead}"
+                )
+        return HFOEnv(**kwargs)
+
+    def __repr__(self) -> str:
+        return f"hfo2d.RegisteredEnvCreator({self.env_id!r})"
+
+
+# A re-import (importlib.reload, a second interpreter path) must not warn about re-registration.
 for _env_id, _task in ENV_IDS.items():
     if _env_id not in gymnasium.registry:
         gymnasium.register(
-            id=_env_id, entry_point=ENV_ENTRY_POINT, kwargs={"task": _task, **ENV_EXTRA_KWARGS.get(_env_id, {})}
+            id=_env_id,
+            entry_point=RegisteredEnvCreator(_env_id),
+            kwargs={"task": _task, **ENV_EXTRA_KWARGS.get(_env_id, {})},
         )
 
 #: The real-HFO backend's ids (hfo2d.real, imported only when one is made; needs a local HFO build).
 REAL_ENV_ENTRY_POINT = "hfo2d.real:RealHFOEnv"
-REAL_ENV_IDS: dict[str, str] = {"HFO/RealEmptyGoal-v0": "empty_goal", "HFO/RealKeeper-v0": "keeper"}
+REAL_ENV_IDS: dict[str, str] = {
+    "HFO/RealEmptyGoal-v0": "empty_goal",
+    "HFO/RealStaticKeeper-v0": "static_keeper",
+    "HFO/RealKeeper-v0": "keeper",
+}
 for _env_id, _task in REAL_ENV_IDS.items():
     if _env_id not in gymnasium.registry:
         gymnasium.register(id=_env_id, entry_point=REAL_ENV_ENTRY_POINT, kwargs={"task": _task})

@@ -17,7 +17,7 @@ from hfo2d.features import (
     low_level_feature_list,
     num_features,
 )
-from hfo2d.physics import PITCH_HALF_LENGTH, PITCH_HALF_WIDTH, PlayerState, ServerParams, World
+from hfo2d.physics import PITCH_HALF_LENGTH, PITCH_HALF_WIDTH, HFOReferee, PlayerState, ServerParams, World
 from hfo2d.reward import DEFAULT_SHAPING_GAMMA, REWARD_NAMES, make_reward
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -80,8 +80,16 @@ GOALIES: tuple[str, ...] = ("hfo2d", "agent2d")
 # rcssserver's initial body angle is 0 (facing the goalie's own goal); agent2d's before-kick-off scan turns it by
 # 180 degrees every few cycles, so real HFO's first episode starts facing either way (agent2d goalie spec §2.5).
 AGENT2D_FIRST_BODY_DEGS = (0.0, -180.0)
+# Cycles between the trainer's placement and the agent's first observation in real HFO (hfo2d.real, measured).
+AGENT2D_FIRST_OBSERVATION_DELAY = 2
 AGENT_SIDE, AGENT_UNUM = "l", 11  # HFO's first offense agent
 KEEPER_SIDE, KEEPER_UNUM = "r", 1
+
+#: Hand placements (reset options) must lie on the pitch or within this margin of it (m): rcssserver
+#: serverparam.cpp PITCH_MARGIN 5.0 (stadium.cpp, placePlayersInField, keeps players within it).
+PITCH_MARGIN = 5.0
+PLACEMENT_MAX_X = PITCH_HALF_LENGTH + PITCH_MARGIN
+PLACEMENT_MAX_Y = PITCH_HALF_WIDTH + PITCH_MARGIN
 
 RESET_OPTION_LENGTHS: dict[str, tuple[int, ...]] = {
     "player": (3, 5),  # (x, y, body_deg[, vx, vy])
@@ -179,14 +187,16 @@ class HFOEnv(gym.Env):
            defender held the ball for 2 cycles.
         4. OUT_OF_TIME: more than ``untouched_time`` (100) cycles without any player within 1.085 m of the ball.
         These set ``terminated``. After ``frames_per_trial`` (500) steps the episode is ``truncated`` with status
-        OUT_OF_TIME. No TimeLimit wrapper is registered.
+        OUT_OF_TIME. No TimeLimit wrapper is registered. Once an episode has ended, ``step`` raises
+        RuntimeError ("call reset()") and changes nothing.
 
     Starting state (HFO's resetField, bin/HFO defaults; all draws from ``self.np_random``):
         the ball at rest at x ~ U(0, 10.5), y ~ U(-27.2, 27.2); the agent at ``ball + 10.5 · (U(0, 1) + o)`` per
         axis with ``o`` one of HFO's ten offsets, x clamped to [-0.1, 52.5] and y to [-27.2, 27.2], at rest, body
         angle ~ U(-180, 180); the goalie at (52.5, 0) facing the field. Stamina, effort and recovery are restored.
         ``reset(options=...)`` may place things by hand: ``{"player": (x, y, body_deg[, vx, vy]),
-        "ball": (x, y[, vx, vy]), "keeper": (x, y, body_deg)}``.
+        "ball": (x, y[, vx, vy]), "keeper": (x, y, body_deg)}``, on the pitch or within rcssserver's 5 m margin
+        of it (|x| <= 57.5, |y| <= 39), with no two of the placed bodies (and the goalie's start) overlapping.
         Exploring starts (not part of HFO; off by default): with ``random_start_fraction = p > 0`` each episode,
         with probability ``p``, starts instead with the ball at rest at x ~ U(0, 50), y ~ U(-27.2, 27.2) and the
         agent, independently, at x ~ U(0, 52.5), y ~ U(-27.2, 27.2), body ~ U(-180, 180): states near the goal and
@@ -205,14 +215,19 @@ class HFOEnv(gym.Env):
         reward: "shaped", "shaped_gap", "shaped_gap_refund", "potential_gap" or "sparse".
         shaping_gamma: discount of the ``"potential_gap"`` shaping, in [0, 1] (set it to the agent's ``gamma``);
             the other rewards ignore it.
-        noise: False turns off player, ball and kick noise (HFO's --deterministic).
-        server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}``.
-        keeper_skill: goalie quality for task "keeper", in [0, 1] (1: the full goalie).
+        noise: False turns off player, ball and kick noise (HFO's --deterministic); a bool.
+        server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}`` (a mapping; each
+            value range-checked, :data:`hfo2d.physics.SERVER_PARAM_RANGES`).
+        keeper_skill: goalie quality for task "keeper", in [0, 1] (default 1: the full goalie); an error for the
+            other tasks, which have no scripted goalie.
         goalie: the goalie of task "keeper": "agent2d" (HFO's, ``HFO/Keeper-v1``) or "hfo2d" (``HFO/Keeper-v0``).
             With "agent2d" the goalie's body angle, catch ban and catch time carry over from one episode to the
             next as in real HFO (one wait cycle is played after each episode), except after ``reset(seed=...)``,
             which starts the goalie afresh so that a seed repeats; its first body angle faces its own goal or the
-            field (drawn).
+            field (drawn). As in real HFO, the goalie plays two cycles after the placement before the agent's first
+            observation, and rcssserver's HFO referee judges the episode (``physics.HFOReferee``: the untouched
+            limit is checked before the cycle's count; the trial ends on cycle ``frames_per_trial + 1``, counted
+            from the placement, i.e. after ``frames_per_trial - 1`` agent steps, as a truncation).
         frames_per_trial: steps after which an episode is truncated.
         untouched_time: cycles without a player near the ball after which the episode ends.
         random_start_fraction: probability in [0, 1] that an episode uses the exploring start above (0: HFO's).
@@ -236,7 +251,7 @@ class HFOEnv(gym.Env):
         reward: str = "shaped",
         noise: bool = True,
         server_params: Mapping[str, float] | None = None,
-        keeper_skill: float = 1.0,
+        keeper_skill: float | None = None,
         goalie: str = "hfo2d",
         frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
         untouched_time: int = DEFAULT_UNTOUCHED_TIME,
@@ -256,7 +271,15 @@ class HFOEnv(gym.Env):
             raise ValueError(
                 f"unknown render_mode {render_mode!r}; choose None or one of {self.metadata['render_modes']}"
             )
-        _check_keeper_skill(keeper_skill)
+        if keeper_skill is not None:
+            _check_keeper_skill(keeper_skill)
+            if task != "keeper":
+                raise ValueError(
+                    f"keeper_skill is for task 'keeper' (HFO/Keeper-v0, HFO/Keeper-v1) only; task {task!r} has no "
+                    "scripted goalie"
+                )
+        if not isinstance(noise, (bool, np.bool_)):
+            raise ValueError(f"noise must be True or False, got {noise!r}")
         if goalie not in GOALIES:
             raise ValueError(f"unknown goalie {goalie!r}; choose one of {GOALIES}")
         if goalie != "hfo2d" and task != "keeper":
@@ -280,8 +303,9 @@ class HFOEnv(gym.Env):
         self._hfo_layout = feature_set == "hfo"
         self.reward_name = reward
         self.noise = bool(noise)
-        self.keeper_skill = float(keeper_skill)
+        self.keeper_skill = 1.0 if keeper_skill is None else float(keeper_skill)
         self.goalie = goalie
+        self._hfo_referee: HFOReferee | None = None
         self.frames_per_trial = int(frames_per_trial)
         self.untouched_time = int(untouched_time)
         self.random_start_fraction = float(random_start_fraction)
@@ -332,11 +356,19 @@ class HFOEnv(gym.Env):
             self.keeper = self.world.add_player(KEEPER_SIDE, KEEPER_UNUM, goalie=True)
             if task == "keeper":
                 self._keeper_policy = self._make_scripted_keeper(rng)
+            if goalie == "agent2d":
+                self._hfo_referee = HFOReferee(self.params, self.untouched_time, trial_time=self.frames_per_trial)
         self._opponents: tuple[PlayerState, ...] = (self.keeper,) if self.keeper is not None else ()
         self._rng_in_use = rng
         self._renderer: Any = None
         self._needs_reset = True
         self._episode_started = False
+        self._episode_over = False  # the episode has terminated or been truncated: step() needs a reset()
+        # for the render overlay: episodes started and ended, goals, (number, status) of the last ended episode
+        self._episode_number = 0
+        self._episodes_ended = 0
+        self._goals = 0
+        self._last_end: tuple[int, str] | None = None
         self._steps = 0
         self._untouched = 0
         self._take_time = 0
@@ -417,6 +449,16 @@ class HFOEnv(gym.Env):
         self._status = IN_GAME
         self._needs_reset = False
         self._episode_started = True
+        if self._hfo_referee is not None:
+            self._hfo_referee.reset(world)
+            # Real HFO's agent gets its first observation two cycles after the trainer places the players (measured
+            # with hfo2d.real); the goalie plays those cycles, the agent sends nothing.
+            for _ in range(AGENT2D_FIRST_OBSERVATION_DELAY):
+                self._keeper_policy.act(world, self.keeper)
+                world.step()
+                self._hfo_referee.analyse(world)
+        self._episode_over = False
+        self._episode_number += 1
         features = self._features()
         self._reward_fn.reset(features)
         info = self._info(features)
@@ -431,6 +473,8 @@ class HFOEnv(gym.Env):
         """Advance one server cycle: agent command, goalie command, physics, referee, features, reward."""
         if self._needs_reset:
             raise RuntimeError("call reset() before step()")
+        if self._episode_over:
+            raise RuntimeError(f"the episode has ended ({self._status}): call reset() before step()")
         world = self.world
         agent = self.agent
         kind, power, direction = self._parse_action(action)
@@ -461,13 +505,25 @@ class HFOEnv(gym.Env):
         world.step()
         self._steps += 1
 
-        status = self._referee(previous_ball_x, previous_ball_y)
-        terminated = status != IN_GAME
-        truncated = False
-        if not terminated and self._steps >= self.frames_per_trial:
-            status = OUT_OF_TIME
-            truncated = True
+        if self._hfo_referee is not None:
+            # Keeper-v1: rcssserver's HFO referee exactly, including its trial time (the episode ends on cycle
+            # frames_per_trial + 1, a truncation) and its untouched count (checked before this cycle's count)
+            status = self._hfo_referee.analyse(world)
+            truncated = status == OUT_OF_TIME and self._hfo_referee.cycles > self.frames_per_trial
+            terminated = status != IN_GAME and not truncated
+        else:
+            status = self._referee(previous_ball_x, previous_ball_y)
+            terminated = status != IN_GAME
+            truncated = False
+            if not terminated and self._steps >= self.frames_per_trial:
+                status = OUT_OF_TIME
+                truncated = True
         self._status = status
+        if terminated or truncated:
+            self._episode_over = True
+            self._episodes_ended += 1
+            self._goals += status == GOAL
+            self._last_end = (self._episode_number, status)
 
         features = self._features()
         reward, terms = self._reward_fn(features, status, terminated)
@@ -518,7 +574,11 @@ class HFOEnv(gym.Env):
         self.keeper_skill = float(skill)
 
     def render(self) -> np.ndarray | None:
-        """Draw the current state: a pygame window ("human") or an RGB array (H, W, 3) uint8 ("rgb_array")."""
+        """Draw the current state: a pygame window ("human") or an RGB array (H, W, 3) uint8 ("rgb_array").
+
+        An overlay shows the episode number, the cycle within it, the goals so far and, once it has ended, its
+        status (:class:`hfo2d.rendering.Overlay`).
+        """
         if self.render_mode is None:
             gym.logger.warn(
                 "You are calling render method without specifying any render mode. "
@@ -532,7 +592,22 @@ class HFOEnv(gym.Env):
             from hfo2d.rendering import HFORenderer  # pygame is imported only when rendering
 
             self._renderer = HFORenderer(self.render_mode, self.params)
-        return self._renderer.render(self.world)
+        return self._renderer.render(self.world, self._overlay())
+
+    def _overlay(self) -> Any:
+        """The renderer's overlay: episode, cycle in it, goals so far, the end status."""
+        from hfo2d.rendering import Overlay
+
+        last = self._last_end
+        over = self._episode_over
+        return Overlay(
+            episode=self._episode_number,
+            cycle=self._steps,
+            goals=self._goals,
+            ended=self._episodes_ended,
+            status=self._status if over else None,
+            previous=last if last is not None and not over else None,
+        )
 
     def close(self) -> None:
         """Close the render window, if any."""
@@ -705,10 +780,12 @@ class HFOEnv(gym.Env):
                 raise ValueError(f"reset option {key!r} has a non-finite value: {tuple(values)}")
             # a placement without velocity starts at rest
             placements[key] = tuple(values) + (0.0,) * (max(lengths) - len(values))
+        _check_placements(placements, self.params, self.has_keeper)
         return placements
 
 
 _NO_DECISION = object()  # step(): the goalie (if any) decides in the usual place
+_NOT_REAL = (bool, np.bool_, complex, np.complexfloating)  # numbers an action or a placement must not hold
 
 
 def _check_keeper_skill(skill: Any) -> None:
@@ -718,8 +795,44 @@ def _check_keeper_skill(skill: Any) -> None:
         raise ValueError(f"keeper_skill must lie in [0, 1], got {skill!r}")
 
 
+def _check_placements(
+    placements: Mapping[str, tuple[float, ...]], params: ServerParams, has_keeper: bool
+) -> None:
+    """ValueError unless every hand placement lies on the pitch (or within PITCH_MARGIN of it) and no two
+    bodies whose start is known (placed, or the goalie's fixed start) overlap."""
+    for key, values in placements.items():
+        x, y = values[0], values[1]
+        if abs(x) > PLACEMENT_MAX_X or abs(y) > PLACEMENT_MAX_Y:
+            raise ValueError(
+                f"reset option {key!r} at ({x:g}, {y:g}) is off the pitch: x must lie in "
+                f"[{-PLACEMENT_MAX_X:g}, {PLACEMENT_MAX_X:g}] and y in [{-PLACEMENT_MAX_Y:g}, {PLACEMENT_MAX_Y:g}] m "
+                f"(the pitch and rcssserver's {PITCH_MARGIN:g} m margin)"
+            )
+    bodies = {key: values[:2] for key, values in placements.items()}
+    if has_keeper and "keeper" not in bodies:
+        bodies["keeper start"] = KEEPER_START
+    radius = {"player": params.player_size, "ball": params.ball_size}
+    names = list(bodies)
+    for index, first in enumerate(names):
+        for second in names[index + 1 :]:
+            reach = radius.get(first, params.player_size) + radius.get(second, params.player_size)
+            distance = math.dist(bodies[first], bodies[second])
+            if distance < reach:
+                raise ValueError(
+                    f"reset options put {first!r} and {second!r} {distance:.3g} m apart, overlapping: their "
+                    f"centres must be at least {reach:.3g} m apart"
+                )
+
+
 def _as_float_list(raw: Any, what: str) -> list[float]:
-    """``raw`` as a flat list of Python floats (1-D numbers only); ValueError naming ``what`` otherwise."""
+    """``raw`` as a flat list of Python floats (1-D real numbers only); ValueError naming ``what`` otherwise."""
+    # np.asarray would turn booleans into 0 / 1 and drop imaginary parts (with a warning) without a word
+    if isinstance(raw, np.ndarray):
+        not_real = raw.dtype.kind in "bc"
+    else:
+        not_real = isinstance(raw, (list, tuple)) and any(isinstance(value, _NOT_REAL) for value in raw)
+    if not_real:
+        raise ValueError(f"{what} must be real numbers, not booleans or complex numbers, got {raw!r}")
     try:
         array = np.asarray(raw, dtype=np.float64)
     except (TypeError, ValueError) as error:
