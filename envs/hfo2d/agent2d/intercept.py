@@ -118,6 +118,12 @@ _ONE_MINUS_PD = 1.0 - _PLAYER_DECAY
 # calc_first_term_geom_series denominators 1 - 0.4^n
 _FT_DEN = tuple(1.0 - _PLAYER_DECAY**n for n in range(101))
 
+# A resting ball farther than this (squared) from the goalie: predictOneStep's reach test (|B - P| > ball speed max
+# 3 + real speed max 1 + control area <= 1.3) and predictShortStep's (|P - B| > control area + 1 * cycle for
+# every cycle <= 5) both fail, computed as _short_step computes its bound
+_RESTING_FAR = _CATCHABLE_AREA + _REAL_SPEED_MAX * _MAX_SHORT_STEP
+_RESTING_FAR2 = _RESTING_FAR * _RESTING_FAR
+
 _DASH_TABLE = DASH_DISTANCE_TABLE
 _DASH_TABLE_LAST = DASH_DISTANCE_TABLE[-1]
 _DASH_TABLE_LEN = len(DASH_DISTANCE_TABLE)
@@ -259,26 +265,76 @@ def build_intercept_table(
     cache: list[tuple[float, float]] = [(bx, by)]
     entries: list[InterceptEntry] = []
     self_min = 1000
+    # the frame along the ball's velocity that the short-step, long-step and opponent predictions share:
+    # rotation by -angle(W) (a resting ball: angle 0, rotated by -0.0)
+    resting = wx == 0.0 and wy == 0.0
+    if resting:
+        sin_a = -0.0  # sin(-0.0 * DEG2RAD)
+        cos_a = 1.0
+    else:
+        a = -_th(wx, wy) * _D2R
+        sin_a = _sin(a)
+        cos_a = _cos(a)
     if view.self_kickable:
         # createBallCache stops at the current position; predictSelf answers 0 without candidates
         self_min = 0
     else:
-        x = bx
-        y = by
-        vx = wx
-        vy = wy
-        for i in range(1, _MAX_CYCLE + 1):
-            x += vx
-            y += vy
-            vx *= _BALL_DECAY
-            vy *= _BALL_DECAY
-            cache.append((x, y))
-            if i >= 5 and vx * vx + vy * vy < 0.01 * 0.01:
-                break
-            if abs(x) > _CACHE_X_MAX or abs(y) > _CACHE_Y_MAX:
-                break
+        if resting:
+            # createBallCache for a resting ball: every step adds +-0, so the position after the first step
+            # repeats (B + W keeps a -0.0 only when both are -0.0, as x += v does) and the speed test ends the
+            # cache after five steps, unless the first step is already off the cached area
+            x = bx + wx
+            y = by + wy
+            p = (x, y)
+            cache.append(p)
+            if not (abs(x) > _CACHE_X_MAX or abs(y) > _CACHE_Y_MAX):
+                cache += (p, p, p, p)
+        else:
+            x = bx
+            y = by
+            vx = wx
+            vy = wy
+            for i in range(1, _MAX_CYCLE + 1):
+                x += vx
+                y += vy
+                vx *= _BALL_DECAY
+                vy *= _BALL_DECAY
+                cache.append((x, y))
+                if i >= 5 and vx * vx + vy * vy < 0.01 * 0.01:
+                    break
+                if abs(x) > _CACHE_X_MAX or abs(y) > _CACHE_Y_MAX:
+                    break
         max_cycle = min(_MAX_CYCLE, len(cache))
-        _predict_self(view, max_cycle, entries, player_rand, ball_rand, full)
+        px = view.px
+        py = view.py
+        if resting and (px - bx) * (px - bx) + (py - by) * (py - by) > _RESTING_FAR2:
+            # the common case of a resting ball out of the short-step reach: predictOneStep and predictShortStep
+            # find nothing (their distance tests fail, see _RESTING_FAR2) and predictLongStep has no cycle to try
+            # (it starts after the short steps, at 6 or later, and a resting ball's cache ends at 6), so the
+            # table holds predictFinal's entry alone
+            vx = view.vx
+            vy = view.vy
+            entries.append(
+                _final_entry(
+                    px,
+                    py,
+                    vx,
+                    vy,
+                    _norm(view.body),
+                    _sqrt(vx * vx + vy * vy),
+                    view.lk_not_ours,
+                    bx,
+                    by,
+                    wx,
+                    wy,
+                    [(view.stamina, view.effort, view.recovery)],
+                    max_cycle,
+                    player_rand,
+                )
+            )
+        else:
+            rel_y = (px - bx) * sin_a + (py - by) * cos_a
+            _predict_self(view, max_cycle, entries, player_rand, ball_rand, full, rel_y)
         # std::sort by (reach, turns); with at most 16 entries libstdc++ sorts by insertion, i.e. stably
         if len(entries) > 1:
             entries.sort(key=_sort_key)
@@ -291,7 +347,7 @@ def build_intercept_table(
     if view.kick_opp:
         opp_min = 0
     elif view.has_opp:
-        opp_min = min(1000, _predict_opponent(view, cache))
+        opp_min = min(1000, _predict_opponent(view, cache, (view.ox - bx) * sin_a + (view.oy - by) * cos_a))
     else:
         opp_min = 1000
     return InterceptTable(cache, entries, self_min, opp_min)
@@ -313,8 +369,13 @@ def _predict_self(
     player_rand: float,
     ball_rand: float,
     full: bool,
+    rel_y: float,
 ) -> None:
-    """SelfInterceptV13::predict (save_recovery on: the stamina capacity is never 0 in HFO)."""
+    """SelfInterceptV13::predict (save_recovery on: the stamina capacity is never 0 in HFO).
+
+    ``rel_y``: the goalie's offset from the ball's line of motion, (P - B) rotated by -angle(W), which the
+    short-step and long-step predictions both start from.
+    """
     vx = view.vx
     vy = view.vy
     me = (
@@ -335,10 +396,10 @@ def _predict_self(
     _one_step(me, wt, out, ball_rand)
     if not full and out:
         return  # reach 1: nothing can be faster
-    _short_step(me, wt, max_cycle, out, ball_rand, full)
+    _short_step(me, wt, max_cycle, out, ball_rand, full, rel_y)
     if not full and out and out[-1].turn_cycle + out[-1].dash_cycle < max_cycle:
         return  # the long-step and final candidates all need at least max_cycle cycles
-    _long_step(me, wt, max_cycle, out, player_rand, ball_rand, full)
+    _long_step(me, wt, max_cycle, out, player_rand, ball_rand, full, rel_y)
 
 
 def _one_step(me: tuple, wt: list, out: list[InterceptEntry], ball_rand: float) -> None:
@@ -556,7 +617,7 @@ def _one_step_power(
 
 
 def _short_step(
-    me: tuple, wt: list, max_cycle: int, out: list[InterceptEntry], ball_rand: float, full: bool
+    me: tuple, wt: list, max_cycle: int, out: list[InterceptEntry], ball_rand: float, full: bool, rel_y: float
 ) -> None:
     """predictShortStep: reach cycles 2..5 by turn-then-dash (forward and back) and, up to 2, omni dashes.
 
@@ -565,11 +626,15 @@ def _short_step(
     """
     px, py, vx, vy, body, speed, lk, bx, by, wx, wy, _ = me
     max_loop = min(_MAX_SHORT_STEP, max_cycle)
-    a = -_th(wx, wy) * _D2R
-    rel_y = (px - bx) * _sin(a) + (py - by) * _cos(a)
     min_cycle = int(_ceil((abs(rel_y) - _KICKABLE_AREA) / _REAL_SPEED_MAX))
     if min_cycle >= max_loop:
         return
+    if wx == 0.0 and wy == 0.0:
+        # a resting ball stays at B: if even the largest control area (catchable 1.3 > kickable 1.085) plus the
+        # longest run leaves it out of reach, every cycle below skips it (rounding is monotonic)
+        lim = _CATCHABLE_AREA + _REAL_SPEED_MAX * max_loop
+        if lim * lim < (px - bx) * (px - bx) + (py - by) * (py - by):
+            return
     if min_cycle < 2:
         min_cycle = 2
     f = _BF[min_cycle - 1]
@@ -871,11 +936,10 @@ def _long_step(
     player_rand: float,
     ball_rand: float,
     full: bool,
+    rel_y: float,
 ) -> None:
     """predictLongStep (save_recovery on), then predictFinal when nothing was reachable."""
     px, py, _, _, _, _, lk, bx, by, wx, wy, _ = me
-    a = -_th(wx, wy) * _D2R
-    rel_y = (px - bx) * _sin(a) + (py - by) * _cos(a)
     start = int(_ceil((abs(rel_y) - _KICKABLE_AREA - 0.2) / _REAL_SPEED_MAX))
     if start <= _MAX_SHORT_STEP:
         start = _MAX_SHORT_STEP + 1
@@ -1213,8 +1277,35 @@ def _project(x1: float, y1: float, x2: float, y2: float, qx: float, qy: float) -
 def _predict_final(
     me: tuple, wt: list, max_cycle: int, out: list[InterceptEntry], player_rand: float
 ) -> None:
-    """predictFinal: the ball's resting point, reached after the long-step horizon."""
-    px, py, vx, vy, _, _, lk, bx, by, wx, wy, _ = me
+    """predictFinal: the ball's resting point, reached after the long-step horizon (:func:`_final_entry`)."""
+    px, py, vx, vy, body, speed, lk, bx, by, wx, wy, _ = me
+    out.append(_final_entry(px, py, vx, vy, body, speed, lk, bx, by, wx, wy, wt, max_cycle, player_rand))
+
+
+def _final_entry(
+    px: float,
+    py: float,
+    vx: float,
+    vy: float,
+    body: float,
+    speed: float,
+    lk: bool,
+    bx: float,
+    by: float,
+    wx: float,
+    wy: float,
+    wt: list,
+    max_cycle: int,
+    player_rand: float,
+) -> InterceptEntry:
+    """predictFinal's entry (``body`` normalised, ``speed`` = |V|, ``wt`` the stamina states after 0, 1, ... waits).
+
+    Its turn and dash counts and the stamina are memoised (:data:`_FINAL_MEMO`) on everything they are computed
+    from: the goalie's inertia point Q = selfAt(100), the ball's final point X, the control area, the body angle,
+    the speed as the turn model sees it, the stamina state, ``max_cycle`` and ``player_rand``. The goalie's
+    position and velocity enter only through Q (and the speed), so a goalie that stands still repeats the key
+    while its velocity keeps decaying.
+    """
     f = _PF[100]
     qx = px + vx * f
     qy = py + vy * f
@@ -1223,8 +1314,42 @@ def _predict_final(
     xfy = by + wy * g
     goalie_mode = lk and xfx < _PEN_LINE_X and abs(xfy) < _PEN_HALF_W
     ca = _CATCHABLE_AREA - 0.15 if goalie_mode else _KICKABLE_AREA
-    n_turn = _turn_cycle(me, wt, 100, xfx, xfy, ca, player_rand)[0]
-    n_dash = cycles_to_reach_distance(_sqrt((qx - xfx) * (qx - xfx) + (qy - xfy) * (qy - xfy)) - ca)
+    st0, ef0, rec0 = wt[0]
+    # The speed enters only the turn model's 1 + inertia_moment * s (s, 0.4 s, 0.16 s, ...): once that sum rounds to
+    # 1.0 it does so for every decayed s too (rounding is monotonic), so all such speeds give the same counts.
+    s_key = speed if 1.0 + _INERTIA_MOMENT * speed != 1.0 else 0.0
+    key = None
+    # a dict treats 0.0 and -0.0 as the same key, and a signed zero could change the turn model's angles: no
+    # memo for keys with a zero (or a NaN) among the floats that can be zero
+    z = qx * qy * xfx * xfy * body * st0
+    if z != 0.0 and z == z:
+        key = (qx, qy, xfx, xfy, ca, body, s_key, st0, ef0, rec0, max_cycle, player_rand)
+        known = _FINAL_MEMO.get(key)
+        if known is not None:
+            return InterceptEntry(NORMAL, known[0], known[1], _MAX_POWER, 0.0, xfx, xfy, 0.0, known[2])
+    # predictTurnCycle for cycle 100 (inlined): the back dash needs a chase under 15 cycles, so it is never tried
+    tx = xfx - qx
+    ty = xfy - qy
+    target_angle = _th(tx, ty)
+    diff = abs(_norm(target_angle - body))
+    target_dist = _sqrt(tx * tx + ty * ty)
+    margin = 180.0
+    control_buf = max(0.5, ca - 0.25)
+    if control_buf < target_dist:
+        margin = _asin_deg(control_buf / target_dist)
+    if margin < _MIN_TURN_THR:
+        margin = _MIN_TURN_THR
+    n_turn = 0
+    if diff > margin:
+        # the long-step turn model shrinks the max moment by player_rand
+        max_moment = _MAX_MOMENT * (1.0 - player_rand)
+        s = speed
+        while diff > margin:
+            diff -= max_moment / (1.0 + _INERTIA_MOMENT * s)
+            s *= _PLAYER_DECAY
+            n_turn += 1
+    # |Q - X| is the same float as |X - Q|
+    n_dash = cycles_to_reach_distance(target_dist - ca)
     if max_cycle > n_turn + n_dash:
         n_dash = max_cycle - n_turn
     st, ef, rec = _waited(wt, n_turn)
@@ -1252,14 +1377,24 @@ def _predict_final(
                 st = 0.0
             st, ef, rec = _wait(st, ef, rec)
             inc = _STAMINA_INC_MAX * rec
-    out.append(InterceptEntry(NORMAL, n_turn, n_dash, _MAX_POWER, 0.0, xfx, xfy, 0.0, st))
+    if key is not None:
+        if len(_FINAL_MEMO) >= _FINAL_MEMO_SIZE:
+            _FINAL_MEMO.clear()
+        _FINAL_MEMO[key] = (n_turn, n_dash, st)
+    return InterceptEntry(NORMAL, n_turn, n_dash, _MAX_POWER, 0.0, xfx, xfy, 0.0, st)
+
+
+# predictFinal's (turn count, dash count, stamina) by their inputs (see _final_entry); cleared when full
+_FINAL_MEMO: dict[tuple, tuple[int, int, float]] = {}
+_FINAL_MEMO_SIZE = 512
 
 
 # --- PlayerIntercept (the attacker) --------------------------------------------------------------------------
 def _opp_turns(
     ox: float, oy: float, ux: float, uy: float, obody: float, n: int, xbx: float, xby: float
-) -> tuple[int, float, float]:
-    """PlayerIntercept::predictTurnCycle (at most one turn) and the attacker's drift point after ``n`` cycles.
+) -> tuple[int, float, float, float]:
+    """PlayerIntercept::predictTurnCycle (at most one turn), the attacker's drift point Z after ``n`` cycles and
+    the distance from Z to the ball point.
 
     librcsc also subtracts one effective turn from the angle difference but never reads it again, so the
     attacker's speed does not matter.
@@ -1272,24 +1407,26 @@ def _opp_turns(
     target_dist = _sqrt(tx * tx + ty * ty)
     margin = 180.0
     if target_dist > _KICKABLE_AREA:
-        margin = _asin_deg(_KICKABLE_AREA / target_dist)
+        r = _KICKABLE_AREA / target_dist
+        margin = 90.0 if r >= 1.0 else _asin(r) * _R2D  # AngleDeg::asin_deg (r > 0)
     if margin < 12.0:  # player_intercept.cpp: minimum turn margin 12 degrees
         margin = 12.0
     diff = abs(_norm(_th(tx, ty) - obody))
     if target_dist < 5.0 and diff > 90.0:  # close: a back dash will do
         diff = 180.0 - diff
-    return (1 if diff > margin else 0), zx, zy
+    return (1 if diff > margin else 0), zx, zy, target_dist
 
 
-def _predict_opponent(view: GoalieView, cache: list[tuple[float, float]]) -> int:
-    """PlayerIntercept::predict for the attacker (fullstate: counts 0; not a goalie, so control area 1.085)."""
+def _predict_opponent(view: GoalieView, cache: list[tuple[float, float]], rel_y: float) -> int:
+    """PlayerIntercept::predict for the attacker (fullstate: counts 0; not a goalie, so control area 1.085).
+
+    ``rel_y``: the attacker's offset from the ball's line of motion, (O - B) rotated by -angle(W).
+    """
     ox = view.ox
     oy = view.oy
     ux = view.ux
     uy = view.uy
     obody = _norm(view.obody)
-    a = -_th(view.wx, view.wy) * _D2R
-    rel_y = (ox - view.bx) * _sin(a) + (oy - view.by) * _cos(a)
     min_cycle = int(_floor(abs(rel_y) / _REAL_SPEED_MAX))
     # librcsc PlayerObject::tackleCount counts the cycles since the tackle was first seen (0 in the first state
     # after it), where rcssserver shows a remaining freeze of tackle_cycles - 1 = 9. With the remaining freeze r
@@ -1302,28 +1439,34 @@ def _predict_opponent(view: GoalieView, cache: list[tuple[float, float]]) -> int
     if min_cycle < 0:
         min_cycle = 0
     n_cache = len(cache)
+    if view.wx == 0.0 and view.wy == 0.0 and min_cycle < n_cache:
+        # a resting ball: every cached point has B's value, so the distance below is one number and the reach
+        # bound grows with the cycle; skip the cycles it fails at once
+        xbx, xby = cache[min_cycle]
+        d = _sqrt((ox - xbx) * (ox - xbx) + (oy - xby) * (oy - xby))
+        while min_cycle < n_cache and _KICKABLE_AREA + _REAL_SPEED_MAX * min_cycle + 0.5 < d:
+            min_cycle += 1
     for cycle in range(min_cycle, n_cache):
         xbx, xby = cache[cycle]
         if _KICKABLE_AREA + _REAL_SPEED_MAX * cycle + 0.5 < _sqrt(
             (ox - xbx) * (ox - xbx) + (oy - xby) * (oy - xby)
         ):
             continue
-        n_turn, zx, zy = _opp_turns(ox, oy, ux, uy, obody, cycle, xbx, xby)
+        n_turn, _, _, target_dist = _opp_turns(ox, oy, ux, uy, obody, cycle, xbx, xby)
         n_dash = cycle - n_turn
         if n_dash < 0:
             continue
-        # canReachAfterDash: the drift point after turn + dash cycles is the same inertia point
-        tx = xbx - zx
-        ty = xby - zy
-        dist = _sqrt(tx * tx + ty * ty) - _KICKABLE_AREA  # Vector2D::r
+        # canReachAfterDash: the drift point after turn + dash cycles is the same inertia point, so the distance
+        # is the turn prediction's |B_cycle - Z|
+        dist = target_dist - _KICKABLE_AREA  # Vector2D::r
         if dist < 0.0:
             return cycle
         if cycles_to_reach_distance(dist) + tackle_extra <= n_dash:
             return cycle
     # predictFinal: the ball's last cached point
     xbx, xby = cache[-1]
-    n_turn, zx, zy = _opp_turns(ox, oy, ux, uy, obody, 100, xbx, xby)
-    dash_dist = _sqrt((zx - xbx) * (zx - xbx) + (zy - xby) * (zy - xby)) - _KICKABLE_AREA
+    n_turn, _, _, target_dist = _opp_turns(ox, oy, ux, uy, obody, 100, xbx, xby)
+    dash_dist = target_dist - _KICKABLE_AREA  # |Z - B| (the same floats as |B - Z|)
     rx = ox - view.px
     ry = oy - view.py
     dash_dist -= _sqrt(rx * rx + ry * ry) * 0.03  # distFromSelf (rpos.r())
