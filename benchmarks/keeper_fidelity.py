@@ -666,6 +666,20 @@ def replay_episode(
     delay_cycles = reset_cycles[len(reset_cycles) - delay :] if delay else []
     agent_cmds = logs.commands["base_left_11"]
     goalie_cmds = logs.commands["base_right_1"]
+    wait_frame = (
+        None  # the goalie's command in the wait cycle before this reset (the last episode's end cycle)
+    )
+    if len(reset_cycles) > delay:
+        wait = reset_cycles[len(reset_cycles) - delay - 1]
+        real_wait = goalie_cmds.get(episode.start - 1)
+        wait_frame = {
+            "real": real_wait.text() if real_wait else "(none)",
+            "sim": command_text(wait.commands[0] if wait.commands else None),
+            "agree": commands_agree(real_wait, wait.commands[0] if wait.commands else None),
+            "view_error": view_input_error(
+                (wait.decision or {}).get("last_view"), (client or {}).get(episode.start - 1)
+            ),
+        }
     length = episode.end - episode.start
     first_div: dict[str, int | None] = {"goalie": None, "agent": None, "ball": None}
     max_err = {"goalie": 0.0, "agent": 0.0, "ball": 0.0}
@@ -751,6 +765,7 @@ def replay_episode(
         "max_error": max_err,
         "goalie_command_at_divergence": at_divergence,
         "first_goalie_command_mismatch": first_cmd_mismatch,
+        "wait_frame_before": wait_frame,
         "start_goalie_body": goalie_show.body,
         "start_ball": list(start.ball[:2]),
     }
@@ -840,6 +855,13 @@ def cmd_deterministic(args: argparse.Namespace) -> dict[str, Any]:
                     {"striker": config.striker, "session_port": config.port, "target": target, **replay}
                 )
     mismatches = [r["first_goalie_command_mismatch"] for r in rows if r["first_goalie_command_mismatch"]]
+    waits = [
+        r["wait_frame_before"]
+        for previous, r in zip(rows, rows[1:], strict=False)
+        if r["wait_frame_before"]
+        and previous["status_agrees"]
+        and (previous["session_port"], previous["episode"] + 1) == (r["session_port"], r["episode"])
+    ]
     summary = {
         "episodes": len(rows),
         "goalie_agrees": sum(r["goalie_agrees"] for r in rows),
@@ -849,6 +871,9 @@ def cmd_deterministic(args: argparse.Namespace) -> dict[str, Any]:
         "goalie_command_mismatches": len(mismatches),
         "mismatches_with_agreeing_inputs": sum(m["inputs_agree"] for m in mismatches),
         "median_first_goalie_divergence": _median([r["first_divergence"]["goalie"] for r in rows]),
+        # the wait cycle before an episode whose previous one ended alike on both sides
+        "wait_frames_compared": len(waits),
+        "wait_frames_agree": sum(w["agree"] for w in waits),
     }
     print(f"\ndeterministic replay, hfo2d goalie {args.env_id}, tolerance {args.tol:g} m")
     print("cycle k = the state after k steps of the episode; a command at k is executed in the step k -> k+1")
@@ -887,6 +912,10 @@ def cmd_deterministic(args: argparse.Namespace) -> dict[str, Any]:
         f"goalie commands differ in {summary['goalie_command_mismatches']} episodes, "
         f"{summary['mismatches_with_agreeing_inputs']} of them while ball and agent still agreed within "
         f"{args.tol:g} m; the agent diverged in {summary['agent_diverged']}, the ball in {summary['ball_diverged']}"
+    )
+    print(
+        f"wait-cycle commands (after an episode that ended alike): {summary['wait_frames_agree']}/"
+        f"{summary['wait_frames_compared']} agree"
     )
     return {
         "env_id": args.env_id,
@@ -1051,6 +1080,10 @@ def replay_views(
             continue
         real = goalie_cmds.get(t)
         sim = world.sent
+        last = goalie.last_command
+        if sim is None and last is not None and last.kind == "move":
+            # Bhv_GoalieFreeKick's move: the client sends it, rcssserver ignores it in PlayOn, hfo2d sends nothing
+            sim = ("move", (last.a, last.b))
         real_text = real.text() if real else "(none)"
         agree = commands_agree(real, sim)
         exact = real_text == command_text(sim) or (real is None and sim == ("turn", (0.0,)))

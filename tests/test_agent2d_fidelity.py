@@ -132,6 +132,25 @@ def test_the_ball_velocity_is_not_zeroed_when_goalie_catch_begins() -> None:
     assert goalie.last_view is not None and not goalie.last_view.play_on
 
 
+def test_a_held_ball_long_after_the_catch_gives_the_free_kicks_first_move() -> None:
+    """cross_shot with noise, cycle 462 (the goalie's fullstate): a catch at 452 that did not end the episode,
+    then a capture at 462 with the ball within 1.03 m; 10 cycles after the catch Bhv_GoalieFreeKick makes its
+    first move, away from the ball's side. Real HFO sent (move -37.5 -13), which rcssserver ignores in PlayOn."""
+    world, keeper = world_of(
+        462,
+        (50.3388, -3.71674, -0.372435, 0.584729),
+        (47.7322, 0.757543, 0.15665, -0.317409, -66.3281),
+        (49.7344, -3.86308, 0.0450503, 0.340979, 83.9395),
+        goalie_stamina=6610.0,
+    )
+    world.noise = True
+    goalie = caught(Agent2dGoalie(world.params, np.random.default_rng(0)), 452)
+    command = goalie.decide(world, keeper)
+    assert command is not None and (command.kind, command.a, command.b) == ("move", -37.5, -13.0)
+    goalie.apply(world, keeper, command)  # nothing reaches the World
+    assert (keeper.x, keeper.y) == (49.7344, -3.86308)
+
+
 # --- the benchmark's readers of the goalie's client log -------------------------------------------------------
 def test_fullstate_and_client_log_parsing(tmp_path: Path) -> None:
     line = (
