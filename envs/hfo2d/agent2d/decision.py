@@ -62,6 +62,10 @@ BALL_PRED_CYCLE = 5
 Y_BUF = 0.5
 X_BUF = 0.5  # doCorrectX / doMoveForDangerousState
 
+_ONE_MINUS_PD = 1.0 - PLAYER_DECAY
+# ball_at's factors (1 - 0.94**n) / (1 - 0.94) for the reach cycles 0 .. 1000 of the intercept table, the same floats
+_BALL_FACTORS = tuple((1.0 - BALL_DECAY**n) / (1.0 - BALL_DECAY) for n in range(1001))
+
 
 class Line:
     """librcsc Line2D, a x + b y + c = 0, with its exact constructors."""
@@ -281,24 +285,36 @@ def is_ball_chase_situation(v: GoalieView, table: InterceptTable) -> bool:
     """Bhv_GoalieChaseBall::is_ball_chase_situation (PlayOn only)."""
     if not v.play_on:
         return False
-    self_min = table.self_min
-    opp_min = table.opp_min
-    next_x = v.bx + v.wx
-    next_y = v.by + v.wy
+    # (the table's reach cycles are read only where a rule needs them: a full=False table computes them then)
+    wx = v.wx
+    wy = v.wy
+    next_x = v.bx + wx
+    next_y = v.by + wy
     d_b = v.ball_dist
     # A. the danger area in front of the goal
     if next_x < -PITCH_HALF_LENGTH + 8.0 and abs(next_y) < GOAL_HALF_WIDTH + 3.0:
+        self_min = table.self_min
+        opp_min = table.opp_min
         if d_b < 3.0 and self_min <= 3:
             return True
         return not (self_min > opp_min + 3 and opp_min < 7)
     # B. a shot
-    if is_ball_shoot_moving(v) and self_min < opp_min:
+    if is_ball_shoot_moving(v) and table.self_min < table.opp_min:
         return True
-    # C. the intercept point must lie inside the penalty area shrunk by pen_thr
-    ix, iy = ball_at(v.bx, v.by, v.wx, v.wy, self_min)
+    # C. the intercept point must lie inside the penalty area shrunk by pen_thr: ballAt(self_min), which for a
+    # resting ball is B + W (+-0) whatever the cycle
+    if wx == 0.0 and wy == 0.0:
+        ix = next_x
+        iy = next_y
+    else:
+        f = _BALL_FACTORS[table.self_min]  # ball_at(B, W, self_min)
+        ix = v.bx + wx * f
+        iy = v.by + wy * f
     pen_thr = max(1.0, d_b * 0.1 + 1.0)
     if abs(iy) > PENALTY_AREA_HALF_WIDTH - pen_thr or ix > PENALTY_AREA_X - pen_thr:
         return False
+    self_min = table.self_min
+    opp_min = table.opp_min
     # E. the opponent is faster by two cycles
     if opp_min <= self_min - 2:
         return False
@@ -389,8 +405,18 @@ def go_to_catch_point(eff: Effector, v: GoalieView, tx: float, ty: float) -> Non
 # ---------------------------------------------------------------------------------------------------------------
 def target_point(v: GoalieView, table: InterceptTable) -> tuple[float, float]:
     """Bhv_GoalieBasicMove::getTargetPoint: where the goalie stands."""
-    reach = 0 if v.kick_opp else table.opp_min  # min(teammate reach 1000, opp_min)
-    bx, by = ball_at(v.bx, v.by, v.wx, v.wy, reach)
+    wx = v.wx
+    wy = v.wy
+    # ballAt(n) of a resting ball is B + W (+-0) whatever n: then the opponent's reach is not needed
+    resting = wx == 0.0 and wy == 0.0
+    if resting:
+        bx = v.bx + wx
+        by = v.by + wy
+    else:
+        reach = 0 if v.kick_opp else table.opp_min  # min(teammate reach 1000, opp_min)
+        f = _BALL_FACTORS[reach]  # ball_at(B, W, reach)
+        bx = v.bx + wx * f
+        by = v.by + wy * f
     if by > GOAL_HALF_WIDTH + 3.0:
         if -140.0 < angle_of(-PITCH_HALF_LENGTH - bx, GOAL_HALF_WIDTH - by) < -90.0:
             return DANGER_MOVE_X, GOAL_HALF_WIDTH + 0.001
@@ -406,12 +432,20 @@ def target_point(v: GoalieView, table: InterceptTable) -> tuple[float, float]:
         qx, qy = bx, by
     else:
         # (quirk) the current velocity is applied again on top of the predicted point
-        qx, qy = ball_at(bx, by, v.wx, v.wy, min(BALL_PRED_CYCLE, table.opp_min))
+        if resting:
+            qx = bx + wx
+            qy = by + wy
+        else:
+            f = _BALL_FACTORS[min(BALL_PRED_CYCLE, table.opp_min)]
+            qx = bx + wx * f
+            qy = by + wy * f
     anchor_x = -PITCH_HALF_LENGTH - LINE_ANCHOR_X_BACK
     qx = max(qx, anchor_x + 0.1)
-    move_y = Line.from_points(qx, qy, anchor_x, 0.0).get_y(BASE_MOVE_X)
-    if move_y is None:  # unreachable: qx > anchor_x
-        move_y = 0.0
+    # Line.from_points(Q, (anchor_x, 0)).get_y(BASE_MOVE_X), inlined
+    la = -(0.0 - qy)
+    lb = anchor_x - qx
+    # (get_y's vertical-line case, |b| < 1e-10, is unreachable: qx > anchor_x)
+    move_y = 0.0 if abs(lb) < 1.0e-10 else -(la * BASE_MOVE_X + (-la * qx - lb * qy)) / lb
     move_y = min(max(move_y, -GOAL_HALF_WIDTH + Y_BUF), GOAL_HALF_WIDTH - Y_BUF)
     return BASE_MOVE_X, move_y
 
@@ -454,40 +488,48 @@ def basic_move(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
     mx, my = target_point(v, table)
     if basic_tackle(eff, v, table, 0.8, 90.0):
         return
-    d_b = v.ball_dist
+    px = v.px
+    py = v.py
+    bx = v.bx
+    by = v.by
+    d_b = math.hypot(bx - px, by - py)  # v.ball_dist
     thr = max(0.5, d_b * 0.1)
-    fx = v.px + v.vx / (1.0 - PLAYER_DECAY)
-    fy = v.py + v.vy / (1.0 - PLAYER_DECAY)
+    fx = px + v.vx / _ONE_MINUS_PD
+    fy = py + v.vy / _ONE_MINUS_PD
+    # angle(B - G0), read by doPrepareDeepCross and doCorrectBodyDir
+    goal_angle = None
     # 2. doPrepareDeepCross
-    if abs(my) >= GOAL_HALF_WIDTH - 0.8 and abs(angle_of(v.bx - OWN_GOAL[0], v.by - OWN_GOAL[1])) >= 60.0:
-        if math.hypot(fx - mx, fy - my) > thr:
-            _go_to_point_look_ball(eff, v, mx, my, thr, basic_dash_power(v, table, mx))
-        else:
-            body_turn_to_angle(eff, v, 10.0 if v.by < 0.0 else -10.0)
-        return
+    if abs(my) >= GOAL_HALF_WIDTH - 0.8:
+        goal_angle = abs(angle_of(bx - OWN_GOAL[0], by - OWN_GOAL[1]))
+        if goal_angle >= 60.0:
+            if math.hypot(fx - mx, fy - my) > thr:
+                _go_to_point_look_ball(eff, v, mx, my, thr, basic_dash_power(v, table, mx))
+            else:
+                body_turn_to_angle(eff, v, 10.0 if by < 0.0 else -10.0)
+            return
     # 3. doStopAtMovePoint
-    if math.hypot(v.px - mx, v.py - my) < thr and not math.hypot(fx - mx, fy - my) < thr:
+    if math.hypot(px - mx, py - my) < thr and not math.hypot(fx - mx, fy - my) < thr:
         body_stop_dash(eff, v, True)
         return
     # 4. doMoveForDangerousState
-    next_x = v.bx + v.wx
-    next_y = v.by + v.wy
+    next_x = bx + v.wx
+    next_y = by + v.wy
     if (
-        abs(mx - v.px) > X_BUF
+        abs(mx - px) > X_BUF
         and next_x < -PITCH_HALF_LENGTH + 11.0
         and abs(next_y) < GOAL_HALF_WIDTH + 1.0
         and v.has_opp
         and _opp_ball_dist(v) < 2.0
     ):
         qx = v.ox - 2.5
-        if v.px < qx:
-            qx = v.px
-        if _go_to_move_point(eff, v, table, qx, my):
+        if px < qx:
+            qx = px
+        if _go_to_move_point(eff, v, table, qx, my, d_b):
             return
         _go_to_point_look_ball(eff, v, mx, my, thr, 100.0)
         return
     # 5. doCorrectX
-    if not abs(mx - v.px) < X_BUF and ((not v.kick_opp and table.opp_min >= 4) or d_b > 18.0):
+    if not abs(mx - px) < X_BUF and ((not v.kick_opp and table.opp_min >= 4) or d_b > 18.0):
         power = basic_dash_power(v, table, mx)
         if not v.kick_opp and d_b > 30.0:
             if not body_go_to_point(eff, v, mx, my, X_BUF, power):
@@ -495,37 +537,35 @@ def basic_move(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
             return
         _go_to_point_look_ball(eff, v, mx, my, X_BUF, power)
         return
-    # 6.-8.
-    if _correct_body_dir(eff, v, my, True):
+    # 6.-8. doCorrectBodyDir(consider_opp), doGoToMovePoint, doCorrectBodyDir(no opponent check): both body
+    # corrections share their first two tests, which read neither the opponent nor anything step 7 changes
+    target = -90.0 if next_y < 0.0 else 90.0  # B.y + W.y
+    if not abs(norm_deg(v.body - target)) < 5.0:
+        if goal_angle is None:
+            goal_angle = abs(angle_of(bx - OWN_GOAL[0], by - OWN_GOAL[1]))
+        if goal_angle >= 60.0:
+            target = None
+    else:
+        target = None
+    if target is not None and (
+        _opp_ball_dist(v) > 7.0 or d_b > 20.0 or (abs(my - py) < 1.0 and not v.kick_opp)
+    ):
+        body_turn_to_angle(eff, v, target)
         return
-    if _go_to_move_point(eff, v, table, mx, my):
+    if _go_to_move_point(eff, v, table, mx, my, d_b):
         return
-    if _correct_body_dir(eff, v, my, False):
+    if target is not None:
+        body_turn_to_angle(eff, v, target)
         return
     eff.turn(0.0)
 
 
-def _correct_body_dir(eff: Effector, v: GoalieView, my: float, consider_opp: bool) -> bool:
-    """Bhv_GoalieBasicMove::doCorrectBodyDir: stand sideways, facing the ball's side of the goal."""
-    target = -90.0 if v.by + v.wy < 0.0 else 90.0
-    if abs(norm_deg(v.body - target)) < 5.0:
-        return False
-    if abs(angle_of(v.bx - OWN_GOAL[0], v.by - OWN_GOAL[1])) >= 60.0:
-        return False
-    if (
-        not consider_opp
-        or _opp_ball_dist(v) > 7.0
-        or v.ball_dist > 20.0
-        or (abs(my - v.py) < 1.0 and not v.kick_opp)
-    ):
-        body_turn_to_angle(eff, v, target)
-        return True
-    return False
-
-
-def _go_to_move_point(eff: Effector, v: GoalieView, table: InterceptTable, mx: float, my: float) -> bool:
-    """Bhv_GoalieBasicMove::doGoToMovePoint: correct y, sideways dashes when standing sideways."""
-    thr = max(0.5, v.ball_dist * 0.08)
+def _go_to_move_point(
+    eff: Effector, v: GoalieView, table: InterceptTable, mx: float, my: float, d_b: float | None = None
+) -> bool:
+    """Bhv_GoalieBasicMove::doGoToMovePoint: correct y, sideways dashes when standing sideways (``d_b``:
+    ``v.ball_dist`` when the caller has it)."""
+    thr = max(0.5, (v.ball_dist if d_b is None else d_b) * 0.08)
     y_diff = abs(my - v.py)
     if y_diff < thr:
         return False

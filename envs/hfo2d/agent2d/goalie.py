@@ -128,6 +128,76 @@ if tuple(f.name for f in dataclasses.fields(GoalieView)) != _VIEW_FIELDS:
     raise ImportError("GoalieView's fields changed: update goalie._VIEW_FIELDS and Agent2dGoalie._view")
 
 
+# The kickable-opponent test (opponent-ball distance < 1.085 + 0.25 + 0.25 at most) is False for sure when the
+# attacker's unrounded position is farther than this from the ball: the fullstate's 6 significant digits move a
+# coordinate below 1000 m by at most 5e-3
+_KICK_OPP_SURE_FAR = KICKABLE_AREA + 2.0 * KICKABLE_OPP_ERROR_MAX + 0.1
+
+
+class _FullstateView(GoalieView):
+    """The goalie's world model as :meth:`Agent2dGoalie._view` builds it: a :class:`GoalieView` whose attacker
+    numbers (``ox``, ``oy``, ``ux``, ``uy``, ``obody``) are read from the fullstate (:func:`fullstate_value`)
+    when first needed, as most decisions need none of them. A field left None at construction is lazy; the raw
+    server values are in ``_opp_raw``."""
+
+    __slots__ = ("_opp_raw", "_ox", "_oy", "_ux", "_uy", "_obody")
+
+    @property  # type: ignore[override]
+    def ox(self) -> float:
+        v = self._ox
+        if v is None:
+            v = self._ox = -fullstate_value(self._opp_raw[0])
+        return v
+
+    @ox.setter
+    def ox(self, value: float) -> None:
+        self._ox = value
+
+    @property  # type: ignore[override]
+    def oy(self) -> float:
+        v = self._oy
+        if v is None:
+            v = self._oy = -fullstate_value(self._opp_raw[1])
+        return v
+
+    @oy.setter
+    def oy(self, value: float) -> None:
+        self._oy = value
+
+    @property  # type: ignore[override]
+    def ux(self) -> float:
+        v = self._ux
+        if v is None:
+            v = self._ux = -fullstate_value(self._opp_raw[2])
+        return v
+
+    @ux.setter
+    def ux(self, value: float) -> None:
+        self._ux = value
+
+    @property  # type: ignore[override]
+    def uy(self) -> float:
+        v = self._uy
+        if v is None:
+            v = self._uy = -fullstate_value(self._opp_raw[3])
+        return v
+
+    @uy.setter
+    def uy(self, value: float) -> None:
+        self._uy = value
+
+    @property  # type: ignore[override]
+    def obody(self) -> float:
+        v = self._obody
+        if v is None:
+            v = self._obody = norm_deg(fullstate_value(self._opp_raw[4]) + 180.0)
+        return v
+
+    @obody.setter
+    def obody(self, value: float) -> None:
+        self._obody = value
+
+
 class Agent2dGoalie:
     """HFO's default defence goalie (agent2d "base" team, role Goalie), defending the goal at x = +52.5.
 
@@ -250,16 +320,26 @@ class Agent2dGoalie:
         frozen = 0
         kick_opp = False
         if attacker is not None:
-            ox, oy = -fs(attacker.x), -fs(attacker.y)
-            ux, uy = -fs(attacker.vx), -fs(attacker.vy)
-            obody = norm_deg(fs(attacker.body_deg) + 180.0)
+            # the attacker's numbers are converted when the decision first reads them (_FullstateView); the
+            # kickable test needs its position unless the raw position is surely too far from the ball
+            ox = oy = ux = uy = obody = None
+            opp_raw = (attacker.x, attacker.y, attacker.vx, attacker.vy, attacker.body_deg)
             frozen = getattr(attacker, "tackle_cycles", 0)
             if frozen <= 0:
-                opp_ball = math.hypot(ox - bx, oy - by)
-                opp_self = math.hypot(ox - px, oy - py)
-                kick_opp = opp_ball < KICKABLE_AREA + min(
-                    KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
-                ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
+                rox = -opp_raw[0]
+                roy = -opp_raw[1]
+                if not (
+                    -1000.0 < rox < 1000.0
+                    and -1000.0 < roy < 1000.0
+                    and math.hypot(rox - bx, roy - by) > _KICK_OPP_SURE_FAR
+                ):
+                    ox = -fs(opp_raw[0])
+                    oy = -fs(opp_raw[1])
+                    opp_ball = math.hypot(ox - bx, oy - by)
+                    opp_self = math.hypot(ox - px, oy - py)
+                    kick_opp = opp_ball < KICKABLE_AREA + min(
+                        KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
+                    ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
         if self._catch_pending:
             # the referee's goalie_catch_ball message: GoalieCatch mode until the next episode. The ball velocity
             # stays the fullstate's: librcsc ball_object.cpp BallObject::update zeroes it only in the set plays
@@ -270,7 +350,7 @@ class Agent2dGoalie:
         noise = world.noise
         params = world.params
         # positional, in _VIEW_FIELDS order (a keyword call costs more than the rest of the view)
-        view = GoalieView(
+        view = _FullstateView(
             world.cycle,
             px,
             py,
@@ -300,6 +380,8 @@ class Agent2dGoalie:
             params.ball_rand if noise else 0.0,
             params.player_rand if noise else 0.0,
         )
+        if attacker is not None:
+            view._opp_raw = opp_raw
         self._update_last_kicker(view, attacker is not None)
         view.lk_not_ours = not self._last_kicker_ours
         if kick_opp and not view.self_kickable:

@@ -252,105 +252,193 @@ def build_intercept_table(
     With ``full=False`` the self prediction stops at its first candidate: the cache then holds only the
     candidates up to the fastest one, so ``self_min`` and ``self_cache[0]`` are exact (each prediction stage adds
     at most one candidate per reach cycle, in increasing cycles), but it is not the cache that Body_Intercept's
-    BestIntercept needs. Use it for the decisions that read only ``self_min`` and ``opp_min``.
+    BestIntercept needs. Use it for the decisions that read only ``self_min`` and ``opp_min``. Such a table is
+    also lazy: the ball cache and the goalie's part are computed when first read, the attacker's part too
+    (many decisions read neither), from ``view`` as it is then, so ``view`` must not change in between.
     """
     if player_rand is None:
         player_rand = getattr(view, "player_rand", 0.1)
     if ball_rand is None:
         ball_rand = getattr(view, "ball_rand", 0.05)
+    if not full:
+        t = _LazyTable.__new__(_LazyTable)
+        t.complete = True
+        t._view = view
+        t._rands = (player_rand, ball_rand)
+        t._ball = None
+        t._self = None
+        t._opp = None
+        return t
+    ball = _ball_part(view)
+    entries, self_min = _self_part(view, ball, player_rand, ball_rand, True)
+    return InterceptTable(ball[0], entries, self_min, _opp_part(view, ball))
+
+
+def _ball_part(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float, float]:
+    """createBallCache (empty past B for a kickable goalie), whether the ball rests, and sin, cos of -angle(W):
+    the frame along the ball's velocity that the short-step, long-step and opponent predictions share."""
     bx = view.bx
     by = view.by
     wx = view.wx
     wy = view.wy
     cache: list[tuple[float, float]] = [(bx, by)]
-    entries: list[InterceptEntry] = []
-    self_min = 1000
-    # the frame along the ball's velocity that the short-step, long-step and opponent predictions share:
-    # rotation by -angle(W) (a resting ball: angle 0, rotated by -0.0)
     resting = wx == 0.0 and wy == 0.0
     if resting:
-        sin_a = -0.0  # sin(-0.0 * DEG2RAD)
+        sin_a = -0.0  # a resting ball: angle 0, rotated by -0.0
         cos_a = 1.0
     else:
         a = -_th(wx, wy) * _D2R
         sin_a = _sin(a)
         cos_a = _cos(a)
     if view.self_kickable:
-        # createBallCache stops at the current position; predictSelf answers 0 without candidates
-        self_min = 0
+        pass  # createBallCache stops at the current position
+    elif resting:
+        # createBallCache for a resting ball: every step adds +-0, so the position after the first step repeats
+        # (B + W keeps a -0.0 only when both are -0.0, as x += v does) and the speed test ends the cache after
+        # five steps, unless the first step is already off the cached area
+        x = bx + wx
+        y = by + wy
+        p = (x, y)
+        cache.append(p)
+        if not (abs(x) > _CACHE_X_MAX or abs(y) > _CACHE_Y_MAX):
+            cache += (p, p, p, p)
     else:
-        if resting:
-            # createBallCache for a resting ball: every step adds +-0, so the position after the first step
-            # repeats (B + W keeps a -0.0 only when both are -0.0, as x += v does) and the speed test ends the
-            # cache after five steps, unless the first step is already off the cached area
-            x = bx + wx
-            y = by + wy
-            p = (x, y)
-            cache.append(p)
-            if not (abs(x) > _CACHE_X_MAX or abs(y) > _CACHE_Y_MAX):
-                cache += (p, p, p, p)
-        else:
-            x = bx
-            y = by
-            vx = wx
-            vy = wy
-            for i in range(1, _MAX_CYCLE + 1):
-                x += vx
-                y += vy
-                vx *= _BALL_DECAY
-                vy *= _BALL_DECAY
-                cache.append((x, y))
-                if i >= 5 and vx * vx + vy * vy < 0.01 * 0.01:
-                    break
-                if abs(x) > _CACHE_X_MAX or abs(y) > _CACHE_Y_MAX:
-                    break
-        max_cycle = min(_MAX_CYCLE, len(cache))
-        px = view.px
-        py = view.py
-        if resting and (px - bx) * (px - bx) + (py - by) * (py - by) > _RESTING_FAR2:
-            # the common case of a resting ball out of the short-step reach: predictOneStep and predictShortStep
-            # find nothing (their distance tests fail, see _RESTING_FAR2) and predictLongStep has no cycle to try
-            # (it starts after the short steps, at 6 or later, and a resting ball's cache ends at 6), so the
-            # table holds predictFinal's entry alone
-            vx = view.vx
-            vy = view.vy
-            entries.append(
-                _final_entry(
-                    px,
-                    py,
-                    vx,
-                    vy,
-                    _norm(view.body),
-                    _sqrt(vx * vx + vy * vy),
-                    view.lk_not_ours,
-                    bx,
-                    by,
-                    wx,
-                    wy,
-                    [(view.stamina, view.effort, view.recovery)],
-                    max_cycle,
-                    player_rand,
-                )
-            )
-        else:
-            rel_y = (px - bx) * sin_a + (py - by) * cos_a
-            _predict_self(view, max_cycle, entries, player_rand, ball_rand, full, rel_y)
-        # std::sort by (reach, turns); with at most 16 entries libstdc++ sorts by insertion, i.e. stably
-        if len(entries) > 1:
-            entries.sort(key=_sort_key)
-        if entries:
-            first = entries[0]
-            if first.mode == NORMAL:
-                reach = first.turn_cycle + first.dash_cycle
-                if reach < 1000:
-                    self_min = reach
+        x = bx
+        y = by
+        vx = wx
+        vy = wy
+        for i in range(1, _MAX_CYCLE + 1):
+            x += vx
+            y += vy
+            vx *= _BALL_DECAY
+            vy *= _BALL_DECAY
+            cache.append((x, y))
+            if i >= 5 and vx * vx + vy * vy < 0.01 * 0.01:
+                break
+            if abs(x) > _CACHE_X_MAX or abs(y) > _CACHE_Y_MAX:
+                break
+    return cache, resting, sin_a, cos_a
+
+
+def _self_part(
+    view: GoalieView, ball: tuple, player_rand: float, ball_rand: float, full: bool
+) -> tuple[list[InterceptEntry], int]:
+    """predictSelf: the sorted candidates and self_min."""
+    if view.self_kickable:
+        return [], 0  # predictSelf answers 0 without candidates
+    cache, resting, sin_a, cos_a = ball
+    entries: list[InterceptEntry] = []
+    bx = view.bx
+    by = view.by
+    max_cycle = min(_MAX_CYCLE, len(cache))
+    px = view.px
+    py = view.py
+    if resting and (px - bx) * (px - bx) + (py - by) * (py - by) > _RESTING_FAR2:
+        # the common case of a resting ball out of the short-step reach: predictOneStep and predictShortStep find
+        # nothing (their distance tests fail, see _RESTING_FAR2) and predictLongStep has no cycle to try (it
+        # starts after the short steps, at 6 or later, and a resting ball's cache ends at 6), so the table holds
+        # predictFinal's entry alone
+        vx = view.vx
+        vy = view.vy
+        first = _final_entry(
+            px,
+            py,
+            vx,
+            vy,
+            _norm(view.body),
+            _sqrt(vx * vx + vy * vy),
+            view.lk_not_ours,
+            bx,
+            by,
+            view.wx,
+            view.wy,
+            [(view.stamina, view.effort, view.recovery)],
+            max_cycle,
+            player_rand,
+        )
+        reach = first.turn_cycle + first.dash_cycle  # a NORMAL entry
+        return [first], reach if reach < 1000 else 1000
+    rel_y = (px - bx) * sin_a + (py - by) * cos_a
+    _predict_self(view, max_cycle, entries, player_rand, ball_rand, full, rel_y)
+    # std::sort by (reach, turns); with at most 16 entries libstdc++ sorts by insertion, i.e. stably
+    if len(entries) > 1:
+        entries.sort(key=_sort_key)
+    self_min = 1000
+    if entries:
+        first = entries[0]
+        if first.mode == NORMAL:
+            reach = first.turn_cycle + first.dash_cycle
+            if reach < 1000:
+                self_min = reach
+    return entries, self_min
+
+
+def _opp_part(view: GoalieView, ball: tuple) -> int:
+    """opp_min: 0 with a kickable attacker, 1000 without one, else PlayerIntercept's reach cycle."""
     if view.kick_opp:
-        opp_min = 0
-    elif view.has_opp:
-        opp_min = min(1000, _predict_opponent(view, cache, (view.ox - bx) * sin_a + (view.oy - by) * cos_a))
-    else:
-        opp_min = 1000
-    return InterceptTable(cache, entries, self_min, opp_min)
+        return 0
+    if not view.has_opp:
+        return 1000
+    cache, _, sin_a, cos_a = ball
+    return min(
+        1000, _predict_opponent(view, cache, (view.ox - view.bx) * sin_a + (view.oy - view.by) * cos_a)
+    )
+
+
+class _LazyTable(InterceptTable):
+    """The ``full=False`` table: ball cache, goalie part and attacker part computed on first read (exactly what
+    the eager table holds). Assigning a field fixes it."""
+
+    __slots__ = ("_view", "_rands", "_ball", "_self", "_opp")
+
+    def _ball_now(self) -> tuple:
+        ball = self._ball
+        if ball is None:
+            ball = self._ball = _ball_part(self._view)
+        return ball
+
+    def _self_now(self) -> tuple[list[InterceptEntry], int]:
+        part = self._self
+        if part is None:
+            player_rand, ball_rand = self._rands
+            part = self._self = _self_part(self._view, self._ball_now(), player_rand, ball_rand, False)
+        return part
+
+    @property  # type: ignore[override]
+    def ball_cache(self) -> list[tuple[float, float]]:
+        return self._ball_now()[0]
+
+    @ball_cache.setter
+    def ball_cache(self, value: list[tuple[float, float]]) -> None:
+        ball = self._ball_now()
+        self._ball = (value, *ball[1:])
+
+    @property  # type: ignore[override]
+    def self_cache(self) -> list[InterceptEntry]:
+        return self._self_now()[0]
+
+    @self_cache.setter
+    def self_cache(self, value: list[InterceptEntry]) -> None:
+        self._self = (value, self._self_now()[1])
+
+    @property  # type: ignore[override]
+    def self_min(self) -> int:
+        return self._self_now()[1]
+
+    @self_min.setter
+    def self_min(self, value: int) -> None:
+        self._self = (self._self_now()[0], value)
+
+    @property  # type: ignore[override]
+    def opp_min(self) -> int:
+        opp = self._opp
+        if opp is None:
+            opp = self._opp = _opp_part(self._view, self._ball_now())
+        return opp
+
+    @opp_min.setter
+    def opp_min(self, value: int) -> None:
+        self._opp = value
 
 
 def _sort_key(e: InterceptEntry) -> tuple[int, int]:

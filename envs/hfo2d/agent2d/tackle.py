@@ -189,6 +189,12 @@ def ball_move_step(speed: float, dist: float) -> int:
     return int(math.ceil(_length_geom_series(speed, dist, BALL_DECAY)) + 1.0e-10)
 
 
+# A ball farther than 2.5 m (squared here) from the goalie lies outside the tackle rectangle: the rotated offset
+# (r.x, r.y) has |r| > 2.5 > hypot(2.0, 1.25), so |r.x| > 2.0 or |r.y| > 1.25, a failure term >= 1 and both
+# probabilities 0 (the rotation's rounding is far below the margin)
+_NO_TACKLE_DIST2 = 2.5 * 2.5
+
+
 # --- probabilities (librcsc SelfObject::updateBallInfo / updateKickableState) ------------------------------------
 def tackle_probabilities(view: GoalieView, opp_min: int) -> tuple[float, float]:
     """(tackle_prob, foul_prob) as librcsc's world model has them.
@@ -402,6 +408,11 @@ def basic_tackle(
     ``body_thr`` only matters on the pre-v12 path and is unused here.
     """
     del body_thr  # the version >= 12 paths do not use it
+    dx = view.bx - view.px
+    dy = view.by - view.py
+    if min_prob > 0.0 and dx * dx + dy * dy > _NO_TACKLE_DIST2:
+        # the ball is out of the tackle rectangle (2 m ahead, 1.25 m aside): both probabilities are 0
+        return False
     tackle_prob, foul_prob = tackle_probabilities(view, table.opp_min)
     prob = tackle_prob
     use_foul = False
