@@ -357,7 +357,9 @@ class HFOEnv(gym.Env):
             if task == "keeper":
                 self._keeper_policy = self._make_scripted_keeper(rng)
             if goalie == "agent2d":
-                self._hfo_referee = HFOReferee(self.params, self.untouched_time, trial_time=self.frames_per_trial)
+                self._hfo_referee = HFOReferee(
+                    self.params, self.untouched_time, trial_time=self.frames_per_trial
+                )
         self._opponents: tuple[PlayerState, ...] = (self.keeper,) if self.keeper is not None else ()
         self._rng_in_use = rng
         self._renderer: Any = None
