@@ -63,6 +63,17 @@ Y_BUF = 0.5
 X_BUF = 0.5  # doCorrectX / doMoveForDangerousState
 
 _ONE_MINUS_PD = 1.0 - PLAYER_DECAY
+# constant bounds of the hot rules, computed once (the same floats as written inline)
+_NEAR_GOAL_X = -PITCH_HALF_LENGTH + 8.0  # is_ball_chase_situation A, getTargetPoint
+_NEAR_GOAL_Y = GOAL_HALF_WIDTH + 3.0
+_SIDE_Y = GOAL_HALF_WIDTH + 2.0  # getTargetPoint
+_DEEP_CROSS_Y = GOAL_HALF_WIDTH - 0.8  # doPrepareDeepCross
+_DANGER_X = -PITCH_HALF_LENGTH + 11.0  # doMoveForDangerousState
+_DANGER_Y = GOAL_HALF_WIDTH + 1.0
+_ANCHOR_X = -PITCH_HALF_LENGTH - LINE_ANCHOR_X_BACK  # getTargetPoint's line anchor
+_ANCHOR_X_MIN = _ANCHOR_X + 0.1
+_MOVE_Y_MIN = -GOAL_HALF_WIDTH + Y_BUF
+_MOVE_Y_MAX = GOAL_HALF_WIDTH - Y_BUF
 # ball_at's factors (1 - 0.94**n) / (1 - 0.94) for the reach cycles 0 .. 1000 of the intercept table, the same floats
 _BALL_FACTORS = tuple((1.0 - BALL_DECAY**n) / (1.0 - BALL_DECAY) for n in range(1001))
 
@@ -257,9 +268,10 @@ def goalie_free_kick(eff: Effector, v: GoalieView, time_diff: int, state: FreeKi
 # ---------------------------------------------------------------------------------------------------------------
 # Bhv_GoalieChaseBall (bhv_goalie_chase_ball.cpp)
 # ---------------------------------------------------------------------------------------------------------------
-def is_ball_shoot_moving(v: GoalieView) -> bool:
-    """Is the ball a shot rolling into the goal? (Bhv_GoalieChaseBall::is_ball_shoot_moving)."""
-    if v.ball_dist > 30.0:
+def is_ball_shoot_moving(v: GoalieView, d_b: float | None = None) -> bool:
+    """Is the ball a shot rolling into the goal? (Bhv_GoalieChaseBall::is_ball_shoot_moving; ``d_b``: the
+    ball's distance when the caller has it)."""
+    if (v.ball_dist if d_b is None else d_b) > 30.0:
         return False
     if v.bx > -34.5:
         return False
@@ -292,14 +304,14 @@ def is_ball_chase_situation(v: GoalieView, table: InterceptTable) -> bool:
     next_y = v.by + wy
     d_b = v.ball_dist
     # A. the danger area in front of the goal
-    if next_x < -PITCH_HALF_LENGTH + 8.0 and abs(next_y) < GOAL_HALF_WIDTH + 3.0:
+    if next_x < _NEAR_GOAL_X and abs(next_y) < _NEAR_GOAL_Y:
         self_min = table.self_min
         opp_min = table.opp_min
         if d_b < 3.0 and self_min <= 3:
             return True
         return not (self_min > opp_min + 3 and opp_min < 7)
     # B. a shot
-    if is_ball_shoot_moving(v) and table.self_min < table.opp_min:
+    if is_ball_shoot_moving(v, d_b) and table.self_min < table.opp_min:
         return True
     # C. the intercept point must lie inside the penalty area shrunk by pen_thr: ballAt(self_min), which for a
     # resting ball is B + W (+-0) whatever the cycle
@@ -417,15 +429,15 @@ def target_point(v: GoalieView, table: InterceptTable) -> tuple[float, float]:
         f = _BALL_FACTORS[reach]  # ball_at(B, W, reach)
         bx = v.bx + wx * f
         by = v.by + wy * f
-    if by > GOAL_HALF_WIDTH + 3.0:
+    if by > _NEAR_GOAL_Y:
         if -140.0 < angle_of(-PITCH_HALF_LENGTH - bx, GOAL_HALF_WIDTH - by) < -90.0:
             return DANGER_MOVE_X, GOAL_HALF_WIDTH + 0.001
     elif (
-        by < -GOAL_HALF_WIDTH - 3.0
+        by < -_NEAR_GOAL_Y  # -GOAL_HALF_WIDTH - 3.0
         and 90.0 < angle_of(-PITCH_HALF_LENGTH - bx, -GOAL_HALF_WIDTH - by) < 140.0
     ):
         return DANGER_MOVE_X, -GOAL_HALF_WIDTH - 0.001
-    if bx < -PITCH_HALF_LENGTH + 8.0 and abs(by) > GOAL_HALF_WIDTH + 2.0:
+    if bx < _NEAR_GOAL_X and abs(by) > _SIDE_Y:
         y = GOAL_HALF_WIDTH - 0.1
         return BASE_MOVE_X, -y if by < 0.0 else y
     if v.kick_opp:
@@ -439,14 +451,13 @@ def target_point(v: GoalieView, table: InterceptTable) -> tuple[float, float]:
             f = _BALL_FACTORS[min(BALL_PRED_CYCLE, table.opp_min)]
             qx = bx + wx * f
             qy = by + wy * f
-    anchor_x = -PITCH_HALF_LENGTH - LINE_ANCHOR_X_BACK
-    qx = max(qx, anchor_x + 0.1)
+    qx = max(qx, _ANCHOR_X_MIN)
     # Line.from_points(Q, (anchor_x, 0)).get_y(BASE_MOVE_X), inlined
     la = -(0.0 - qy)
-    lb = anchor_x - qx
+    lb = _ANCHOR_X - qx
     # (get_y's vertical-line case, |b| < 1e-10, is unreachable: qx > anchor_x)
     move_y = 0.0 if abs(lb) < 1.0e-10 else -(la * BASE_MOVE_X + (-la * qx - lb * qy)) / lb
-    move_y = min(max(move_y, -GOAL_HALF_WIDTH + Y_BUF), GOAL_HALF_WIDTH - Y_BUF)
+    move_y = min(max(move_y, _MOVE_Y_MIN), _MOVE_Y_MAX)
     return BASE_MOVE_X, move_y
 
 
@@ -499,7 +510,7 @@ def basic_move(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
     # angle(B - G0), read by doPrepareDeepCross and doCorrectBodyDir
     goal_angle = None
     # 2. doPrepareDeepCross
-    if abs(my) >= GOAL_HALF_WIDTH - 0.8:
+    if abs(my) >= _DEEP_CROSS_Y:
         goal_angle = abs(angle_of(bx - OWN_GOAL[0], by - OWN_GOAL[1]))
         if goal_angle >= 60.0:
             if math.hypot(fx - mx, fy - my) > thr:
@@ -516,8 +527,8 @@ def basic_move(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
     next_y = by + v.wy
     if (
         abs(mx - px) > X_BUF
-        and next_x < -PITCH_HALF_LENGTH + 11.0
-        and abs(next_y) < GOAL_HALF_WIDTH + 1.0
+        and next_x < _DANGER_X
+        and abs(next_y) < _DANGER_Y
         and v.has_opp
         and _opp_ball_dist(v) < 2.0
     ):
@@ -547,8 +558,9 @@ def basic_move(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
             target = None
     else:
         target = None
+    # (pure tests: the opponent's distance, which converts its position, last)
     if target is not None and (
-        _opp_ball_dist(v) > 7.0 or d_b > 20.0 or (abs(my - py) < 1.0 and not v.kick_opp)
+        d_b > 20.0 or (abs(my - py) < 1.0 and not v.kick_opp) or _opp_ball_dist(v) > 7.0
     ):
         body_turn_to_angle(eff, v, target)
         return

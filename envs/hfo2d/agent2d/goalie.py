@@ -56,7 +56,7 @@ def fullstate_value(x: float) -> float:
     * results are memoised by input (:data:`_FULLSTATE_MEMO`): a resting ball, the stamina model and a goalie
       standing still repeat their numbers from cycle to cycle. Zeros print as themselves ("0", "-0") and are not
       stored, since a dict does not tell 0.0 from -0.0; neither is NaN;
-    * for 0.001 <= |x| < 10000 without strings: with the scale s = 10**(5 - e) of x's decade e (an exact double),
+    * for 1e-16 <= |x| < 10000 without strings: with the scale s = 10**(5 - e) of x's decade e (an exact double),
       p = |x| * s lies within 2**-34 of the exact product P. If 100000.001 <= p < 999999, the decade was right
       and no carry to the next one can happen; if moreover p's fraction is more than 1e-6 away from one half,
       P rounds (half to even or not) to the same whole number m as p does. The printed number is m / s, and one
@@ -70,11 +70,13 @@ def fullstate_value(x: float) -> float:
         return float(x)  # keeps the sign of a zero
     a = -x if x < 0.0 else x
     y = None
-    if 0.001 <= a < 10000.0:
+    if 1.0e-16 <= a < 10000.0:
         if a >= 1.0:
             s = 100000.0 if a < 10.0 else (10000.0 if a < 100.0 else (1000.0 if a < 1000.0 else 100.0))
-        else:
+        elif a >= 0.001:
             s = 1000000.0 if a >= 0.1 else (10000000.0 if a >= 0.01 else 100000000.0)
+        else:
+            s = _POW10[5 - math.floor(math.log10(a))]  # 10**9 .. 10**22
         p = a * s
         f = p % 1.0
         if 100000.001 <= p < 999999.0 and not 0.499999 < f < 0.500001:
@@ -90,6 +92,7 @@ def fullstate_value(x: float) -> float:
     return y
 
 
+_POW10 = tuple(float(10**k) for k in range(23))  # exact doubles
 _FULLSTATE_MEMO: dict[float, float] = {}
 _FULLSTATE_MEMO_SIZE = 4096
 
@@ -141,6 +144,67 @@ class _FullstateView(GoalieView):
     server values are in ``_opp_raw``."""
 
     __slots__ = ("_opp_raw", "_ox", "_oy", "_ux", "_uy", "_obody")
+
+    def __init__(
+        self,
+        cycle: int,
+        px: float,
+        py: float,
+        vx: float,
+        vy: float,
+        body: float,
+        stamina: float,
+        effort: float,
+        recovery: float,
+        bx: float,
+        by: float,
+        wx: float,
+        wy: float,
+        true_wx: float,
+        true_wy: float,
+        has_opp: bool,
+        ox: float | None,
+        oy: float | None,
+        ux: float | None,
+        uy: float | None,
+        obody: float | None,
+        opp_tackle_count: int,
+        kick_opp: bool,
+        self_kickable: bool,
+        lk_not_ours: bool,
+        play_on: bool,
+        ball_rand: float,
+        player_rand: float,
+    ) -> None:
+        # GoalieView's fields in _VIEW_FIELDS order; the lazy ones straight into their slots
+        self.cycle = cycle
+        self.px = px
+        self.py = py
+        self.vx = vx
+        self.vy = vy
+        self.body = body
+        self.stamina = stamina
+        self.effort = effort
+        self.recovery = recovery
+        self.bx = bx
+        self.by = by
+        self.wx = wx
+        self.wy = wy
+        self.true_wx = true_wx
+        self.true_wy = true_wy
+        self.has_opp = has_opp
+        self._ox = ox
+        self._oy = oy
+        self._ux = ux
+        self._uy = uy
+        self._obody = obody
+        self.opp_tackle_count = opp_tackle_count
+        self.kick_opp = kick_opp
+        self.self_kickable = self_kickable
+        self.lk_not_ours = lk_not_ours
+        self.play_on = play_on
+        self.ball_rand = ball_rand
+        self.player_rand = player_rand
 
     @property  # type: ignore[override]
     def ox(self) -> float:
@@ -264,7 +328,7 @@ class Agent2dGoalie:
         elif self.skill < 1.0 and self.rng.random() >= self.skill:
             command = None  # the weakening: hesitate this cycle
         else:
-            table = build_intercept_table(view, full=False)
+            table = build_intercept_table(view, None, None, False)  # the fast (and lazy) table
             table.complete = False
             eff = Effector()
             decide(eff, view, table, self._last_catch_cycle, self._catch_command_cycle, self._free_kick)

@@ -256,19 +256,19 @@ def build_intercept_table(
     also lazy: the ball cache and the goalie's part are computed when first read, the attacker's part too
     (many decisions read neither), from ``view`` as it is then, so ``view`` must not change in between.
     """
-    if player_rand is None:
-        player_rand = getattr(view, "player_rand", 0.1)
-    if ball_rand is None:
-        ball_rand = getattr(view, "ball_rand", 0.05)
     if not full:
         t = _LazyTable.__new__(_LazyTable)
         t.complete = True
         t._view = view
-        t._rands = (player_rand, ball_rand)
+        t._rands = (player_rand, ball_rand)  # None: the view's, resolved when the goalie part is computed
         t._ball = None
         t._self = None
         t._opp = None
         return t
+    if player_rand is None:
+        player_rand = getattr(view, "player_rand", 0.1)
+    if ball_rand is None:
+        ball_rand = getattr(view, "ball_rand", 0.05)
     ball = _ball_part(view)
     entries, self_min = _self_part(view, ball, player_rand, ball_rand, True)
     return InterceptTable(ball[0], entries, self_min, _opp_part(view, ball))
@@ -307,15 +307,19 @@ def _ball_part(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float
         y = by
         vx = wx
         vy = wy
+        append = cache.append
+        decay = _BALL_DECAY
+        x_max = _CACHE_X_MAX
+        y_max = _CACHE_Y_MAX
         for i in range(1, _MAX_CYCLE + 1):
             x += vx
             y += vy
-            vx *= _BALL_DECAY
-            vy *= _BALL_DECAY
-            cache.append((x, y))
+            vx *= decay
+            vy *= decay
+            append((x, y))
             if i >= 5 and vx * vx + vy * vy < 0.01 * 0.01:
                 break
-            if abs(x) > _CACHE_X_MAX or abs(y) > _CACHE_Y_MAX:
+            if abs(x) > x_max or abs(y) > y_max:
                 break
     return cache, resting, sin_a, cos_a
 
@@ -400,8 +404,13 @@ class _LazyTable(InterceptTable):
     def _self_now(self) -> tuple[list[InterceptEntry], int]:
         part = self._self
         if part is None:
+            view = self._view
             player_rand, ball_rand = self._rands
-            part = self._self = _self_part(self._view, self._ball_now(), player_rand, ball_rand, False)
+            if player_rand is None:
+                player_rand = getattr(view, "player_rand", 0.1)
+            if ball_rand is None:
+                ball_rand = getattr(view, "ball_rand", 0.05)
+            part = self._self = _self_part(view, self._ball_now(), player_rand, ball_rand, False)
         return part
 
     @property  # type: ignore[override]
@@ -1386,14 +1395,7 @@ def _final_entry(
     max_cycle: int,
     player_rand: float,
 ) -> InterceptEntry:
-    """predictFinal's entry (``body`` normalised, ``speed`` = |V|, ``wt`` the stamina states after 0, 1, ... waits).
-
-    Its turn and dash counts and the stamina are memoised (:data:`_FINAL_MEMO`) on everything they are computed
-    from: the goalie's inertia point Q = selfAt(100), the ball's final point X, the control area, the body angle,
-    the speed as the turn model sees it, the stamina state, ``max_cycle`` and ``player_rand``. The goalie's
-    position and velocity enter only through Q (and the speed), so a goalie that stands still repeats the key
-    while its velocity keeps decaying.
-    """
+    """predictFinal's entry (``body`` normalised, ``speed`` = |V|, ``wt`` the stamina states after 0, 1, ... waits)."""
     f = _PF[100]
     qx = px + vx * f
     qy = py + vy * f
@@ -1402,19 +1404,6 @@ def _final_entry(
     xfy = by + wy * g
     goalie_mode = lk and xfx < _PEN_LINE_X and abs(xfy) < _PEN_HALF_W
     ca = _CATCHABLE_AREA - 0.15 if goalie_mode else _KICKABLE_AREA
-    st0, ef0, rec0 = wt[0]
-    # The speed enters only the turn model's 1 + inertia_moment * s (s, 0.4 s, 0.16 s, ...): once that sum rounds to
-    # 1.0 it does so for every decayed s too (rounding is monotonic), so all such speeds give the same counts.
-    s_key = speed if 1.0 + _INERTIA_MOMENT * speed != 1.0 else 0.0
-    key = None
-    # a dict treats 0.0 and -0.0 as the same key, and a signed zero could change the turn model's angles: no
-    # memo for keys with a zero (or a NaN) among the floats that can be zero
-    z = qx * qy * xfx * xfy * body * st0
-    if z != 0.0 and z == z:
-        key = (qx, qy, xfx, xfy, ca, body, s_key, st0, ef0, rec0, max_cycle, player_rand)
-        known = _FINAL_MEMO.get(key)
-        if known is not None:
-            return InterceptEntry(NORMAL, known[0], known[1], _MAX_POWER, 0.0, xfx, xfy, 0.0, known[2])
     # predictTurnCycle for cycle 100 (inlined): the back dash needs a chase under 15 cycles, so it is never tried
     tx = xfx - qx
     ty = xfy - qy
@@ -1465,16 +1454,7 @@ def _final_entry(
                 st = 0.0
             st, ef, rec = _wait(st, ef, rec)
             inc = _STAMINA_INC_MAX * rec
-    if key is not None:
-        if len(_FINAL_MEMO) >= _FINAL_MEMO_SIZE:
-            _FINAL_MEMO.clear()
-        _FINAL_MEMO[key] = (n_turn, n_dash, st)
     return InterceptEntry(NORMAL, n_turn, n_dash, _MAX_POWER, 0.0, xfx, xfy, 0.0, st)
-
-
-# predictFinal's (turn count, dash count, stamina) by their inputs (see _final_entry); cleared when full
-_FINAL_MEMO: dict[tuple, tuple[int, int, float]] = {}
-_FINAL_MEMO_SIZE = 512
 
 
 # --- PlayerIntercept (the attacker) --------------------------------------------------------------------------
