@@ -74,6 +74,9 @@ _ANCHOR_X = -PITCH_HALF_LENGTH - LINE_ANCHOR_X_BACK  # getTargetPoint's line anc
 _ANCHOR_X_MIN = _ANCHOR_X + 0.1
 _MOVE_Y_MIN = -GOAL_HALF_WIDTH + Y_BUF
 _MOVE_Y_MAX = GOAL_HALF_WIDTH - Y_BUF
+# ballAt(n) of a resting ball without n (so without reading the table's reach cycles): the same floats; False
+# takes the general code (the tests compare both)
+_RESTING_SHORTCUTS = True
 # ball_at's factors (1 - 0.94**n) / (1 - 0.94) for the reach cycles 0 .. 1000 of the intercept table, the same floats
 _BALL_FACTORS = tuple((1.0 - BALL_DECAY**n) / (1.0 - BALL_DECAY) for n in range(1001))
 
@@ -315,7 +318,7 @@ def is_ball_chase_situation(v: GoalieView, table: InterceptTable) -> bool:
         return True
     # C. the intercept point must lie inside the penalty area shrunk by pen_thr: ballAt(self_min), which for a
     # resting ball is B + W (+-0) whatever the cycle
-    if wx == 0.0 and wy == 0.0:
+    if wx == 0.0 and wy == 0.0 and _RESTING_SHORTCUTS:
         ix = next_x
         iy = next_y
     else:
@@ -420,7 +423,7 @@ def target_point(v: GoalieView, table: InterceptTable) -> tuple[float, float]:
     wx = v.wx
     wy = v.wy
     # ballAt(n) of a resting ball is B + W (+-0) whatever n: then the opponent's reach is not needed
-    resting = wx == 0.0 and wy == 0.0
+    resting = wx == 0.0 and wy == 0.0 and _RESTING_SHORTCUTS
     if resting:
         bx = v.bx + wx
         by = v.by + wy

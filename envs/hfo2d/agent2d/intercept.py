@@ -123,6 +123,9 @@ _FT_DEN = tuple(1.0 - _PLAYER_DECAY**n for n in range(101))
 # every cycle <= 5) both fail, computed as _short_step computes its bound
 _RESTING_FAR = _CATCHABLE_AREA + _REAL_SPEED_MAX * _MAX_SHORT_STEP
 _RESTING_FAR2 = _RESTING_FAR * _RESTING_FAR
+# The resting-ball shortcuts (cache, frame, short-step and opponent skips, predictFinal-only table) give the same
+# floats as the general code; False takes the general code everywhere (the tests compare both)
+_RESTING_SHORTCUTS = True
 
 _DASH_TABLE = DASH_DISTANCE_TABLE
 _DASH_TABLE_LAST = DASH_DISTANCE_TABLE[-1]
@@ -282,7 +285,7 @@ def _ball_part(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float
     wx = view.wx
     wy = view.wy
     cache: list[tuple[float, float]] = [(bx, by)]
-    resting = wx == 0.0 and wy == 0.0
+    resting = wx == 0.0 and wy == 0.0 and _RESTING_SHORTCUTS
     if resting:
         sin_a = -0.0  # a resting ball: angle 0, rotated by -0.0
         cos_a = 1.0
@@ -726,7 +729,7 @@ def _short_step(
     min_cycle = int(_ceil((abs(rel_y) - _KICKABLE_AREA) / _REAL_SPEED_MAX))
     if min_cycle >= max_loop:
         return
-    if wx == 0.0 and wy == 0.0:
+    if wx == 0.0 and wy == 0.0 and _RESTING_SHORTCUTS:
         # a resting ball stays at B: if even the largest control area (catchable 1.3 > kickable 1.085) plus the
         # longest run leaves it out of reach, every cycle below skips it (rounding is monotonic)
         lim = _CATCHABLE_AREA + _REAL_SPEED_MAX * max_loop
@@ -1507,7 +1510,7 @@ def _predict_opponent(view: GoalieView, cache: list[tuple[float, float]], rel_y:
     if min_cycle < 0:
         min_cycle = 0
     n_cache = len(cache)
-    if view.wx == 0.0 and view.wy == 0.0 and min_cycle < n_cache:
+    if view.wx == 0.0 and view.wy == 0.0 and min_cycle < n_cache and _RESTING_SHORTCUTS:
         # a resting ball: every cached point has B's value, so the distance below is one number and the reach
         # bound grows with the cycle; skip the cycles it fails at once
         xbx, xby = cache[min_cycle]
