@@ -1,6 +1,8 @@
 """Compare hfo2d.agent2d.intercept with librcsc (via ./harness) on random goalie states."""
-import math, random, subprocess, sys
-sys.path.insert(0, '/work/main/envs')
+import math, os, random, subprocess, sys
+# this checkout's package (tools/librcsc_intercept_harness/ -> envs/)
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'envs'))
+HARNESS = os.environ.get('HARNESS', os.path.join(os.path.dirname(os.path.abspath(__file__)), 'harness'))
 from hfo2d.agent2d.common import GoalieView
 from hfo2d.agent2d.intercept import build_intercept_table
 
@@ -32,7 +34,7 @@ def line(v):
     return s
 
 def run(views, pr, br):
-    out = subprocess.run(['/tmp/harness/harness', repr(pr), repr(br)], input='\n'.join(line(v) for v in views) + '\n',
+    out = subprocess.run([HARNESS, repr(pr), repr(br)], input='\n'.join(line(v) for v in views) + '\n',
                          capture_output=True, text=True, check=True).stdout.split('\n')
     res = []; i = 0
     while i < len(out) and out[i].startswith('T'):
@@ -49,16 +51,26 @@ def ours(v, pr, br):
             for e in t.self_cache]
     return (t.self_min, t.opp_min, len(t.ball_cache), ents)
 
+def ours_fast(v, pr, br):
+    """The goalie's fast (full=False, lazy) table: only self_min, opp_min and the first entry are librcsc's."""
+    t = build_intercept_table(v, pr, br, full=False)
+    e = t.self_cache[:1]
+    ents = [(x.mode, x.turn_cycle, x.dash_cycle, x.dash_power, x.dash_dir, x.self_x, x.self_y, x.ball_dist, x.stamina)
+            for x in e]
+    return (t.self_min, t.opp_min, len(t.ball_cache), ents)
+
 def main():
     seed = int(sys.argv[1]); n = int(sys.argv[2])
     rng = random.Random(seed)
-    bad = 0; total = 0; counts = {}
+    bad = 0; bad_fast = 0; total = 0; counts = {}
     for pr, br in ((0.1, 0.05), (0.0, 0.0)):
         views = [gen(rng) for _ in range(n)]
         ref = run(views, pr, br)
         assert len(ref) == len(views)
         for v, r in zip(views, ref):
             o = ours(v, pr, br); total += 1
+            if ours_fast(v, pr, br) != r[:3] + (r[3][:1],):
+                bad_fast += 1
             for e in r[3]:
                 k = ('EXH' if e[0] else 'NOR', 'turn' if e[1] else 'noturn', min(e[1] + e[2], 7), e[3] < 0)
                 counts[k] = counts.get(k, 0) + 1
@@ -68,8 +80,9 @@ def main():
                     print('MISMATCH', pr, br, v)
                     print('  lib', r[:3]); [print('   ', e) for e in r[3]]
                     print('  py ', o[:3]); [print('   ', e) for e in o[3]]
-    print('states', total, 'mismatches', bad)
+    print('states', total, 'mismatches', bad, 'fast-table mismatches', bad_fast)
     print('entry kinds seen:', len(counts), 'EXHAUST entries:', sum(c for k, c in counts.items() if k[0] == 'EXH'),
           'back-dash entries:', sum(c for k, c in counts.items() if k[3]))
 
-main()
+if __name__ == '__main__':
+    main()
