@@ -1080,24 +1080,30 @@ def _close_live_envs() -> None:
 # ---------------------------------------------------------------------------------------------------------------
 # The worker process: ``python -m hfo2d.real --worker FD HFO_DIR PORT``
 # ---------------------------------------------------------------------------------------------------------------
-def worker_main(argv: Sequence[str]) -> int:
-    """Connect to the HFO server on PORT as the offense agent and serve act + step requests on socket FD."""
+def _connect_worker(argv: Sequence[str], team: str, play_goalie: bool) -> tuple[socket.socket, Any, Any]:
+    """A worker's start: its socket (argv FD), HFO's ctypes binding from argv HFO_DIR, and one connectToServer on
+    argv PORT (it exits the process when it fails; the env then sees the socket close)."""
     fd, hfo_dir, port = int(argv[0]), argv[1], int(argv[2])
     sock = socket.socket(fileno=fd)
     sys.path.insert(0, hfo_dir)
     import hfo  # HFO's ctypes binding (DEST/HFO/hfo), loads libhfo_c.so
 
     env = hfo.HFOEnvironment()
-    # Exits the process when it fails (the env then sees the socket close).
     env.connectToServer(
         HFO_LOW_LEVEL_FEATURE_SET,
         os.path.join(hfo_dir, HFO_CONFIG_SUBDIR),
         port,
         "localhost",
-        HFO_TEAM_NAME,
-        False,
+        team,
+        play_goalie,
         "",
     )
+    return sock, hfo, env
+
+
+def worker_main(argv: Sequence[str]) -> int:
+    """Connect to the HFO server on PORT as the offense agent and serve act + step requests on socket FD."""
+    sock, hfo, env = _connect_worker(argv, HFO_TEAM_NAME, play_goalie=False)
     size = env.getStateSize()
     reply = bytearray(_REPLY_HEAD.size + 4 * size)  # head + state, sent in one piece
     state = np.frombuffer(reply, dtype=np.float32, offset=_REPLY_HEAD.size)
@@ -1159,23 +1165,10 @@ def goalie_main(argv: Sequence[str]) -> int:
     learning agent has sent its command too. It stops when the socket closes or says quit, or at SERVER_DOWN.
     Every turn is printed (the session's log).
     """
-    fd, hfo_dir, port = int(argv[0]), argv[1], int(argv[2])
-    sock = socket.socket(fileno=fd)
-    sys.path.insert(0, hfo_dir)
     import select
 
-    import hfo  # HFO's ctypes binding (DEST/HFO/hfo), loads libhfo_c.so
-
-    env = hfo.HFOEnvironment()
-    env.connectToServer(
-        HFO_LOW_LEVEL_FEATURE_SET,
-        os.path.join(hfo_dir, HFO_CONFIG_SUBDIR),
-        port,
-        "localhost",
-        HFO_DEFENSE_TEAM_NAME,
-        True,  # play_goalie: rcssserver's goalie, which HFO's referee places at (52.5, 0)
-        "",
-    )
+    # play_goalie: rcssserver's goalie, which HFO's referee places at (52.5, 0)
+    sock, hfo, env = _connect_worker(argv, HFO_DEFENSE_TEAM_NAME, play_goalie=True)
     size = env.getStateSize()
     state = np.zeros(size, dtype=np.float32)
     env.getState(state)
