@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import sys
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -124,7 +125,8 @@ def merge_policy_kwargs(
 
 
 def _playback_class(algo_class: type) -> type:
-    """A subclass whose ``load`` defaults to a 1-transition replay buffer.
+    """A subclass whose ``load`` defaults to a 1-transition replay buffer and also reads stripped models
+    (:mod:`sb3_hfo.models`).
 
     rl-zoo3's enjoy/record_video shrink the replay buffer only for algorithms in a hard-coded local list of
     off-policy names, which cannot be extended; watching a trained agent needs no buffer.
@@ -133,7 +135,11 @@ def _playback_class(algo_class: type) -> type:
     class PlaybackModel(algo_class):  # type: ignore[valid-type, misc]
         @classmethod
         def load(cls, path: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
+            from sb3_hfo.models import full_model_buffer, is_stripped
+
             kwargs.setdefault("buffer_size", 1)
+            if isinstance(path, (str, Path)) and Path(path).is_file() and is_stripped(path):
+                path = full_model_buffer(path)
             return algo_class.load(path, *args, **kwargs)
 
     PlaybackModel.__name__ = algo_class.__name__
