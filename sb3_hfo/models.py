@@ -236,6 +236,22 @@ def playback_argv(args: Sequence[str], run_root: Path) -> list[str]:
 # add
 
 
+def machine_description() -> str:
+    """The CPU model and core count of this machine, e.g. ``"AMD EPYC, 2 cores"`` (where evaluation figures
+    were measured: other CPUs can draw other episodes from the same seed)."""
+    import os
+    import platform
+
+    cpu = platform.processor() or platform.machine()
+    cpuinfo = Path("/proc/cpuinfo")
+    if cpuinfo.is_file():
+        for line in cpuinfo.read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.partition(":")[2].strip()
+                break
+    return f"{cpu}, {os.cpu_count()} cores"
+
+
 def _sha256(path: Path) -> str:
     return hashlib.sha256(path.read_bytes()).hexdigest()
 
@@ -366,8 +382,11 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
         "evaluation_command": f"python -m sb3_hfo.evaluate {args.name} --episodes {args.episodes} "
         f"--seed {args.eval_seed} --json {args.name}.json",
         "evaluation": evaluation,
+        "evaluation_machine": machine_description(),
         "real_hfo": real_hfo,
+        "note": args.note or "",
     }
+    entry = json.loads(json.dumps(entry))  # as the manifest holds it (tuples become lists)
     models = read_manifest(manifest_path)
     models[args.name] = entry
     write_manifest(dict(sorted(models.items())), manifest_path)
@@ -403,6 +422,7 @@ def build_parser() -> argparse.ArgumentParser:
     add_parser.add_argument("--mirror-margin", type=float, default=None)
     add_parser.add_argument("--real-hfo", default=None, metavar="GOALS/EPISODES", help="a real-HFO result")
     add_parser.add_argument("--real-hfo-env", default=None, help="the real-HFO env id of --real-hfo")
+    add_parser.add_argument("--note", default=None, help="a remark for the results page")
     add_parser.add_argument("--real-hfo-json", default=None, help="an evaluate --json file of a real-HFO run")
     add_parser.add_argument(
         "--real-hfo-source", default=None, help="how and when the real-HFO figure was measured"
