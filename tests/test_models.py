@@ -268,3 +268,29 @@ def test_enjoy_and_record_video_play_a_committed_model_by_name(tmp_path: Path) -
     assert recorded.returncode == 0, recorded.stderr[-2000:]
     videos = list((tmp_path / "videos").glob("*.mp4"))  # the default -o of a committed model
     assert len(videos) == 1 and videos[0].stat().st_size > 1000
+
+
+def test_train_warm_starts_from_a_committed_model(tmp_path: Path) -> None:
+    config = REPO / "zoo_configs" / "x5_empty_goal_max_target_kickable_fast.yml"
+    command = ["sb3_hfo.train", "--env", "HFO/EmptyGoal-v0", "--conf-file", str(config), "-n", "64"]
+    command += ["--seed", "0", "-f", "logs", "--eval-freq", "-1", "-i", str(MODELS_DIR / "e1.zip")]
+    completed = _run_tool(command, tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    assert "Loading pretrained agent" in completed.stdout
+    assert (tmp_path / "logs" / "skill_ddpg" / "HFO-EmptyGoal-v0_1" / "HFO-EmptyGoal-v0.zip").is_file()
+
+
+@pytest.mark.parametrize(("video", "missing"), [(False, "pygame"), (True, "moviepy")])
+def test_playback_names_the_render_extra_when_its_modules_are_missing(
+    video: bool, missing: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import importlib.util
+
+    from sb3_hfo.cli_errors import check_render_extra
+
+    real_find_spec = importlib.util.find_spec
+    monkeypatch.setattr(
+        importlib.util, "find_spec", lambda name, *a: None if name == missing else real_find_spec(name, *a)
+    )
+    with pytest.raises(UserError, match=rf'needs {missing}: pip install -e "\.\[render\]"'):
+        check_render_extra(video=video)
