@@ -141,12 +141,18 @@ def full_model_buffer(path: str | Path) -> io.BytesIO:
 
 
 def load_model(path: str | Path, algo_class: type | None = None, **kwargs: Any) -> Any:
-    """Load a SkillDDPG model from a full or a stripped zip with ``algo_class.load`` (default SkillDDPG).
+    """Load a SkillDDPG model from a full or a stripped zip, or a committed model by its manifest name (``"e1"``),
+    with ``algo_class.load`` (default SkillDDPG).
 
     ``kwargs`` go to ``load`` (e.g. ``device="cpu"``, ``buffer_size=1``, ``env=...``).
     """
     from sb3_hfo.zoo import skill_ddpg_class
 
+    if not Path(path).is_file() and looks_like_name(str(path)):
+        entry = manifest_entry(str(path))
+        if entry is None:
+            raise UserError(unknown_name_message(str(path)))
+        path = model_file(entry)
     algo_class = algo_class or skill_ddpg_class()
     source: Any = full_model_buffer(path) if is_stripped(path) else str(path)
     return algo_class.load(source, **kwargs)

@@ -207,6 +207,14 @@ def test_a_committed_model_is_small_stripped_and_matches_its_manifest_entry(name
 # --- names on the command lines ---------------------------------------------------------------------------------
 
 
+def test_load_model_takes_a_manifest_name() -> None:
+    name, entry = next(iter(MANIFEST.items()))
+    model = load_model(name, device="cpu", buffer_size=1)
+    assert model.observation_space.shape == gym.make(entry["env_id"]).observation_space.shape
+    with pytest.raises(UserError, match="names: "):
+        load_model("no_such_model")
+
+
 def test_evaluate_takes_a_manifest_name_with_its_env() -> None:
     name, entry = next(iter(MANIFEST.items()))
     result = evaluate(name, episodes=1, seed=0)
