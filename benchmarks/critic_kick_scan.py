@@ -27,6 +27,7 @@ import hfo2d  # noqa: F401  (registers the HFO/* environments)
 from hfo2d.features import feature_names
 from hfo2d.hfo_env import KICK
 from sb3_hfo import SkillDDPG
+from sb3_hfo.models import load_model
 from sb3_hfo.skill_ddpg.policies import HFO_DIRECTION_PARAMETER_INDICES
 
 _FEATURES = feature_names(num_opponents=1)
@@ -69,7 +70,7 @@ def scan_shot(model: SkillDDPG, obs: np.ndarray) -> tuple[np.ndarray, float]:
 
 
 def collect(model_path: str, env_id: str, episodes: int, seed: int) -> Shots:
-    model = SkillDDPG.load(model_path, device="cpu")
+    model = load_model(model_path, device="cpu", buffer_size=1)
     env = gym.make(env_id)
     shots = Shots()
     obs, info = env.reset(seed=seed)

@@ -15,7 +15,7 @@ import gymnasium as gym
 import numpy as np
 import torch as th
 
-from sb3_hfo import SkillDDPG
+from sb3_hfo.models import load_model
 
 KICKABLE_FEATURE_INDEX = 12  # hfo2d's low-level features: +1 when the ball is kickable
 
@@ -28,7 +28,7 @@ def main() -> None:
     parser.add_argument("--first-seed", type=int, default=1000, help="episode i is reset with first_seed + i")
     args = parser.parse_args()
 
-    model = SkillDDPG.load(args.model)
+    model = load_model(args.model, buffer_size=1)
     env = gym.make(args.env)
     np.set_printoptions(precision=2, suppress=True)
     for episode in range(args.episodes):

@@ -19,7 +19,7 @@ goalie, and ``HFO/Keeper-v1``, its port of agent2d's, when registered). The firs
 The real servers must run in a loopback-only network namespace; the script refuses to run outside one::
 
     bash shared/real_hfo/netns.sh python benchmarks/real_hfo.py --hfo-dir /path/to/HFO --episodes 100 \\
-        --model models/x27_keeper_skills_lost_shots_refunded_seed1 --json benchmarks/results/real_hfo.json
+        --model e6_keeper_v0 --json benchmarks/results/real_hfo.json
 """
 
 from __future__ import annotations
@@ -149,10 +149,10 @@ def model_rates(
 def model_task(model: str) -> str:
     """The task a model plays, from its observation size (58: empty goal, 66: keeper)."""
     from sb3_hfo.evaluate import resolve_model
-    from sb3_hfo.zoo import skill_ddpg_class
+    from sb3_hfo.models import load_model
 
     path = resolve_model(model).path
-    loaded = skill_ddpg_class().load(str(path), device="cpu", buffer_size=1)
+    loaded = load_model(path, device="cpu", buffer_size=1)
     size = int(loaded.observation_space.shape[0])
     if size not in TASK_OF_SIZE:
         raise SystemExit(f"error: {model} expects {size} features; hfo2d and the real HFO give 58 or 66")

@@ -28,6 +28,7 @@ import numpy as np
 import hfo2d  # noqa: F401  (registers the HFO/* ids)
 from hfo2d.features import PITCH_HALF_LENGTH
 from sb3_hfo import SkillDDPG
+from sb3_hfo.models import load_model
 
 QUANTILES = (10, 25, 50, 75, 90)
 OUTCOMES = ("GOAL", "CAPTURED_BY_DEFENSE")
@@ -87,7 +88,7 @@ def main() -> None:
     parser.add_argument("--episodes", type=int, default=300)
     parser.add_argument("--seed", type=int, default=0)
     args = parser.parse_args()
-    model = SkillDDPG.load(args.model, device="cpu")
+    model = load_model(args.model, device="cpu", buffer_size=1)
     env = gym.make(args.env)
     kicks = play(model, env, args.episodes, args.seed)
     env.close()

@@ -258,6 +258,16 @@ def check_train_args(args: Sequence[str]) -> None:
         check_env_kwargs(env_id, zoo_dicts["--eval-env-kwargs"], what="--eval-env-kwargs")
 
 
+def check_render_extra(video: bool = False) -> None:
+    """UserError naming the ``[render]`` extra when pygame (a window, every frame) or, for a video, moviepy is
+    missing."""
+    modules = ("pygame", "moviepy") if video else ("pygame",)
+    missing = [name for name in modules if importlib.util.find_spec(name) is None]
+    if missing:
+        what = "recording a video" if video else "a window (or pass --no-render)"
+        raise UserError(f'{what} needs {" and ".join(missing)}: pip install -e ".[render]"')
+
+
 def check_playback_args(args: Sequence[str], algo: str) -> Path:
     """The user errors of an ``enjoy`` / ``record_video`` command line; returns the model rl-zoo3 will load."""
     from huggingface_sb3 import EnvironmentName

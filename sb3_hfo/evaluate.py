@@ -2,7 +2,8 @@
 
 ``python -m sb3_hfo.evaluate MODEL --env HFO/EmptyGoal-v0 --episodes 100 --seed 0 --json out.json``
 
-MODEL is a SkillDDPG ``.zip`` (the suffix may be left out) or an rl-zoo3 run folder such as
+MODEL is a committed model's name (``models/manifest.json``: ``e1``, ...; its env id and env kwargs come from
+the manifest), a SkillDDPG ``.zip`` (full or stripped; the suffix may be left out) or an rl-zoo3 run folder such as
 ``logs/skill_ddpg/HFO-EmptyGoal-v0_1`` (its final model ``HFO-EmptyGoal-v0.zip`` is used, else
 ``best_model.zip``). With a run folder, ``--env`` and the training ``env_kwargs`` default to the run's own, less
 training aids (``random_start_fraction``: episodes start as in HFO unless ``--env-kwargs`` says otherwise).
@@ -277,12 +278,21 @@ def _read_run_settings(run_folder: Path) -> tuple[str | None, dict[str, Any]]:
 
 
 def resolve_model(model: str) -> ResolvedModel:
-    """Find the ``.zip`` for MODEL (file, file without suffix, rl-zoo3 run folder, or a folder of runs: the newest).
+    """Find the ``.zip`` for MODEL: a committed model's name (``models/manifest.json``, e.g. ``e1``), a file, a file
+    without its suffix, an rl-zoo3 run folder, or a folder of runs (the newest).
 
     Raises:
         EvaluationError: nothing to load there.
     """
     path = Path(model)
+    if not path.exists() and not path.with_name(path.name + ".zip").exists():
+        from sb3_hfo.models import looks_like_name, manifest_entry, model_file, unknown_name_message
+
+        if looks_like_name(model):
+            entry = manifest_entry(model)
+            if entry is None:
+                raise EvaluationError(unknown_name_message(model))
+            return ResolvedModel(model_file(entry), entry["env_id"], dict(entry["env_kwargs"]))
     if path.is_dir() and not any(path.glob("*.zip")):
         # A folder of rl-zoo3 runs (``logs/skill_ddpg``): take the newest run, ``<env name>_<N>`` with the largest N.
         runs = [
@@ -449,13 +459,14 @@ def load_for_evaluation(
     import gymnasium as gym
     import torch
 
+    from sb3_hfo.models import load_model
     from sb3_hfo.zoo import skill_ddpg_class
 
     # Small networks, one observation at a time: extra torch threads only contend for the cores.
     torch.set_num_threads(1)
     # A 1-transition replay buffer: evaluation never trains.
     try:
-        model = skill_ddpg_class().load(str(resolved.path), device="cpu", buffer_size=1)
+        model = load_model(resolved.path, skill_ddpg_class(), device="cpu", buffer_size=1)
     except ValueError as error:  # SB3: data that is not a model's
         raise EvaluationError(f"cannot load {resolved.path}: {error}") from None
     try:
@@ -602,7 +613,9 @@ def build_parser() -> argparse.ArgumentParser:
         description="Evaluate a SkillDDPG model on an HFO task (scoring rate with Wilson 95% CI, kicks, dribbling).",
     )
     parser.add_argument(
-        "model", help="model .zip (suffix optional) or rl-zoo3 run folder (logs/skill_ddpg/<env>_<n>)"
+        "model",
+        help="committed model name (e.g. e1), model .zip (suffix optional) or rl-zoo3 run folder "
+        "(logs/skill_ddpg/<env>_<n>)",
     )
     parser.add_argument(
         "--env", default=None, help="env id, e.g. HFO/EmptyGoal-v0 (default: the run folder's)"

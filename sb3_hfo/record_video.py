@@ -1,6 +1,9 @@
 """Record an mp4 of a trained agent with rl-zoo3's ``record_video`` (SB3 ``VecVideoRecorder``, moviepy).
 
-``python -m sb3_hfo.record_video --algo skill_ddpg --env HFO/EmptyGoal-v0 -f logs/ -n 500 -o videos/``
+``python -m sb3_hfo.record_video e1 -n 500`` (a committed model's name, see :mod:`sb3_hfo.models`, or a model
+``.zip`` or rl-zoo3 run folder; the video goes to ``videos/`` unless ``-o`` says otherwise) or, in rl-zoo3's own
+way, ``python -m sb3_hfo.record_video --env HFO/EmptyGoal-v0 -f logs/ --exp-id 1 -n 500 -o videos/``.
+Needs the ``[render]`` extra (pygame, moviepy).
 
 rl-zoo3 forces ``render_mode="rgb_array"``, so no window is needed; SDL is pointed at its dummy video driver
 (unless ``SDL_VIDEODRIVER`` is already set) so that pygame also works on machines without a display.
@@ -13,7 +16,9 @@ from __future__ import annotations
 import os
 import runpy
 import sys
+import tempfile
 from collections.abc import Sequence
+from pathlib import Path
 
 
 def _run_rl_zoo_record_video() -> None:
@@ -21,6 +26,8 @@ def _run_rl_zoo_record_video() -> None:
 
 
 PROG = "python -m sb3_hfo.record_video"
+#: Where a committed model's video goes unless ``-o`` says otherwise.
+DEFAULT_VIDEO_FOLDER = "videos"
 
 
 def main(argv: Sequence[str] | None = None) -> None:
@@ -30,20 +37,38 @@ def main(argv: Sequence[str] | None = None) -> None:
     """
     import torch
 
-    from sb3_hfo.cli_errors import UserError, check_playback_args, fail, one_line_argparse_errors
+    from sb3_hfo.cli_errors import (
+        UserError,
+        check_playback_args,
+        check_render_extra,
+        fail,
+        one_line_argparse_errors,
+        option_value,
+    )
+    from sb3_hfo.models import playback_argv
     from sb3_hfo.zoo import ALGO_NAME, run_rl_zoo_entry_point
 
     args = list(sys.argv[1:] if argv is None else argv)
-    if not any(arg in ("-h", "--help") for arg in args):
-        try:
-            check_playback_args(args, ALGO_NAME)
-        except UserError as error:
-            fail(error)
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     # rl-zoo3's record_video has no --num-threads; small networks run fastest on one torch thread.
     torch.set_num_threads(1)
-    with one_line_argparse_errors(PROG):
-        run_rl_zoo_entry_point(_run_rl_zoo_record_video, args, playback=True)
+    with tempfile.TemporaryDirectory(prefix="sb3_hfo_record_") as run_root:
+        if not any(arg in ("-h", "--help") for arg in args):
+            try:
+                if (
+                    args
+                    and not args[0].startswith("-")
+                    and option_value(args, "-o", "--output-folder") is None
+                ):
+                    # rl-zoo3 would write into the (temporary) run folder
+                    args = [*args, "-o", DEFAULT_VIDEO_FOLDER]
+                args = playback_argv(args, Path(run_root))
+                check_playback_args(args, ALGO_NAME)
+                check_render_extra(video=True)
+            except UserError as error:
+                fail(error)
+        with one_line_argparse_errors(PROG):
+            run_rl_zoo_entry_point(_run_rl_zoo_record_video, args, playback=True)
 
 
 if __name__ == "__main__":

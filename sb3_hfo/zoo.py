@@ -5,7 +5,7 @@ rl-zoo3 keeps its algorithms and Optuna samplers in module-level tables (``rl_zo
 from ``ALGOS`` *before* it imports ``--gym-packages``. So ``python -m sb3_hfo.train`` (and ``enjoy``,
 ``record_video``) call :func:`register_with_rl_zoo` first and then hand over to rl-zoo3's own entry points.
 
-Three rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimentManager`:
+Four rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimentManager`:
 
 * rl-zoo3 turns ``"lin_<x>"`` strings into linear schedules only for the key ``learning_rate``; SkillDDPG has
   two learning rates (``learning_rate_actor``, ``learning_rate_critic``), so the same conversion is applied to
@@ -13,6 +13,8 @@ Three rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperime
 * During ``-optimize`` rl-zoo3 replaces the config's ``policy_kwargs`` wholesale by the sampled one, which would
   drop the experiment-defining keys (``n_skills``, ``skill_router``, ``inverting_gradients``); the sampled
   ``policy_kwargs`` are merged on top of the config's instead.
+* ``-i`` (warm start) loads a committed model, which is stored stripped (:mod:`sb3_hfo.models`), through its
+  rebuilt full zip.
 * rl-zoo3 (2.9) hands a config's ``env_kwargs`` (e.g. ``reward: shaped_gap``) to the training envs but builds the
   evaluation env with the command line's ``--env-kwargs`` only, so ``--eval-freq`` evaluations would report a
   different reward and pick ``best_model.zip`` by it. Unless ``--eval-env-kwargs`` is given, the evaluation env
@@ -26,7 +28,9 @@ the paper's figures are plotted against episodes). The training goal rate is SB3
 from __future__ import annotations
 
 import sys
+import tempfile
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -98,6 +102,22 @@ def _experiment_manager_class() -> type:
                     hyperparams[key] = parse_schedule(hyperparams[key])
             return hyperparams
 
+        def _load_pretrained_agent(self, hyperparams: dict[str, Any], env: Any) -> Any:
+            # -i with a committed (stripped) model: rl-zoo3 loads it with SkillDDPG.load, which needs the full zip.
+            from sb3_hfo.models import full_model_buffer, is_stripped
+
+            if not is_stripped(self.trained_agent):
+                return super()._load_pretrained_agent(hyperparams, env)
+            original = self.trained_agent
+            with tempfile.TemporaryDirectory(prefix="sb3_hfo_warm_start_") as folder:
+                full = Path(folder) / Path(original).name
+                full.write_bytes(full_model_buffer(original).getvalue())
+                self.trained_agent = str(full)
+                try:
+                    return super()._load_pretrained_agent(hyperparams, env)
+                finally:
+                    self.trained_agent = original
+
         def hyperparameters_optimization(self) -> None:
             original_sampler = HYPERPARAMS_SAMPLER[self.algo]
             base_policy_kwargs = dict(self._hyperparams.get("policy_kwargs") or {})
@@ -124,7 +144,8 @@ def merge_policy_kwargs(
 
 
 def _playback_class(algo_class: type) -> type:
-    """A subclass whose ``load`` defaults to a 1-transition replay buffer.
+    """A subclass whose ``load`` defaults to a 1-transition replay buffer and also reads stripped models
+    (:mod:`sb3_hfo.models`).
 
     rl-zoo3's enjoy/record_video shrink the replay buffer only for algorithms in a hard-coded local list of
     off-policy names, which cannot be extended; watching a trained agent needs no buffer.
@@ -133,7 +154,11 @@ def _playback_class(algo_class: type) -> type:
     class PlaybackModel(algo_class):  # type: ignore[valid-type, misc]
         @classmethod
         def load(cls, path: Any, *args: Any, **kwargs: Any) -> Any:  # type: ignore[override]
+            from sb3_hfo.models import full_model_buffer, is_stripped
+
             kwargs.setdefault("buffer_size", 1)
+            if isinstance(path, (str, Path)) and Path(path).is_file() and is_stripped(path):
+                path = full_model_buffer(path)
             return algo_class.load(path, *args, **kwargs)
 
     PlaybackModel.__name__ = algo_class.__name__

@@ -57,7 +57,7 @@ def test_update_throughput_rejects_a_zero_thread_count(tmp_path: Path) -> None:
 
 def test_discrete_choice_runs_both_modes_on_the_committed_model(tmp_path: Path) -> None:
     command = [sys.executable, str(REPO / "benchmarks" / "discrete_choice.py")]
-    command += [str(REPO / "models" / "e1_empty_goal_fast_seed0"), "--episodes", "2", "--seed", "0"]
+    command += ["e1", "--episodes", "2", "--seed", "0"]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert completed.returncode == 0, completed.stderr[-2000:]
     lines = completed.stdout.splitlines()
@@ -68,7 +68,7 @@ def test_discrete_choice_runs_both_modes_on_the_committed_model(tmp_path: Path) 
 def test_discrete_choice_agreement_counts_every_step(tmp_path: Path) -> None:
     command = [sys.executable, str(REPO / "benchmarks" / "discrete_choice.py")]
     command += [
-        str(REPO / "models" / "x15_static_keeper_relative_kick_seed0"),
+        "e3",
         "--episodes",
         "2",
         "--agreement",
@@ -85,7 +85,7 @@ def test_discrete_choice_agreement_counts_every_step(tmp_path: Path) -> None:
 def test_failure_map_groups_episodes_by_start_and_writes_a_png(tmp_path: Path) -> None:
     out = tmp_path / "map.png"
     command = [sys.executable, str(REPO / "benchmarks" / "failure_map.py")]
-    command += [str(REPO / "models" / "e1_empty_goal_fast_seed0"), "--episodes", "6", "--out", str(out)]
+    command += ["e1", "--episodes", "6", "--out", str(out)]
     completed = subprocess.run(
         [*command, "--mirror-choice", "on"], capture_output=True, text=True, timeout=300, cwd=tmp_path
     )
@@ -123,7 +123,7 @@ def test_start_class_bands_the_agents_lead_over_the_ball() -> None:
 def test_mirror_twin_tables_both_sides_by_start_class(tmp_path: Path) -> None:
     out = tmp_path / "twin.json"
     command = [sys.executable, str(REPO / "benchmarks" / "mirror_twin.py")]
-    command += [str(REPO / "models" / "x21_empty_goal_each_action_parameters_fast_seed0"), "--episodes", "5"]
+    command += ["e1", "--episodes", "5"]
     completed = subprocess.run(
         [*command, "--json", str(out)], capture_output=True, text=True, timeout=300, cwd=tmp_path
     )
@@ -196,7 +196,7 @@ def test_weight_layout_times_both_layouts_of_every_shape() -> None:
 
 def test_critic_kick_scan_reports_both_outcomes_and_writes_a_png(tmp_path: Path) -> None:
     out = tmp_path / "scan.png"
-    model = REPO / "models" / "x3_static_keeper_critic_choice_fast_seed0" / "HFO-StaticKeeper-v0.zip"
+    model = REPO / "models" / "e3.zip"
     command = [sys.executable, str(REPO / "benchmarks" / "critic_kick_scan.py"), str(model), "--labels", "x3"]
     command += ["--episodes", "8", "--out", str(out)]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
@@ -256,7 +256,7 @@ def test_shot_aim_projects_kicks_onto_the_goal_line_and_reports_outcomes() -> No
     assert shot_aim.goal_line_y(40.0, -2.0, 0.0) == pytest.approx(-2.0)
     assert math.isnan(shot_aim.goal_line_y(40.0, 0.0, math.pi))  # away from the goal
 
-    model = REPO / "models" / "x3_static_keeper_critic_choice_fast_seed0" / "HFO-StaticKeeper-v0.zip"
+    model = REPO / "models" / "e3.zip"
     command = [sys.executable, str(REPO / "benchmarks" / "shot_aim.py"), str(model), "--episodes", "10"]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=REPO)
     assert completed.returncode == 0, completed.stderr[-2000:]
@@ -279,7 +279,7 @@ def test_parameter_loss_cost_times_both_losses(tmp_path: Path) -> None:
 def test_time_out_trace_reports_every_time_out(tmp_path: Path) -> None:
     command = [sys.executable, str(REPO / "benchmarks" / "time_out_trace.py")]
     command += [
-        str(REPO / "models" / "x15_static_keeper_relative_kick_seed0"),
+        "e3",
         "--episodes",
         "9",
         "--last",
@@ -304,9 +304,7 @@ def test_critic_parameter_search_candidates_move_one_own_parameter_at_a_time() -
 
     from sb3_hfo.evaluate import load_for_evaluation
 
-    model, env, _, _, _ = load_for_evaluation(
-        str(REPO / "models" / "x19_static_keeper_each_action_parameters_seed0")
-    )
+    model, env, _, _, _ = load_for_evaluation("e3")
     env.close()
     policy = model.policy
     actions = th.rand(4, policy.action_dim, generator=th.Generator().manual_seed(0)) * 2 - 1
@@ -335,7 +333,7 @@ def test_critic_parameter_search_candidates_move_one_own_parameter_at_a_time() -
 
 def test_critic_parameter_search_plays_both_modes(tmp_path: Path) -> None:
     command = [sys.executable, str(REPO / "benchmarks" / "critic_parameter_search.py")]
-    command += [str(REPO / "models" / "x19_static_keeper_each_action_parameters_seed0"), "--episodes", "2"]
+    command += ["e3", "--episodes", "2"]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert completed.returncode == 0, completed.stderr[-2000:]
     lines = completed.stdout.splitlines()
@@ -349,7 +347,7 @@ def test_return_by_outcome_groups_every_episode_once_and_replays_them_under_anot
         out = tmp_path / "rows.json"
         command = [sys.executable, str(REPO / "benchmarks" / "return_by_outcome.py")]
         command += [
-            str(REPO / "models" / "x24_keeper_skills_each_action_parameters_seed0"),
+            "e6_keeper_v0",
             "--episodes",
             "3",
         ]

@@ -679,7 +679,7 @@ def test_evaluation_leaves_out_the_runs_exploring_starts(tmp_path: Path) -> None
 def test_evaluate_can_switch_on_the_mirror_choice() -> None:
     from sb3_hfo.evaluate import build_parser, evaluate
 
-    model = REPO / "models" / "x27_keeper_skills_lost_shots_refunded_seed0"
+    model = "e6_keeper_v0"
     result = evaluate(str(model), episodes=2, seed=0, mirror_choice=True)
     assert result.mirror_choice is True and result.episodes == 2
     assert evaluate(str(model), episodes=1, seed=0).mirror_choice is False  # the model's own setting
@@ -691,7 +691,7 @@ def test_evaluate_sets_the_mirror_margin_and_threads_predicts_state_through_each
 
     from sb3_hfo.evaluate import EvaluationError, build_parser, evaluate, run_episodes
 
-    model = REPO / "models" / "x27_keeper_skills_lost_shots_refunded_seed0"
+    model = "e6_keeper_v0"
     result = evaluate(str(model), episodes=1, seed=0, mirror_choice=True, mirror_margin=float("inf"))
     assert result.mirror_choice is True and result.mirror_margin == float("inf")
     assert build_parser().parse_args(["m.zip", "--mirror-margin", "0.2"]).mirror_margin == 0.2
@@ -736,22 +736,6 @@ def test_evaluate_unknown_env_id_lists_hfo_ids(trained_runs: tuple[Path, dict[st
     assert "unknown env id 'HFO/NoSuchTask-v0'" in result.stderr
     assert "HFO/EmptyGoal-v0" in result.stderr and "HFO/Keeper-v0" in result.stderr
     assert "Traceback" not in result.stderr
-
-
-COMMITTED_MODELS = sorted(path for path in (REPO / "models").iterdir() if path.is_dir())
-
-
-@pytest.mark.parametrize("model_dir", COMMITTED_MODELS, ids=lambda path: path.name)
-def test_committed_model_evaluates_on_a_fresh_clone(model_dir: Path) -> None:
-    """Each model under models/ is named ``<config>_seed<N>`` after a config of zoo_configs/, and evaluates on that
-    config's env from its folder alone (env id and settings read from the run files committed beside it)."""
-    from sb3_hfo.evaluate import evaluate
-
-    config_name, _, seed = model_dir.name.rpartition("_seed")
-    assert seed.isdigit() and (CONFIG_DIR / f"{config_name}.yml").is_file(), model_dir.name
-    env_id, _ = _load_config(CONFIG_DIR / f"{config_name}.yml")
-    result = evaluate(str(model_dir), episodes=2, seed=0)
-    assert result.env_id == env_id and result.episodes == 2
 
 
 def test_evaluate_missing_model_is_a_clear_error(tmp_path: Path) -> None:

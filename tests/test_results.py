@@ -1,0 +1,79 @@
+"""The results table (sb3_hfo.results) is generated from the manifest's evaluations and cannot drift."""
+
+from __future__ import annotations
+
+import copy
+
+import pytest
+
+from sb3_hfo.models import read_manifest
+from sb3_hfo.results import (
+    BEGIN_MARKER,
+    END_MARKER,
+    README_PATH,
+    RESULTS_PAGE_PATH,
+    TASKS,
+    readme_block,
+    results_page,
+    table,
+    with_readme_block,
+)
+
+REGENERATE = "run python -m sb3_hfo.results to regenerate it from models/manifest.json"
+
+
+def test_the_readme_table_is_what_the_manifest_gives() -> None:
+    readme = README_PATH.read_text()
+    assert readme.count(BEGIN_MARKER) == 1 and readme.count(END_MARKER) == 1
+    assert readme == with_readme_block(readme, readme_block(read_manifest())), REGENERATE
+
+
+def test_the_results_page_is_what_the_manifest_gives() -> None:
+    assert RESULTS_PAGE_PATH.read_text() == results_page(read_manifest()), REGENERATE
+
+
+def _entry(goals: int, episodes: int = 1000, real: tuple[int, int] | None = None) -> dict:
+    from sb3_hfo.evaluate import wilson_interval
+
+    def rate(goals: int, episodes: int) -> dict:
+        return {
+            "goals": goals,
+            "episodes": episodes,
+            "scoring_rate": goals / episodes,
+            "scoring_rate_ci95": list(wilson_interval(goals, episodes)),
+        }
+
+    return {
+        "config": "zoo_configs/x9_some_config.yml",
+        "seed": 4,
+        "evaluation": rate(goals, episodes),
+        "real_hfo": {**rate(*real), "env_id": "HFO/RealKeeper-v0"} if real else None,
+    }
+
+
+def test_each_task_gets_one_row_with_its_evaluation() -> None:
+    models = {"e1": _entry(988), "e6": _entry(348, real=(300, 1000)), "extra": _entry(500)}
+    lines = table(models).splitlines()
+    rows = lines[2:]
+    assert len(rows) == len(TASKS) + 1  # every task, then the model no task names
+    e1 = next(row for row in rows if row.startswith("| E1 "))
+    assert "**98.8 % [97.9, 99.3]**" in e1 and "`e1` (x9, seed 4)" in e1 and e1.endswith("| not measured |")
+    e6 = next(row for row in rows if "`e6`" in row)
+    assert "34.8 % [31.9, 37.8]" in e6 and "30.0 % [27.2, 32.9] (against agent2d's goalie)" in e6
+    assert sum("no committed model yet" in row for row in rows) == len(TASKS) - 2
+    assert rows[-1].startswith("| extra | - | **50.0 %")
+
+
+def test_a_changed_evaluation_changes_the_generated_table() -> None:
+    models = read_manifest()
+    changed = copy.deepcopy(models)
+    name = next(iter(changed))
+    changed[name]["evaluation"]["scoring_rate"] = 0.5
+    assert table(changed) != table(models)
+
+
+def test_the_readme_block_needs_both_markers() -> None:
+    with pytest.raises(ValueError, match="results markers"):
+        with_readme_block("# a readme\n", "table\n")
+    text = f"a\n{BEGIN_MARKER}\nold\n{END_MARKER}\nb\n"
+    assert with_readme_block(text, "new\n") == f"a\n{BEGIN_MARKER}\nnew\n{END_MARKER}\nb\n"
