@@ -44,7 +44,7 @@ class DemonstrationPrefillCallback(BaseCallback):
         obs = env.reset()
         finished = 0
         while finished < self.episodes:
-            actions = np.stack([striker(o) for striker, o in zip(strikers, obs)])
+            actions = np.stack([striker(o) for striker, o in zip(strikers, obs, strict=True)])
             new_obs, rewards, dones, infos = env.step(actions)
             next_obs = new_obs.copy()
             for i, done in enumerate(dones):
