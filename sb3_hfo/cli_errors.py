@@ -258,14 +258,43 @@ def check_train_args(args: Sequence[str]) -> None:
         check_env_kwargs(env_id, zoo_dicts["--eval-env-kwargs"], what="--eval-env-kwargs")
 
 
+#: The modules each extra of pyproject.toml brings (top-level import names) and what needs them.
+EXTRA_MODULES: dict[str, tuple[str, ...]] = {
+    "zoo": ("rl_zoo3", "optuna", "pandas", "matplotlib", "requests"),
+    "render": ("pygame", "moviepy"),
+}
+
+
+def module_missing(module: str) -> bool:
+    """Whether the top-level module ``module`` cannot be imported (looked up without importing it)."""
+    try:
+        return importlib.util.find_spec(module) is None
+    except (ImportError, ValueError):  # a broken install, or sys.modules[module] set to a non-module
+        return True
+
+
+def check_installed(extra: str, modules: Sequence[str], needed_by: str) -> None:
+    """UserError naming ``pip install -e ".[extra]"`` when one of ``modules`` (of that extra) is missing.
+
+    ``pip install -e .`` installs the Python API only; the command-line tools' dependencies are the ``[zoo]``
+    and ``[render]`` extras, so a missing one is a user's install, not a bug: one line instead of a traceback.
+    """
+    unknown = set(modules) - set(EXTRA_MODULES[extra])
+    if unknown:
+        raise ValueError(f"{sorted(unknown)} are not modules of the [{extra}] extra")
+    missing = [name for name in modules if module_missing(name)]
+    if missing:
+        raise UserError(
+            f"{needed_by} needs {' and '.join(missing)}, from the [{extra}] extra: "
+            f'pip install -e ".[{extra}]" (in the sb3-hfo folder)'
+        )
+
+
 def check_render_extra(video: bool = False) -> None:
     """UserError naming the ``[render]`` extra when pygame (a window, every frame) or, for a video, moviepy is
     missing."""
     modules = ("pygame", "moviepy") if video else ("pygame",)
-    missing = [name for name in modules if importlib.util.find_spec(name) is None]
-    if missing:
-        what = "recording a video" if video else "a window (or pass --no-render)"
-        raise UserError(f'{what} needs {" and ".join(missing)}: pip install -e ".[render]"')
+    check_installed("render", modules, "recording a video" if video else "a window (or pass --no-render)")
 
 
 def check_playback_args(args: Sequence[str], algo: str) -> Path:

@@ -25,20 +25,24 @@ def main(argv: Sequence[str] | None = None) -> None:
     """
     from sb3_hfo.cli_errors import (
         UserError,
+        check_installed,
         check_playback_args,
         check_render_extra,
         fail,
         one_line_argparse_errors,
     )
-    from sb3_hfo.models import playback_argv
     from sb3_hfo.zoo import ALGO_NAME, run_rl_zoo_entry_point
 
     args = list(sys.argv[1:] if argv is None else argv)
     try:
-        import rl_zoo3.enjoy
-    except ModuleNotFoundError as error:
         # rl_zoo3.enjoy imports its Hugging Face download helper, which needs `requests`.
-        fail(f"rl_zoo3.enjoy needs the missing module {error.name!r}: pip install {error.name}")
+        check_installed("zoo", ("rl_zoo3", "requests"), PROG)
+    except UserError as error:
+        fail(error)
+    import rl_zoo3.enjoy
+
+    from sb3_hfo.models import playback_argv
+
     with tempfile.TemporaryDirectory(prefix="sb3_hfo_enjoy_") as run_root:
         if not any(arg in ("-h", "--help") for arg in args):
             try:

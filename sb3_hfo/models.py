@@ -34,7 +34,7 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
-from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, fail, non_negative_int
+from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, fail, module_missing, non_negative_int
 
 #: The committed models and their manifest (the repository's ``models/`` folder).
 MODELS_DIR = Path(__file__).resolve().parent.parent / "models"
@@ -155,6 +155,11 @@ def load_model(path: str | Path, algo_class: type | None = None, **kwargs: Any) 
         path = model_file(entry)
     algo_class = algo_class or skill_ddpg_class()
     source: Any = full_model_buffer(path) if is_stripped(path) else str(path)
+    if module_missing("rl_zoo3"):
+        # Models trained through rl-zoo3 may pickle its schedules; without the [zoo] extra they load as equals.
+        from sb3_hfo.common.schedules import rl_zoo3_free_custom_objects
+
+        kwargs["custom_objects"] = {**rl_zoo3_free_custom_objects(source), **kwargs.get("custom_objects", {})}
     return algo_class.load(source, **kwargs)
 
 

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from sb3_hfo.cli_errors import OneLineArgumentParser
+from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, check_installed, one_line
 
 #: The training goal rate (with exploration; SB3's, from HFO's ``info["is_success"]``); its panel also shows the
 #: greedy evaluations (EVAL_SUCCESS_TAG).
@@ -295,6 +295,11 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """CLI entry point; returns the exit code (0 ok, 2 user error)."""
     args = build_parser().parse_args(argv)
+    try:
+        check_installed("zoo", ("matplotlib",), "python -m sb3_hfo.plot")
+    except UserError as error:
+        print(f"error: {one_line(error)}", file=sys.stderr)
+        return 2
     try:
         runs = collect_runs(args.logdirs, args.labels)
     except PlotError as error:

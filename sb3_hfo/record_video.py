@@ -39,16 +39,23 @@ def main(argv: Sequence[str] | None = None) -> None:
 
     from sb3_hfo.cli_errors import (
         UserError,
+        check_installed,
         check_playback_args,
         check_render_extra,
         fail,
         one_line_argparse_errors,
         option_value,
     )
-    from sb3_hfo.models import playback_argv
     from sb3_hfo.zoo import ALGO_NAME, run_rl_zoo_entry_point
 
     args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        check_installed("zoo", ("rl_zoo3", "requests"), PROG)
+    except UserError as error:
+        fail(error)
+
+    from sb3_hfo.models import playback_argv
+
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     # rl-zoo3's record_video has no --num-threads; small networks run fastest on one torch thread.
     torch.set_num_threads(1)

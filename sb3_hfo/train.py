@@ -22,9 +22,19 @@ def main(argv: Sequence[str] | None = None) -> None:
 
     User errors (see :func:`sb3_hfo.cli_errors.check_train_args`) exit with one line on stderr and code 2.
     """
-    from sb3_hfo.cli_errors import UserError, check_train_args, fail, one_line_argparse_errors
+    from sb3_hfo.cli_errors import (
+        UserError,
+        check_installed,
+        check_train_args,
+        fail,
+        one_line_argparse_errors,
+    )
 
     args = list(sys.argv[1:] if argv is None else argv)
+    try:
+        check_installed("zoo", ("rl_zoo3", "optuna"), PROG)
+    except UserError as error:
+        fail(error)
     if not any(arg in ("-h", "--help") for arg in args):
         try:
             check_train_args(args)

@@ -65,14 +65,14 @@ def parse_schedule(value: Any) -> Any:
     ``"lin_<x>"`` -> linear decay from ``x`` (start of training) to 0 (end of ``n_timesteps``), as rl-zoo3 does
     for ``learning_rate``; a number or ``"<x>"`` -> constant ``x`` (as a float); a callable is returned unchanged.
     """
-    from rl_zoo3.utils import SimpleLinearSchedule
+    from sb3_hfo.common.schedules import LinearToZero
 
     if callable(value):
         return value
     if isinstance(value, str):
         kind, _, number = value.partition("_")
         if kind == "lin" and number:
-            return SimpleLinearSchedule(float(number))
+            return LinearToZero(float(number))
         if not number:
             return float(kind)
         raise ValueError(f"unknown schedule {value!r}: expected 'lin_<value>' or a number")

@@ -300,5 +300,5 @@ def test_playback_names_the_render_extra_when_its_modules_are_missing(
     monkeypatch.setattr(
         importlib.util, "find_spec", lambda name, *a: None if name == missing else real_find_spec(name, *a)
     )
-    with pytest.raises(UserError, match=rf'needs {missing}: pip install -e "\.\[render\]"'):
+    with pytest.raises(UserError, match=rf'needs {missing}, from the \[render\] extra: pip install -e "\.\[render\]"'):
         check_render_extra(video=video)

@@ -1,0 +1,61 @@
+"""Learning-rate schedules that a saved model can hold without rl-zoo3 installed.
+
+Models trained with rl-zoo3 configs (``learning_rate_critic: lin_0.001``) used to pickle
+``rl_zoo3.utils.SimpleLinearSchedule``, so loading them needed rl-zoo3. :class:`LinearToZero` is the same schedule
+(same attribute, same values) owned by this package, and :func:`rl_zoo3_free_custom_objects` reads an older model's
+rl-zoo3 schedules as :class:`LinearToZero` when rl-zoo3 is not installed.
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+import json
+import pickle
+import zipfile
+from pathlib import Path
+from typing import IO, Any
+
+
+class LinearToZero:
+    """``progress_remaining * initial_value``: linear from ``initial_value`` at the start of training to 0 at its end
+    (rl-zoo3's ``lin_<x>``)."""
+
+    def __init__(self, initial_value: float | str) -> None:
+        self.initial_value = float(initial_value)
+
+    def __call__(self, progress_remaining: float) -> float:
+        return progress_remaining * self.initial_value
+
+    def __repr__(self) -> str:
+        return f"LinearToZero(initial_value={self.initial_value})"
+
+
+#: rl-zoo3 classes an older saved model may hold, and this package's equivalents.
+_RL_ZOO3_EQUIVALENTS = {("rl_zoo3.utils", "SimpleLinearSchedule"): LinearToZero}
+
+
+class _RlZoo3FreeUnpickler(pickle.Unpickler):
+    def find_class(self, module: str, name: str) -> Any:
+        equivalent = _RL_ZOO3_EQUIVALENTS.get((module, name))
+        if equivalent is not None:
+            return equivalent
+        if module.split(".")[0] == "rl_zoo3":
+            raise pickle.UnpicklingError(f"{module}.{name} needs rl-zoo3: pip install -e \".[zoo]\"")
+        return super().find_class(module, name)
+
+
+def rl_zoo3_free_custom_objects(model: str | Path | IO[bytes]) -> dict[str, Any]:
+    """SB3 ``load(custom_objects=...)`` entries for every value of a saved model's ``data`` that pickles an rl-zoo3
+    class, each unpickled with that class replaced by this package's equivalent."""
+    with zipfile.ZipFile(model) as archive:
+        data = json.loads(archive.read("data"))
+    if not isinstance(model, (str, Path)):
+        model.seek(0)
+    custom_objects: dict[str, Any] = {}
+    for key, value in data.items():
+        if isinstance(value, dict) and ":serialized:" in value:
+            raw = base64.b64decode(value[":serialized:"].encode())
+            if b"rl_zoo3" in raw:
+                custom_objects[key] = _RlZoo3FreeUnpickler(io.BytesIO(raw)).load()
+    return custom_objects
