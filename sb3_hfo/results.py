@@ -116,7 +116,7 @@ METHODS = """\
 
 * **Models.** One committed model per task, `models/<name>.zip`, listed in `models/manifest.json`. Each is the
   best of this project's runs on its task (several configs and seeds; the others are in
-  [benchmarks/RESULTS.md](../benchmarks/RESULTS.md)); a "best checkpoint" is the model rl-zoo3 kept by its periodic
+  [research/RESULTS.md](../research/RESULTS.md)); a "best checkpoint" is the model rl-zoo3 kept by its periodic
   50- or 20-episode evaluations during training. Being the best of many runs, each figure is an optimistic
   estimate of what its config gives on a new seed; the seed spread is in the results diary. The files hold the
   policy's weights without the optimizers' state and the target networks (`sb3_hfo.models`); when a model was

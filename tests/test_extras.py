@@ -120,7 +120,11 @@ def _exit_line(capsys: pytest.CaptureFixture[str], main: Callable[[list[str]], A
 @pytest.mark.parametrize(
     ("tool", "missing", "argv"),
     [
-        ("train", "rl_zoo3", ["--env", "HFO/EmptyGoal-v0", "--conf-file", "zoo_configs/e1_empty_goal_fast.yml"]),
+        (
+            "train",
+            "rl_zoo3",
+            ["--env", "HFO/EmptyGoal-v0", "--conf-file", "zoo_configs/e1_empty_goal_fast.yml"],
+        ),
         ("train", "optuna", ["--help"]),
         ("enjoy", "rl_zoo3", ["e1", "--no-render"]),
         ("enjoy", "requests", ["e1", "--no-render"]),
@@ -129,7 +133,11 @@ def _exit_line(capsys: pytest.CaptureFixture[str], main: Callable[[list[str]], A
     ],
 )
 def test_each_tool_names_the_zoo_extra_when_it_is_missing(
-    tool: str, missing: str, argv: list[str], capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+    tool: str,
+    missing: str,
+    argv: list[str],
+    capsys: pytest.CaptureFixture[str],
+    monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     import importlib
 
@@ -143,7 +151,9 @@ def test_each_tool_names_the_zoo_extra_when_it_is_missing(
 def test_check_installed_lists_every_missing_module(monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setitem(sys.modules, "pygame", None)
     monkeypatch.setitem(sys.modules, "moviepy", None)
-    with pytest.raises(UserError, match=r'needs pygame and moviepy, from the \[render\] extra: pip install -e "\.\[render\]"'):
+    with pytest.raises(
+        UserError, match=r'needs pygame and moviepy, from the \[render\] extra: pip install -e "\.\[render\]"'
+    ):
         check_installed("render", ("pygame", "moviepy"), "recording a video")
     check_installed("zoo", ("rl_zoo3",), "train")  # installed here: no error
     with pytest.raises(ValueError, match="not modules of the"):

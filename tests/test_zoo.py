@@ -28,6 +28,8 @@ REPO = Path(__file__).resolve().parents[1]
 CONFIG_DIR = REPO / "zoo_configs"
 CONFIGS = sorted(CONFIG_DIR.glob("*.yml"))
 CONFIG_NAMES = [path.stem for path in CONFIGS]
+#: The ablation lineage behind the committed models: checked for validity here, not smoke-trained.
+RESEARCH_CONFIGS = sorted((REPO / "research" / "zoo_configs").glob("*.yml"))
 EXPERIMENTS = ("e1", "e2", "e3", "e4", "e5", "e6")
 
 #: Smoke-run settings: a few hundred steps, tiny networks, a small buffer, log every episode.
@@ -147,7 +149,26 @@ def test_every_experiment_has_a_paper_and_a_fast_config() -> None:
         assert len([n for n in names if not n.endswith("_fast")]) == 1, f"{experiment}: {names}"
 
 
-@pytest.mark.parametrize("config", CONFIGS, ids=CONFIG_NAMES)
+def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
+    """zoo_configs/ holds the paper's experiments and the configs of the committed models (models/manifest.json),
+    plus the HFO/Keeper-v1 attempts until one of them makes a model; the rest is in research/zoo_configs/."""
+    from sb3_hfo.models import read_manifest
+
+    manifest_configs = {entry["config"] for entry in read_manifest().values()}
+    for config in manifest_configs:
+        assert (REPO / config).is_file(), config
+    for config in CONFIGS:
+        if config.stem.startswith(EXPERIMENTS):
+            continue
+        env_id, _ = _load_config(config)
+        assert f"zoo_configs/{config.name}" in manifest_configs or env_id == "HFO/Keeper-v1", config.name
+    assert RESEARCH_CONFIGS, "research/zoo_configs/ is empty"
+    assert not {c.name for c in CONFIGS} & {c.name for c in RESEARCH_CONFIGS}
+
+
+@pytest.mark.parametrize(
+    "config", CONFIGS + RESEARCH_CONFIGS, ids=[str(c.relative_to(REPO)) for c in CONFIGS + RESEARCH_CONFIGS]
+)
 def test_config_is_valid_and_documents_its_command(config: Path) -> None:
     import hfo2d
 
@@ -162,8 +183,9 @@ def test_config_is_valid_and_documents_its_command(config: Path) -> None:
             f"{key} = {learning_rate!r}"
         )
     text = config.read_text()
-    command = f"python -m sb3_hfo.train --algo skill_ddpg --env {env_id} --conf-file zoo_configs/{config.name} --seed 0"
-    assert command in text, f"{config.name} must document its own command line"
+    conf_file = config.relative_to(REPO).as_posix()
+    command = f"python -m sb3_hfo.train --algo skill_ddpg --env {env_id} --conf-file {conf_file} --seed 0"
+    assert command in text, f"{conf_file} must document its own command line"
     skills = 2 if "skills" in config.stem else 1
     assert hyperparams["policy_kwargs"]["n_skills"] == skills
     assert hyperparams["policy_kwargs"]["inverting_gradients"] is ("inverting" in config.stem)

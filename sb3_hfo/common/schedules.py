@@ -41,7 +41,7 @@ class _RlZoo3FreeUnpickler(pickle.Unpickler):
         if equivalent is not None:
             return equivalent
         if module.split(".")[0] == "rl_zoo3":
-            raise pickle.UnpicklingError(f"{module}.{name} needs rl-zoo3: pip install -e \".[zoo]\"")
+            raise pickle.UnpicklingError(f'{module}.{name} needs rl-zoo3: pip install -e ".[zoo]"')
         return super().find_class(module, name)
 
 
