@@ -64,3 +64,19 @@ def test_python_vs_cli_times_both_with_the_same_thread_count(tmp_path: Path) -> 
     assert all(sample["steps"] == 3 for runs in results["samples"].values() for sample in runs)
     assert results["threads"] == {"python": [1], "cli": [1]}  # learn chose the CLI's count by itself
     assert results["ratio_python_vs_cli"] == results["steps_per_s"]["python"] / results["steps_per_s"]["cli"]
+
+
+def test_the_default_run_leaves_the_research_tests_out() -> None:
+    """research/tests (the probes of particular models) run on demand, ``pytest research/tests``; a plain
+    ``pytest`` collects only tests/."""
+    completed = subprocess.run(
+        [sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=REPO,
+    )
+    assert completed.returncode == 0, completed.stdout[-2000:]
+    collected = [line for line in completed.stdout.splitlines() if "::" in line]
+    assert collected and all(line.startswith("tests/") for line in collected), collected[:5]
+    assert (REPO / "research" / "tests" / "test_probes.py").is_file()
