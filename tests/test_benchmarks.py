@@ -70,13 +70,14 @@ def test_the_default_run_leaves_the_research_tests_out() -> None:
     """research/tests (the probes of particular models) run on demand, ``pytest research/tests``; a plain
     ``pytest`` collects only tests/."""
     completed = subprocess.run(
-        [sys.executable, "-m", "pytest", "--collect-only", "-q", "-p", "no:cacheprovider"],
+        [sys.executable, "-m", "pytest", "--collect-only", "-p", "no:cacheprovider"],
         capture_output=True,
         text=True,
         timeout=300,
         cwd=REPO,
     )
     assert completed.returncode == 0, completed.stdout[-2000:]
-    collected = [line for line in completed.stdout.splitlines() if "::" in line]
+    # one line per test (pytest -q) or per file (-qq): the path comes first either way
+    collected = [line for line in completed.stdout.splitlines() if ".py::" in line or ".py:" in line]
     assert collected and all(line.startswith("tests/") for line in collected), collected[:5]
     assert (REPO / "research" / "tests" / "test_probes.py").is_file()
