@@ -56,7 +56,7 @@ from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, check_model_zip
 DRIBBLE_MIN_SPEED = 0.2
 
 #: Bin edges (m from the goal centre) of ``shots_by_distance``. A 2.8 m/cycle shot drifts sideways under ball_rand
-#: 0.05 by ~0.7 m (std) over 20 m, ~1.3 m over 30 m and ~2.1 m over 40 m (benchmarks/shot_spread.py, a Monte Carlo of the server's
+#: 0.05 by ~0.7 m (std) over 20 m, ~1.3 m over 30 m and ~2.1 m over 40 m (research/probes/shot_spread.py, a Monte Carlo of the server's
 #: ball noise), against a 7.01 m goal half-width and a 1.085 m keeper capture radius.
 SHOT_DISTANCE_EDGES: tuple[float, ...] = (20.0, 30.0, 40.0)
 

@@ -27,7 +27,7 @@ Shaped toward the gap (``"shaped_gap"``; not HFO's, an option of this package): 
 centre, i.e. 3.5 m beside a goalie standing at the centre, on the ball's side when the gaps are equal (within
 ``GAP_TIE_TOLERANCE``). Without a goalie (or with its slot empty) it equals ``"shaped"``. Why: the goal-centre term
 pays for moving the ball straight at a goalie on the goal line, and agents trained with it against the static
-keeper shoot at him from close range (benchmarks/RESULTS.md, sessions 8-9). The target is computed from the
+keeper shoot at him from close range (research/RESULTS.md, sessions 8-9). The target is computed from the
 features alone (goal centre, posts, ball and goalie landmarks, all in the agent's body frame).
 
 Shaped toward the gap, lost shots refunded (``"shaped_gap_refund"``; not HFO's, an option of this package):
@@ -36,7 +36,7 @@ or OUT_OF_TIME after 100 untouched cycles) its last step takes back the ball-to-
 was last kickable by the agent. Progress the agent carried the ball through (dribbling) stays paid; a kick's
 progress is kept only when it ends in a goal or the agent reaches the ball again. Why: the x24 agent described
 below. On E6 (config x27, one seed) it took the greedy goal rate against the full keeper from x24's 16.5 % to
-68.0 % (benchmarks/RESULTS.md, session 15).
+68.0 % (research/RESULTS.md, session 15).
 
 Potential-based, toward the gap (``"potential_gap"``; not HFO's, an option of this package): the two progress
 terms of ``"shaped_gap"`` rewritten as potential-based shaping (Ng, Harada & Russell, ICML 1999), which provably
@@ -50,7 +50,7 @@ bootstraps there). Over any terminated episode the shaping terms sum, discounted
 outcome, so only the goal (and the one-time kick bonus, kept from HFO) separates a goal from a lost ball. Why: with
 the non-potential HFO terms and γ = 0.98, kicking the ball far up the field into the keeper's arms pays most of an
 episode's shaping early; the E6 agent x24 does it in 4 of 10 episodes, collecting 4.3 on average against 5.3 for
-losing the ball close to goal and 10.3 for a goal (benchmarks/RESULTS.md, session 15). Tried on that task (config
+losing the ball close to goal and 10.3 for a goal (research/RESULTS.md, session 15). Tried on that task (config
 x26) it scored no goal in 332k training steps, where ``"shaped_gap"`` had a 16 % training goal rate by 300k.
 
 Sparse: 1 on GOAL, else 0 (gym-soccer's Soccer-v0, hfo_reference §6.3).

@@ -35,7 +35,7 @@ acting clips actions to [-1, 1]. Figure 2's 1024-512-256-128 network is ``net_ar
 Unused parameters (an option beyond the paper, off by default): in a parameterised action only the chosen discrete
 action's parameters reach the environment, yet the paper's critic sees all of them, so dQ/da pushes the others
 along whatever the critic happens to have learnt about them. In HFO they drift into ``tanh``'s saturation (the
-kick direction of a trained E1 actor sits at +180 degrees in every probed state, benchmarks/RESULTS.md) and pass
+kick direction of a trained E1 actor sits at +180 degrees in every probed state, research/RESULTS.md) and pass
 back no gradient when they are finally used. With ``mask_unused_parameters`` the critic receives the action with
 every other discrete action's parameters set to 0 (the middle of the [-1, 1] scale), from the replay buffer and
 from the actor alike, so their gradient is exactly zero and Q depends only on what the environment executed
@@ -54,7 +54,7 @@ epsilon-greedy exploration with ``exploration_keep_parameters`` stores its steps
 critic values most, as P-DQN / MP-DQN choose (Xiong et al. 2018; Bester et al. 2019). The actor's own preferences
 are still trained and are what ``"actor"`` (the paper) plays. The option may be switched on a trained model
 (``model.policy.discrete_choice = "critic"``); it pays off with ``mask_unused_parameters``, whose critic values
-each discrete action by its own parameters (benchmarks/RESULTS.md, session 6).
+each discrete action by its own parameters (research/RESULTS.md, session 6).
 
 No kick without the ball (an option beyond the paper, off by default): rcssserver ignores a kick while the ball is
 out of the kickable area, so the state does not change and a deterministic policy that picks KICK there repeats
@@ -69,7 +69,7 @@ Fourier features of the directions for the critic (an option beyond the paper, o
 scale a 5-degree change of the kick direction moves the critic's input by 0.028, and a static keeper blocks only
 a few degrees of the goal from a shot taken 30 m away. On the shots that x3's static-keeper agent had caught, its
 critic valued kicking 0-5 degrees from the keeper's bearing highest, changing by less than 0.3 over +-10 degrees
-(``benchmarks/critic_kick_scan.py``, session 8), so the actor shot at the keeper. With
+(``research/probes/critic_kick_scan.py``, session 8), so the actor shot at the keeper. With
 ``critic_direction_frequencies=(k1, k2, ...)`` the critic also sees ``sin(k * theta)`` and ``cos(k * theta)`` of
 each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions of
 its input (Tancik et al. 2020), used on value networks by Yang et al. 2022. The actor is unchanged; dQ/da goes
@@ -80,10 +80,10 @@ above): with ``critic_kick_relative_to=("goalie", ...)`` the critic also sees ``
 ``cos(k * (kick - bearing))`` for each named landmark's bearing (from the observation's (sin, cos) pair; both angles
 are relative to the body, as rcssserver's kick direction and HFO's bearings are). Why: with the absolute features
 alone, x11's and x12's critics still valued a shot at the static keeper within 0.1 of the best shot past him
-(``benchmarks/critic_kick_scan.py``, session 10): "kick minus keeper bearing" is a difference of two inputs that
+(``research/probes/critic_kick_scan.py``, session 10): "kick minus keeper bearing" is a difference of two inputs that
 the network has to form itself, and at frequency 32 a product of sines. With the relative features x15's critic
 shows a notch at the keeper's bearing (Q - max Q -1.27 there against -0.61 / -0.74 at -10 / +10 degrees) and x15
-scores 96.2 / 89.9 % against the static keeper (two seeds), x12 79.7-89.4 % (benchmarks/RESULTS.md, session 10).
+scores 96.2 / 89.9 % against the static keeper (two seeds), x12 79.7-89.4 % (research/RESULTS.md, session 10).
 
 The better of the state and its mirror image (beyond the paper, off by default): HFO is symmetric about the
 pitch's long axis (:mod:`hfo2d.symmetry`), so the policy played in the mirror image of the state, its action
@@ -91,18 +91,18 @@ mirrored back, is another policy for the real state, and the critic's value of t
 its estimate of that policy's value. With ``mirror_choice=True`` acting (``predict``, and so SB3's rollouts)
 computes the greedy action in the state and in its mirror image and plays the one the first critic values more
 (ties: the unmirrored one); a one-step policy improvement over two policies, decided afresh every step. Why: x27's
-E6 agent scores all its goals in one half of the goal, by one route (benchmarks/failure_map.py, session 16). Can be
+E6 agent scores all its goals in one half of the goal, by one route (research/probes/failure_map.py, session 16). Can be
 switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action. ``mirror_margin=m > 0``
 keeps a side (plain or mirrored) through an episode: the first step of an episode takes the better side, later
 steps switch only when the other side's value exceeds the kept side's by more than ``m`` (``inf``: never). Why: a
 choice made afresh every step may alternate between the two routes; with ``m = 0.1`` x27 scores 79.25 % against
-76.3 % over 2,000 episodes (benchmarks/RESULTS.md, session 17). The side is carried in ``predict``'s recurrent
+76.3 % over 2,000 episodes (research/RESULTS.md, session 17). The side is carried in ``predict``'s recurrent
 ``state`` (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate``
 pass it; a call without ``state`` starts every row afresh, and so do SB3's training rollouts. Neither mends the
 empty goal, where the mirror choice costs some models points. HFO's start distribution is not mirror-symmetric
 (:mod:`hfo2d.symmetry`), and one such model's twin scores less from the starts whose mirror image HFO never draws,
 starts its training never saw mirrored; another's twin is as good as the policy and the choice still costs it a
-point (session 17, ``benchmarks/mirror_twin.py``).
+point (session 17, ``research/probes/mirror_twin.py``).
 """
 
 from __future__ import annotations

@@ -334,7 +334,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         ``"each_action"`` (P-DQN's loss, beyond the paper) every discrete action's, each by the critic's value of
         that action played with them. With the policy's ``discrete_choice="critic"`` the preferences never pick
         what is played, so under ``"chosen"`` the parameters played were ones the actor had not trained in that state
-        in 31-51 % of the greedy steps of three committed agents (benchmarks/RESULTS.md, session 12). Needs
+        in 31-51 % of the greedy steps of three committed agents (research/RESULTS.md, session 12). Needs
         ``mask_unused_parameters``.
     :param mirror_fraction: fraction of each minibatch's rows (each row independently, with this probability)
         replaced by their mirror image about the pitch's long axis (y -> -y; :mod:`hfo2d.symmetry`): observations
