@@ -213,7 +213,7 @@ def clone_striker(
     batch_size: int = 256,
     learning_rate: float = 1e-3,
     kick_weight: float = 5.0,
-    seed: int = 0,
+    seed: int | None = None,
     env: VecEnv | None = None,
     progress_bar: bool = False,
     verbose: int = 0,
@@ -240,7 +240,8 @@ def clone_striker(
         learning_rate: Adam's initial step size in each fit (decayed to 0 over its epochs).
         kick_weight: weight of KICK's parameters in the parameter loss (DASH and TURN weigh 1): a shot's power and
             direction decide a goal more than a dash's.
-        seed: seeds the envs of each round (``seed + round``) and the minibatch order.
+        seed: seeds the envs of each round (``seed + round``) and the minibatch order; default the model's seed
+            (0 if it has none), so that an rl-zoo3 run's ``--seed`` decides it.
         env: the VecEnv to play in; default ``model.get_env()``. Needs HFOEnv's ``"flat"`` action format and the
             paper's observation layout (the strikers' input).
         progress_bar: show a tqdm bar over all episodes.
@@ -275,6 +276,8 @@ def clone_striker(
             or value <= 0
         ):
             raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    if seed is None:
+        seed = model.seed if isinstance(model.seed, int) and model.seed >= 0 else 0
     if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
         raise ValueError(f"seed must be an integer >= 0, got {seed!r}")
     env = model.get_env() if env is None else env
