@@ -57,7 +57,7 @@ def test_prefill_refuses_bad_arguments() -> None:
             DemonstrationPrefillCallback(episodes=episodes)  # type: ignore[arg-type]
 
 
-def _cloning_model(env_id: str = "HFO/EmptyGoal-v0", **policy_kwargs: object) -> SkillDDPG:
+def _cloning_model(env_id: str = "HFO/EmptyGoal-v0", seed: int = 0, **policy_kwargs: object) -> SkillDDPG:
     env = make_vec_env(env_id, n_envs=2, seed=0)
     kwargs = dict(
         net_arch=[64, 64],
@@ -67,7 +67,7 @@ def _cloning_model(env_id: str = "HFO/EmptyGoal-v0", **policy_kwargs: object) ->
         weight_init_std=0.08,
     )
     kwargs.update(policy_kwargs)
-    return SkillDDPG("HFOPolicy", env, learning_starts=10_000, seed=0, policy_kwargs=kwargs)
+    return SkillDDPG("HFOPolicy", env, learning_starts=10_000, seed=seed, policy_kwargs=kwargs)
 
 
 #: A fit that learns the striker's choices from 4 episodes in a few seconds.
@@ -125,6 +125,13 @@ def test_cloning_teaches_the_actor_the_strikers_choices_and_repeats_with_its_see
     clone_striker(again, "mid_shot", **FIT)
     for key, value in _actor_state(model).items():
         th.testing.assert_close(value, again.policy.actor.state_dict()[key])
+    # without a seed, the model's own seed (an rl-zoo3 run's --seed) decides
+    unseeded = {key: value for key, value in FIT.items() if key != "seed"}
+    by_model_seed, by_argument = _cloning_model(seed=FIT["seed"]), _cloning_model(seed=FIT["seed"])
+    clone_striker(by_model_seed, "mid_shot", **unseeded)
+    clone_striker(by_argument, "mid_shot", **FIT)
+    for key, value in _actor_state(by_model_seed).items():
+        th.testing.assert_close(value, by_argument.policy.actor.state_dict()[key])
 
 
 def test_cloning_refuses_bad_arguments_and_leaves_the_actor_alone() -> None:
