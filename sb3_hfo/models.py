@@ -16,7 +16,9 @@ accept a model. One command adds (or replaces) a model::
         --config zoo_configs/x5_empty_goal_max_target_kickable_fast.yml --seed 1 --env HFO/EmptyGoal-v0
 
 It strips the model into ``models/<name>.zip``, checks that the stripped model's actions equal the full one's,
-evaluates it over 1,000 episodes (``--episodes``, ``--eval-seed``) and writes the manifest entry.
+evaluates it over 1,000 episodes (``--episodes``, ``--eval-seed``) and writes the manifest entry. A real-HFO
+evaluation of a committed model (``python -m sb3_hfo.evaluate NAME --env HFO/RealKeeper-v0 ... --json F``) is
+recorded in its entry with ``python -m sb3_hfo.models real NAME F --source "..."``.
 ``python -m sb3_hfo.models list`` prints the manifest.
 """
 
@@ -298,9 +300,11 @@ def check_same_actions(
 def _real_hfo_entry(args: argparse.Namespace) -> dict[str, Any] | None:
     from sb3_hfo.evaluate import wilson_interval
 
+    status_counts: dict[str, int] | None = None
     if args.real_hfo_json:
-        result = json.loads(Path(args.real_hfo_json).read_text())
+        result = _read_real_hfo_json(args.real_hfo_json)
         goals, episodes, env_id = int(result["goals"]), int(result["episodes"]), result["env_id"]
+        status_counts = result.get("status_counts")
     elif args.real_hfo:
         goals_text, _, episodes_text = args.real_hfo.partition("/")
         try:
@@ -317,7 +321,7 @@ def _real_hfo_entry(args: argparse.Namespace) -> dict[str, Any] | None:
     else:
         return None
     low, high = wilson_interval(goals, episodes)
-    return {
+    entry: dict[str, Any] = {
         "env_id": env_id,
         "goals": goals,
         "episodes": episodes,
@@ -325,6 +329,50 @@ def _real_hfo_entry(args: argparse.Namespace) -> dict[str, Any] | None:
         "scoring_rate_ci95": [low, high],
         "source": args.real_hfo_source or "",
     }
+    if status_counts is not None:
+        entry["status_counts"] = status_counts
+    return entry
+
+
+def _read_real_hfo_json(path: str) -> dict[str, Any]:
+    """An ``evaluate --json`` result of a real-HFO env; UserError naming the file if it is not one."""
+    try:
+        result = json.loads(Path(path).read_text())
+    except FileNotFoundError:
+        raise UserError(f"{path}: no such file") from None
+    except (OSError, ValueError) as error:
+        raise UserError(f"{path}: not an evaluate --json file ({error})") from None
+    missing = [
+        key for key in ("goals", "episodes", "env_id") if not isinstance(result, dict) or key not in result
+    ]
+    if missing:
+        raise UserError(f"{path}: not an evaluate --json file (no {', '.join(missing)})")
+    if not str(result["env_id"]).startswith("HFO/Real"):
+        raise UserError(f"{path}: measured on {result['env_id']}, not a real-HFO env (HFO/Real...)")
+    return result
+
+
+def record_real_hfo(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[str, Any]:
+    """Record a real-HFO evaluation of committed model ``args.name`` in its manifest entry; returns the entry.
+
+    The JSON must be of that very file: its ``model`` path, if it names a file, must hash to the entry's sha256.
+    """
+    models = read_manifest(manifest_path)
+    if args.name not in models:
+        raise UserError(unknown_name_message(args.name, manifest_path))
+    if not args.source.strip():
+        raise UserError("--source must say how and where the real-HFO figure was measured")
+    result = _read_real_hfo_json(args.json)
+    entry = models[args.name]
+    measured = Path(str(result.get("model", "")))
+    if measured.is_file() and _sha256(measured) != entry["sha256"]:
+        raise UserError(
+            f"{args.json} evaluated {measured}, not the committed {entry['file']} (sha256 differs)"
+        )
+    real = _real_hfo_entry(argparse.Namespace(real_hfo_json=args.json, real_hfo_source=args.source))
+    entry["real_hfo"] = json.loads(json.dumps(real))
+    write_manifest(models, manifest_path)
+    return entry
 
 
 def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[str, Any]:
@@ -397,6 +445,8 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
         "real_hfo": real_hfo,
         "note": args.note or "",
     }
+    if args.method:
+        entry["method"] = args.method
     entry = json.loads(json.dumps(entry))  # as the manifest holds it (tuples become lists)
     models = read_manifest(manifest_path)
     models[args.name] = entry
@@ -434,10 +484,19 @@ def build_parser() -> argparse.ArgumentParser:
     add_parser.add_argument("--real-hfo", default=None, metavar="GOALS/EPISODES", help="a real-HFO result")
     add_parser.add_argument("--real-hfo-env", default=None, help="the real-HFO env id of --real-hfo")
     add_parser.add_argument("--note", default=None, help="a remark for the results page")
+    add_parser.add_argument(
+        "--method",
+        default=None,
+        help="how it was obtained, where not by the config's RL alone (the table shows it)",
+    )
     add_parser.add_argument("--real-hfo-json", default=None, help="an evaluate --json file of a real-HFO run")
     add_parser.add_argument(
         "--real-hfo-source", default=None, help="how and when the real-HFO figure was measured"
     )
+    real_parser = commands.add_parser("real", help="record a real-HFO evaluation of a committed model")
+    real_parser.add_argument("name", help="manifest name, e.g. e6")
+    real_parser.add_argument("json", help="the evaluate --json file of its run on a HFO/Real... env")
+    real_parser.add_argument("--source", required=True, help="how, when and where it was measured")
     return parser
 
 
@@ -459,6 +518,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             if args.episodes < 1:
                 raise UserError("--episodes must be at least 1")
             add(args)
+        elif args.command == "real":
+            record_real_hfo(args)
         else:
             print_manifest()
     except UserError as error:

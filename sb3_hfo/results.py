@@ -69,7 +69,8 @@ def _config_stem(entry: dict[str, Any]) -> str:
 
 def _model_text(name: str, entry: dict[str, Any]) -> str:
     config_id = _config_stem(entry).split("_")[0]
-    return f"`{name}` ({config_id}, seed {entry['seed']})"
+    method = f"; {entry['method']}" if entry.get("method") else ""
+    return f"`{name}` ({config_id}, seed {entry['seed']}{method})"
 
 
 def _rows(models: dict[str, dict[str, Any]]) -> list[tuple[Task, dict[str, Any] | None]]:
@@ -159,9 +160,13 @@ def _details(models: dict[str, dict[str, Any]]) -> str:
         ]
         real = entry.get("real_hfo")
         if real:
+            real_counts = real.get("status_counts")
+            counted = (
+                " (" + ", ".join(f"{k} {v}" for k, v in real_counts.items()) + ")" if real_counts else ""
+            )
             lines.append(
                 f"* real HFO (`{real['env_id']}`): **{rate_text(real)}**, {real['goals']} goals in "
-                f"{real['episodes']:,} episodes; {real['source']}"
+                f"{real['episodes']:,} episodes{counted}; {real['source']}"
             )
         else:
             lines.append("* real HFO: not measured")

@@ -138,6 +138,29 @@ def test_add_strips_checks_evaluates_and_writes_the_manifest_entry(tmp_path: Pat
     real = entry["real_hfo"]
     assert real["goals"] == 2 and real["scoring_rate_ci95"] == list(wilson_interval(2, 4))
 
+    # a real-HFO evaluate --json of that file replaces the figure, with its end counts; other files are refused
+    from sb3_hfo.models import record_real_hfo
+
+    measured = {"model": str(model), "env_id": "HFO/RealEmptyGoal-v0", "goals": 3, "episodes": 5}
+    measured["status_counts"] = {"GOAL": 3, "OUT_OF_TIME": 2}
+    real_json = tmp_path / "real.json"
+    real_json.write_text(json.dumps(measured))
+    real_args = build_parser().parse_args(["real", "tiny", str(real_json), "--source", "a test run"])
+    recorded = record_real_hfo(real_args, manifest_path=manifest)["real_hfo"]
+    assert read_manifest(manifest)["tiny"]["real_hfo"] == recorded
+    assert recorded["goals"] == 3 and recorded["status_counts"] == measured["status_counts"]
+    assert recorded["source"] == "a test run" and recorded["scoring_rate_ci95"] == list(wilson_interval(3, 5))
+    refusals = [
+        ({**measured, "model": str(full_path)}, "not the committed tiny.zip"),
+        ({**measured, "env_id": "HFO/EmptyGoal-v0"}, "not a real-HFO env"),
+        ({"goals": 1}, "no episodes, env_id"),
+    ]
+    for bad, message in refusals:
+        real_json.write_text(json.dumps(bad))
+        with pytest.raises(UserError, match=message):
+            record_real_hfo(real_args, manifest_path=manifest)
+    assert read_manifest(manifest)["tiny"]["real_hfo"] == recorded
+
 
 @pytest.mark.parametrize(
     ("argv", "message"),
@@ -300,5 +323,7 @@ def test_playback_names_the_render_extra_when_its_modules_are_missing(
     monkeypatch.setattr(
         importlib.util, "find_spec", lambda name, *a: None if name == missing else real_find_spec(name, *a)
     )
-    with pytest.raises(UserError, match=rf'needs {missing}, from the \[render\] extra: pip install -e "\.\[render\]"'):
+    with pytest.raises(
+        UserError, match=rf'needs {missing}, from the \[render\] extra: pip install -e "\.\[render\]"'
+    ):
         check_render_extra(video=video)
