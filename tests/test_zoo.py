@@ -40,14 +40,31 @@ SMOKE_NET_ARCH = [16, 16]
 def _load_config(path: Path) -> tuple[str, dict[str, Any]]:
     with open(path) as f:
         content = yaml.safe_load(f)
-    assert isinstance(content, dict) and len(content) == 1, f"{path.name}: expected exactly one env id entry"
-    ((env_id, hyperparams),) = content.items()
+    assert isinstance(content, dict) and content, f"{path.name}: expected an env id entry"
+    # One experiment per file: a second env id (E6 on HFO/Keeper-v1 beside v0) must be an alias of the first.
+    (env_id, hyperparams), *others = content.items()
+    for other_id, other in others:
+        assert other == hyperparams, f"{path.name}: {other_id} must repeat {env_id}'s settings (a YAML alias)"
     return env_id, hyperparams
 
 
 def _env_dir(env_id: str) -> str:
     # rl-zoo3 (huggingface_sb3.EnvironmentName) replaces "/" by "-" in folder names.
     return env_id.replace("/", "-")
+
+
+#: Smoke-run sizes of the callbacks that play a scripted striker before training.
+SMOKE_CALLBACK_KWARGS = {
+    "sb3_hfo.demonstrations.StrikerCloningCallback": {"rounds": 1, "episodes_per_round": 2, "epochs": 1},
+    "sb3_hfo.demonstrations.DemonstrationPrefillCallback": {"episodes": 2},
+}
+
+
+def _smoke_callback(callback: str | dict[str, Any]) -> str | dict[str, Any]:
+    if not isinstance(callback, dict):
+        return callback
+    ((name, kwargs),) = callback.items()
+    return {name: {**(kwargs or {}), **SMOKE_CALLBACK_KWARGS.get(name, {})}}
 
 
 def _smoke_argv(config: Path, root: Path) -> list[str]:
@@ -80,6 +97,10 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
         "buffer_size:2000",
         f"policy_kwargs:{policy_kwargs!r}",
     ]
+    # A scripted striker's episodes before training cost minutes at a config's size: a few are enough here.
+    callbacks = [_smoke_callback(callback) for callback in hyperparams.get("callback") or []]
+    if callbacks != (hyperparams.get("callback") or []):
+        argv.append(f"callback:{callbacks!r}")
     # One run exercises rl-zoo3's periodic evaluation callback too.
     argv += (
         ["--eval-freq", str(200 * n_envs), "--eval-episodes", "1"]
