@@ -381,27 +381,6 @@ def test_policy_rejects_unsupported_spaces() -> None:
         HFOPolicy(spaces.Discrete(4), ACTION_SPACE, lambda _: 1e-3)
     with pytest.raises(ValueError, match="weight_init_std"):
         make_policy(weight_init_std=0.0)
-    for bad in (0, 1.5, True, "2"):
-        with pytest.raises(ValueError, match="n_critics"):
-            make_policy(n_critics=bad)
-
-
-def test_twin_critics_are_separate_and_share_one_optimizer() -> None:
-    """``n_critics=2``: a second critic and target of the paper's shape with their own weights; one Adam over both
-    critics; the paper's policy (one critic) has no extra entries in its state dict."""
-    paper, twin = make_policy(), make_policy(n_critics=2)
-    assert not any(name.startswith("extra_") for name in paper.state_dict())
-    assert len(twin.critics) == len(twin.critic_targets) == 2
-    second, second_target = twin.critics[1], twin.critic_targets[1]
-    assert linear_sizes(second.joint_net) == linear_sizes(twin.critic.joint_net)
-    assert not th.equal(second.obs_net[0].weight, twin.critic.obs_net[0].weight)
-    assert th.equal(second_target.obs_net[0].weight, second.obs_net[0].weight)
-    assert not second_target.obs_net[0].weight.requires_grad
-    optimized = {id(param) for group in twin.critic_optimizer.param_groups for param in group["params"]}
-    expected = {id(param) for critic in twin.critics for param in critic.parameters()}
-    assert optimized == expected
-    twin.set_training_mode(False)
-    assert not second.training and not second.obs_net[0].training
 
 
 def test_parameter_mask_keeps_the_preferences_and_the_chosen_actions_parameters() -> None:

@@ -41,12 +41,6 @@ every other discrete action's parameters set to 0 (the middle of the [-1, 1] sca
 from the actor alike, so their gradient is exactly zero and Q depends only on what the environment executed
 (the zeroing of other actions' parameters in Bester et al. 2019's multi-pass Q-network, MP-DQN).
 
-Twin critics (an option beyond the paper, off by default): with ``n_critics=2`` the policy keeps a second critic
-and its target copy (``extra_critics`` / ``extra_critic_targets``), both critics regress to one target computed
-with the smaller of the two target critics' values, and the actor follows the first critic only: the clipped
-double Q-learning of TD3 (Fujimoto et al. 2018), against DDPG's overestimation of Q. One Adam
-(``policy.critic_optimizer``) owns every critic's parameters, as in SB3's ``TD3``.
-
 The critic picks the discrete action (an option beyond the paper, off by default): with
 ``discrete_choice="critic"`` acting (``predict``, and so SB3's rollouts) keeps the actor's parameters but tries
 each discrete action ``j`` as the one-hot preference vector (+1 for ``j``, -1 for the others: the form in which
@@ -88,8 +82,8 @@ scores 96.2 / 89.9 % against the static keeper (two seeds), x12 79.7-89.4 % (res
 The better of the state and its mirror image (beyond the paper, off by default): HFO is symmetric about the
 pitch's long axis (:mod:`hfo2d.symmetry`), so the policy played in the mirror image of the state, its action
 mirrored back, is another policy for the real state, and the critic's value of the mirrored state and action is
-its estimate of that policy's value. With ``mirror_choice=True`` acting (``predict``, and so SB3's rollouts)
-computes the greedy action in the state and in its mirror image and plays the one the first critic values more
+its estimate of that policy's value. With ``mirror_choice=True`` acting (``predict``; not SkillDDPG's training rollouts)
+computes the greedy action in the state and in its mirror image and plays the one the critic values more
 (ties: the unmirrored one); a one-step policy improvement over two policies, decided afresh every step. Why: x27's
 E6 agent scores all its goals in one half of the goal, by one route (research/probes/failure_map.py, session 16). Can be
 switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action. ``mirror_margin=m > 0``
@@ -107,7 +101,8 @@ point (session 17, ``research/probes/mirror_twin.py``).
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+import contextlib
+from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, ClassVar
 
 import numpy as np
@@ -730,18 +725,17 @@ class HFOPolicy(BasePolicy):
         ``False`` (default, the paper), ``True`` (HFO's flat layout, :data:`HFO_ACTION_PARAMETER_SIZES`; needs an
         8-dimensional action) or the number of parameters of each discrete action in order, e.g. ``(2, 1, 2)``:
         the action is then ``[one preference per discrete action, their parameters in the same order]``.
-    :param n_critics: number of critics (1: the paper; 2: TD3's clipped double Q, see module doc).
     :param discrete_choice: who picks the discrete action when acting: ``"actor"`` (the paper: its largest
-        preference) or ``"critic"`` (the best one-hot preference vector by the first critic, see module doc; needs
+        preference) or ``"critic"`` (the best one-hot preference vector by the critic, see module doc; needs
         the discrete layout: HFO's 8-dimensional action or ``mask_unused_parameters`` given as sizes).
     :param kick_only_when_kickable: KICK is never the greedy choice while the ball is out of reach (observation
         feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs HFO's 8-dimensional action and
         low-level features. Can be switched on a trained model.
-    :param mirror_choice: play the better, by the first critic, of the greedy action in the state and the greedy
+    :param mirror_choice: play the better, by the critic, of the greedy action in the state and the greedy
         action in its mirror image mirrored back (see module doc). Needs HFO's low-level features and 8-dimensional
         flat action. Can be switched on a trained model.
     :param mirror_margin: with ``mirror_choice``, keep the side played (plain or mirrored) through an episode and
-        switch only when the other side's value (first critic) exceeds it by more than this (>= 0, ``inf``: never
+        switch only when the other side's value (by the critic) exceeds it by more than this (>= 0, ``inf``: never
         switch; 0, the default: decide afresh every step); the side travels in ``predict``'s ``state`` (see module
         doc). Can be switched on a trained model.
     :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
@@ -763,8 +757,6 @@ class HFOPolicy(BasePolicy):
     actor_target: HFOActor
     critic: HFOCritic
     critic_target: HFOCritic
-    extra_critics: nn.ModuleList
-    extra_critic_targets: nn.ModuleList
     critic_optimizer: th.optim.Optimizer
 
     def __init__(
@@ -778,7 +770,6 @@ class HFOPolicy(BasePolicy):
         skill_router: SkillRouter | str | None = None,
         inverting_gradients: bool = False,
         mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
-        n_critics: int = 1,
         discrete_choice: str = "actor",
         kick_only_when_kickable: bool = False,
         mirror_choice: bool = False,
@@ -806,10 +797,6 @@ class HFOPolicy(BasePolicy):
             raise ValueError("HFOPolicy only supports FlattenExtractor (feature-vector observations)")
         if weight_init_std <= 0:
             raise ValueError(f"weight_init_std must be > 0, got {weight_init_std}")
-        if isinstance(n_critics, bool) or not isinstance(n_critics, (int, np.integer)) or n_critics < 1:
-            raise ValueError(
-                f"n_critics must be an int >= 1 (1: the paper, 2: TD3's twin critics), got {n_critics!r}"
-            )
         super().__init__(
             observation_space,
             action_space,
@@ -827,7 +814,6 @@ class HFOPolicy(BasePolicy):
         self.n_skills = int(n_skills)
         self.inverting_gradients = bool(inverting_gradients)
         self.weight_init_std = float(weight_init_std)
-        self.n_critics = int(n_critics)
         self.obs_dim = get_flattened_obs_dim(observation_space)
         self.action_dim = get_action_dim(action_space)
         self.mask_unused_parameters = mask_unused_parameters
@@ -879,22 +865,14 @@ class HFOPolicy(BasePolicy):
         self.critic = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
         self.critic_target = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
         self.critic_target.load_state_dict(self.critic.state_dict())
-        # Empty with one critic, so that the paper's policy has the same state dict as before the option existed.
-        self.extra_critics = nn.ModuleList(HFOCritic(**critic_kwargs) for _ in range(self.n_critics - 1))  # type: ignore[arg-type]
-        self.extra_critic_targets = nn.ModuleList(
-            HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
-            for _ in range(self.n_critics - 1)
-        )
-        self.extra_critic_targets.load_state_dict(self.extra_critics.state_dict())
-        for target in (self.actor_target, self.critic_target, self.extra_critic_targets):
+        for target in (self.actor_target, self.critic_target):
             target.requires_grad_(False)
             target.train(False)
         self._build_parameter_masks()
 
         lr = lr_schedule(1)
         kwargs = self._optimizer_kwargs()
-        critic_params = [param for critic in self.critics for param in critic.parameters()]
-        self.critic_optimizer = self.optimizer_class(critic_params, lr=lr, **kwargs)  # type: ignore[call-arg]
+        self.critic_optimizer = self.optimizer_class(self.critic.parameters(), lr=lr, **kwargs)  # type: ignore[call-arg]
         trunk = list(self.actor.trunk.parameters())
         for k, head in enumerate(self.actor.heads):
             optimizer = self.optimizer_class(trunk + list(head.parameters()), lr=lr, **kwargs)  # type: ignore[call-arg]
@@ -994,6 +972,15 @@ class HFOPolicy(BasePolicy):
             make_mirror((self.obs_dim,), self.action_dim, "mirror_choice") if value else None
         )
 
+    @contextlib.contextmanager
+    def mirror_choice_suspended(self) -> Iterator[None]:
+        """Act without the mirror choice inside the ``with`` block (SkillDDPG's training rollouts)."""
+        mirror, self._mirror = self._mirror, None
+        try:
+            yield
+        finally:
+            self._mirror = mirror
+
     @property
     def mirror_margin(self) -> float:
         """How much better the other side must be for ``mirror_choice`` to switch sides within an episode (see
@@ -1024,13 +1011,13 @@ class HFOPolicy(BasePolicy):
         return HFO_N_DISCRETE_ACTIONS if self.action_dim == HFO_FLAT_ACTION_DIM else 0
 
     def discrete_values(
-        self, obs: th.Tensor, actions: th.Tensor, critics: Sequence[HFOCritic] | None = None
+        self, obs: th.Tensor, actions: th.Tensor, critic: HFOCritic | None = None
     ) -> tuple[th.Tensor, th.Tensor]:
         """Each discrete action at the actor's parameters, and its value.
 
         :param obs: ``(B, obs_dim)``.
         :param actions: ``(B, action_dim)`` in [-1, 1].
-        :param critics: critics to ask (default: the first critic); with several, the smallest value counts.
+        :param critic: the critic to ask (default: ``self.critic``; SkillDDPG's target passes the target critic).
         :return: ``candidates (B, n, action_dim)``, ``actions`` with the preferences replaced by discrete action
             ``k``'s one-hot vector (+1 / -1) in row ``k``, and their values ``(B, n)`` (``-inf`` for KICK where
             :meth:`kick_unavailable`).
@@ -1041,12 +1028,7 @@ class HFOPolicy(BasePolicy):
         candidates[:, :, :n_discrete] = one_hot_preferences(n_discrete, actions)
         repeated_obs = obs.repeat_interleave(n_discrete, dim=0)
         seen = self.critic_action(candidates.view(batch * n_discrete, -1))
-        q_values = None
-        for critic in critics if critics is not None else [self.critic]:
-            values = critic.forward(repeated_obs, seen)
-            q_values = values if q_values is None else th.minimum(q_values, values)
-        assert q_values is not None, "critics must not be empty"
-        q_values = q_values.view(batch, n_discrete)
+        q_values = (critic or self.critic).forward(repeated_obs, seen).view(batch, n_discrete)
         no_kick = self.kick_unavailable(obs)
         if no_kick is not None:
             q_values[:, HFO_KICK_ACTION].masked_fill_(no_kick, -th.inf)
@@ -1054,7 +1036,7 @@ class HFOPolicy(BasePolicy):
 
     def critic_choice(self, obs: th.Tensor, actions: th.Tensor) -> th.Tensor:
         """``actions (B, action_dim)`` in [-1, 1] with their preferences replaced by the one-hot vector (+1 / -1)
-        of the discrete action the first critic values most at the actor's parameters (ties: the first)."""
+        of the discrete action the critic values most at the actor's parameters (ties: the first)."""
         candidates, q_values = self.discrete_values(obs, actions)
         best = q_values.argmax(dim=1)
         return candidates[th.arange(actions.shape[0], device=actions.device), best]
@@ -1064,16 +1046,6 @@ class HFOPolicy(BasePolicy):
         ``mask_unused_parameters``, unchanged otherwise."""
         mask = self.parameter_mask(actions)
         return actions if mask is None else actions * mask
-
-    @property
-    def critics(self) -> list[HFOCritic]:
-        """Every critic, the one the actor follows (``critic``) first."""
-        return [self.critic, *self.extra_critics]  # type: ignore[list-item]
-
-    @property
-    def critic_targets(self) -> list[HFOCritic]:
-        """The target copy of each of :attr:`critics`, in the same order."""
-        return [self.critic_target, *self.extra_critic_targets]  # type: ignore[list-item]
 
     @property
     def actor_optimizers(self) -> list[th.optim.Optimizer]:
@@ -1119,7 +1091,6 @@ class HFOPolicy(BasePolicy):
                 skill_router=self.skill_router,
                 inverting_gradients=self.inverting_gradients,
                 mask_unused_parameters=self.mask_unused_parameters,
-                n_critics=self.n_critics,
                 discrete_choice=self.discrete_choice,
                 kick_only_when_kickable=self.kick_only_when_kickable,
                 mirror_choice=self.mirror_choice,
@@ -1250,7 +1221,7 @@ class HFOPolicy(BasePolicy):
         actor, critic = self.actor, self.critic
         cached = self.__dict__.get("_mode_modules")
         if cached is None or cached[0] is not actor or cached[1] is not critic:
-            cached = (actor, critic, [*actor.modules(), *critic.modules(), *self.extra_critics.modules()])
+            cached = (actor, critic, [*actor.modules(), *critic.modules()])
             self.__dict__["_mode_modules"] = cached
         for module in cached[2]:
             module.__dict__["training"] = mode

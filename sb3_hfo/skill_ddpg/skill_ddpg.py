@@ -3,10 +3,7 @@
 One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``batch_size``):
 
 1. Critic: ``y = r + gamma * (1 - done) * Q'(s', mu'_{skill(s')}(s'))`` with the target networks (paper eq. 6),
-   ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``). With the policy's
-   ``n_critics=2`` (TD3's clipped double Q, beyond the paper) ``Q'`` in ``y`` is the smaller of the two target
-   critics' values, each critic takes the loss ``L`` on its own ``Q`` and one Adam step covers both; the actor
-   below follows the first critic (``policy.critic``) only.
+   ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``).
    With ``discrete_target="max"`` (P-DQN, beyond the paper) ``Q'(s', ...)`` is the best of the discrete actions
    at the target actor's parameters, the value of the policy that ``discrete_choice="critic"`` acts with.
 2. Actor (eq. 7), with the critic just updated: every row's action comes from the head its skill router picks;
@@ -29,8 +26,7 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
 Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on a quiet 2-core VM: 2.1-2.2x
-SB3's ``DDPG`` updates per second with 1 skill, 1.8x with 2, 1.5x SB3's ``TD3`` with ``n_critics=2``, at 1 and 2
-threads; see benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of
+SB3's ``DDPG`` updates per second with 1 skill, 1.8x with 2, at 1 and 2 threads; see benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of
 through autograd (``HFOActor.forward_for_backward`` / ``output_gradients``,
 ``HFOCritic.forward_for_backward`` / ``output_gradients`` / ``action_gradient``: ``F.linear`` forward passes that
 keep each layer's input, then ``dZ @ W`` input gradients with activation derivatives from the kept outputs,
@@ -72,7 +68,6 @@ import io
 import math
 import os
 import pathlib
-import warnings
 from collections.abc import Iterable, Sequence
 from typing import Any, ClassVar, TypeVar
 
@@ -92,7 +87,6 @@ from stable_baselines3.common.utils import (
 )
 
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
-from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.skill_ddpg.policies import (
     HFO_FLAT_ACTION_DIM,
     HFO_KICK_ACTION,
@@ -119,6 +113,12 @@ DISCRETE_TARGETS = ("actor", "max")
 PARAMETER_LOSSES = ("chosen", "each_action")
 
 SelfSkillDDPG = TypeVar("SelfSkillDDPG", bound="SkillDDPG")
+
+#: Options removed because no recommended config used them and no measurement supported them, with the value that
+#: meant "off": models saved before carry it, and load drops it. Any other value is refused.
+REMOVED_OPTIONS: dict[str, object] = {"mirror_fraction": 0.0}
+#: The same for ``policy_kwargs`` (``n_critics=2``, TD3's clipped double Q, learned more slowly on E1).
+REMOVED_POLICY_OPTIONS: dict[str, object] = {"n_critics": 1}
 
 # Layout of the running sums of training statistics (one row of a tensor, summed over updates).
 _STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3
@@ -327,7 +327,7 @@ class SkillDDPG(OffPolicyAlgorithm):
     :param discrete_target: the next action in the critic's TD target: ``"actor"`` (the paper, DDPG) values the
         target actor's action as it is, ``Q'(s', mu'(s'))``; ``"max"`` (P-DQN's target, beyond the paper) the best
         discrete action at the target actor's parameters, ``max_k Q'(s', e_k, x'(s'))`` with ``e_k`` discrete
-        action ``k``'s one-hot preferences (with ``n_critics > 1``: the smaller target value per ``k``). ``"max"``
+        action ``k``'s one-hot preferences. ``"max"``
         is the target of the policy ``discrete_choice="critic"`` acts with; it needs a known discrete layout.
     :param parameter_loss: which continuous parameters the actor trains in a state: ``"chosen"`` (the paper, DDPG
         with the policy's ``mask_unused_parameters``) those of the discrete action its own preferences pick;
@@ -336,12 +336,6 @@ class SkillDDPG(OffPolicyAlgorithm):
         what is played, so under ``"chosen"`` the parameters played were ones the actor had not trained in that state
         in 31-51 % of the greedy steps of three committed agents (research/RESULTS.md, session 12). Needs
         ``mask_unused_parameters``.
-    :param mirror_fraction: fraction of each minibatch's rows (each row independently, with this probability)
-        replaced by their mirror image about the pitch's long axis (y -> -y; :mod:`hfo2d.symmetry`): observations
-        and next observations mirrored, the flat action's three directions negated, reward and end unchanged. HFO
-        is symmetric that way (checked against the simulator in ``tests/test_symmetry.py``), so a mirrored
-        transition is one the environment could have produced. 0 (default): the paper. Needs HFO's feature
-        vector (58 + 8 per other player) and 8-dimensional flat action.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics, the goal rate among them: SB3's
         ``rollout/success_rate`` from the env's ``info["is_success"]`` (HFO's GOAL status), the one name the
         training goal rate is logged under.
@@ -384,7 +378,6 @@ class SkillDDPG(OffPolicyAlgorithm):
         preactivation_penalty: float = 0.0,
         discrete_target: str = "actor",
         parameter_loss: str = "chosen",
-        mirror_fraction: float = 0.0,
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -431,7 +424,6 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.preactivation_penalty = preactivation_penalty
         self.discrete_target = discrete_target
         self.parameter_loss = parameter_loss
-        self.mirror_fraction = mirror_fraction
         if _init_setup_model:
             self._setup_model()
 
@@ -466,8 +458,6 @@ class SkillDDPG(OffPolicyAlgorithm):
             )
         if self.parameter_loss not in PARAMETER_LOSSES:
             raise ValueError(f"parameter_loss must be one of {PARAMETER_LOSSES}, got {self.parameter_loss!r}")
-        if isinstance(self.mirror_fraction, bool) or not 0.0 <= self.mirror_fraction <= 1.0:
-            raise ValueError(f"mirror_fraction must lie in [0, 1], got {self.mirror_fraction!r}")
 
     def _select_replay_buffer(self) -> None:
         """``mc_mixing > 0`` needs the episode returns that only :class:`MonteCarloReplayBuffer` keeps."""
@@ -503,7 +493,19 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.lr_schedule = FloatSchedule(self.learning_rate_actor)
         self.lr_schedule_critic = FloatSchedule(self.learning_rate_critic)
 
+    def _drop_removed_options(self) -> None:
+        """Drop the :data:`REMOVED_OPTIONS` (and :data:`REMOVED_POLICY_OPTIONS`) a saved model carries at their "off"
+        value; ``ValueError`` naming the option for any other value (the model would not train as it was saved)."""
+        policy_kwargs = dict(self.policy_kwargs)
+        for saved, removed in ((self.__dict__, REMOVED_OPTIONS), (policy_kwargs, REMOVED_POLICY_OPTIONS)):
+            for name, off in removed.items():
+                value = saved.pop(name, off)
+                if value != off:
+                    raise ValueError(f"{name}={value!r}: the option was removed (only {name}={off!r} loads)")
+        self.policy_kwargs = policy_kwargs
+
     def _setup_model(self) -> None:
+        self._drop_removed_options()
         self._check_arguments()
         self._select_replay_buffer()
         super()._setup_model()
@@ -527,31 +529,8 @@ class SkillDDPG(OffPolicyAlgorithm):
             )
         else:
             self.exploration_schedule = ConstantSchedule(self.exploration_final_eps)
-        self._setup_mirror()
         self._create_aliases()
         self._reset_stats()
-
-    def _setup_mirror(self) -> None:
-        """``mirror_fraction > 0``: the tensors that mirror a minibatch (HFO's layout only)."""
-        self._mirror: Mirror | None = None
-        if self.mirror_fraction > 0:
-            action_dim = int(np.prod(self.action_space.shape))
-            mirror = make_mirror(self.observation_space.shape, action_dim, "mirror_fraction > 0")
-            self._mirror = mirror.to(self.device)
-
-    def _mirror_rows(self, batch: ReplayBufferSamples) -> ReplayBufferSamples:
-        """``batch`` with each row, with probability ``mirror_fraction``, replaced by its mirror image
-        (observations and next observations ``(B, obs_dim)``, actions ``(B, 8)`` in [-1, 1]; the rest kept)."""
-        assert self._mirror is not None
-        mirror, observations = self._mirror, batch.observations
-        rows = th.rand(observations.shape[0], 1, device=observations.device) < self.mirror_fraction
-        return batch._replace(
-            observations=th.where(rows, mirror.observations(observations), observations),
-            next_observations=th.where(
-                rows, mirror.observations(batch.next_observations), batch.next_observations
-            ),
-            actions=th.where(rows, mirror.actions(batch.actions), batch.actions),
-        )
 
     def _create_aliases(self) -> None:
         self.actor = self.policy.actor
@@ -559,22 +538,15 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.critic = self.policy.critic
         self.critic_target = self.policy.critic_target
         # Fixed parameter lists: module.to(device) and load_state_dict keep the same Parameter objects.
-        self._critics, self._critic_targets = self.policy.critics, self.policy.critic_targets
-        critics, critic_targets = self._critics, self._critic_targets
-        self._critic_params = [param for critic in critics for param in critic.parameters()]
+        self._critic_params = list(self.critic.parameters())
         self._online_params = [*self.actor.parameters(), *self._critic_params]
-        self._target_params = [
-            *self.actor_target.parameters(),
-            *(param for target in critic_targets for param in target.parameters()),
-        ]
+        self._target_params = [*self.actor_target.parameters(), *self.critic_target.parameters()]
         self._skill_params = [self.policy.skill_parameters(k) for k in range(self.policy.n_skills)]
         self._skill_optimizers = self.policy.actor_optimizers
         self._layouts: dict[tuple[Any, ...], _Layout] = {}
         # Every skill's gradients are written into the same tensors in turn (all skills' shapes are the same).
         self._actor_grads = _GradientBuffers(self._skill_params[0], self.policy.n_skills)
-        self._critic_grads = [_GradientBuffers(list(critic.parameters()), 1) for critic in critics]
-        # In the critic optimiser's parameter order (critic after critic): one list object, for adam_step's cache.
-        self._critic_grad_list = [grad for buffers in self._critic_grads for grad in buffers.grads[0]]
+        self._critic_grads = _GradientBuffers(self._critic_params, 1)
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
@@ -610,7 +582,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         for _ in range(gradient_steps):
             self._n_updates += 1
             batch = self.replay_buffer.sample(batch_size, env=self._vec_normalize_env)
-            self._update(batch if self._mirror is None else self._mirror_rows(batch))
+            self._update(batch)
         self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
 
     @th.no_grad()
@@ -629,25 +601,19 @@ class SkillDDPG(OffPolicyAlgorithm):
             assert both is not None
             skills, next_skills = both[:batch_size], both[batch_size:]
 
-        # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B, for each critic against the same y.
+        # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B.
         target_q = self._critic_target(batch, next_skills)
-        replayed_actions = policy.critic_action(batch.actions)
-        critic_loss_scale = (
-            0.5 / policy.n_critics
-        )  # statistics: the critics' mean loss, error . grad_q / 2 each
-        critic_loss = self._stat_views[0]
-        critic_qs = []
-        for each_critic, buffers in zip(self._critics, self._critic_grads, strict=True):
-            q_values, critic_inputs = each_critic.forward_for_backward(obs, replayed_actions)
-            critic_qs.append(q_values)
-            error = q_values - target_q
-            grad_q = error * (2.0 / batch_size)
-            critic_grad_zs = each_critic.output_gradients(critic_inputs, grad_q)
-            buffers.weight_gradients([(g.t(), x) for g, x in zip(critic_grad_zs, critic_inputs, strict=True)])
-            buffers.bias_gradients(self._batch_ones(batch_size, obs), critic_grad_zs)
-            critic_loss.addmm_(error.t(), grad_q, alpha=critic_loss_scale)
-        current_q = critic_qs[0]  # the critic the actor follows: the max_q / mean_q statistics
-        adam_step(policy.critic_optimizer, self._critic_params, self._critic_grad_list)
+        current_q, critic_inputs = critic.forward_for_backward(obs, policy.critic_action(batch.actions))
+        error = current_q - target_q
+        grad_q = error * (2.0 / batch_size)
+        critic_grad_zs = critic.output_gradients(critic_inputs, grad_q)
+        critic_grads = self._critic_grads
+        critic_grads.weight_gradients(
+            [(g.t(), x) for g, x in zip(critic_grad_zs, critic_inputs, strict=True)]
+        )
+        critic_grads.bias_gradients(self._batch_ones(batch_size, obs), critic_grad_zs)
+        self._stat_views[0].addmm_(error.t(), grad_q, alpha=0.5)  # the loss: error . grad_q / 2
+        adam_step(policy.critic_optimizer, self._critic_params, critic_grads.grads[0])
 
         # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
         if skills is None:
@@ -772,7 +738,7 @@ class SkillDDPG(OffPolicyAlgorithm):
     def _critic_target(self, batch: ReplayBufferSamples, next_skills: th.Tensor | None = None) -> th.Tensor:
         """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``max_k Q'(s', e_k, x'(s'))`` with
         ``discrete_target="max"``; ``gamma^n`` from ``batch.discounts``
-        with n-step returns; ``Q'`` the smallest of the target critics' values with ``n_critics > 1``), mixed
+        with n-step returns), mixed
         with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose return is known when
         ``mc_mixing = beta > 0``. ``next_skills``: the routed skills of the next states
         (``None``: routed here). Call under ``torch.no_grad()``."""
@@ -784,13 +750,10 @@ class SkillDDPG(OffPolicyAlgorithm):
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
         if self.discrete_target == "max":
-            _, next_values = policy.discrete_values(next_obs, next_actions, self._critic_targets)
+            _, next_values = policy.discrete_values(next_obs, next_actions, self.critic_target)
             next_q = next_values.max(dim=1, keepdim=True).values
         else:
-            next_actions = policy.critic_action(next_actions)
-            next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
-            for target in self._critic_targets[1:]:  # clipped double Q: the smallest target value
-                next_q = th.minimum(next_q, target.forward_for_backward(next_obs, next_actions)[0])
+            next_q, _ = self.critic_target.forward_for_backward(next_obs, policy.critic_action(next_actions))
         if batch.discounts is None:
             # (1 - done) is 0 or 1, so this is r + gamma * (1 - done) * Q' with the same rounding, in one kernel.
             target_q = th.addcmul(batch.rewards, 1 - batch.dones, next_q, value=self.gamma)
@@ -829,7 +792,9 @@ class SkillDDPG(OffPolicyAlgorithm):
             self._skill_steps += np.bincount(skills, minlength=self.policy.n_skills)
         else:
             self._skill_steps[0] += n_envs
-        action, buffer_action = super()._sample_action(learning_starts, action_noise, n_envs)
+        # The mirror choice is for evaluation: rollouts act with the plain greedy action (x31: no gain from it).
+        with self.policy.mirror_choice_suspended():
+            action, buffer_action = super()._sample_action(learning_starts, action_noise, n_envs)
         if self._n_discrete == 0 or self.num_timesteps < learning_starts or self.exploration_rate <= 0.0:
             return action, buffer_action
         explore = np.random.random_sample(n_envs) < self.exploration_rate
@@ -953,7 +918,6 @@ class SkillDDPG(OffPolicyAlgorithm):
         ``torch.get_num_threads()`` differs from its value when ``sb3_hfo`` was imported (``torch.set_num_threads``
         was called since): then the count is left as it is. See :func:`training_threads`.
         """
-        self._warn_if_shaping_discount_differs()
         threads = training_threads()
         previous = th.get_num_threads()
         if threads is not None and threads != previous:
@@ -972,28 +936,6 @@ class SkillDDPG(OffPolicyAlgorithm):
             if threads is not None and th.get_num_threads() == threads:
                 th.set_num_threads(previous)
 
-    def _warn_if_shaping_discount_differs(self) -> None:
-        """Warn when the hfo2d env's ``potential_gap`` reward (not HFO's) is discounted by another gamma than the agent's.
-
-        Potential-based shaping leaves the goal reward's optimal policy unchanged only at the agent's own discount.
-        """
-        if self.env is None:
-            return
-        try:
-            rewards = self.env.get_attr("reward_name")
-            shaping_gammas = self.env.get_attr("shaping_gamma")
-        except AttributeError:  # not an hfo2d env
-            return
-        for reward, shaping_gamma in zip(rewards, shaping_gammas, strict=True):
-            if reward == "potential_gap" and not math.isclose(shaping_gamma, self.gamma):
-                warnings.warn(
-                    f"the env's potential_gap reward is discounted by shaping_gamma={shaping_gamma} but the agent's "
-                    f"gamma is {self.gamma}: pass shaping_gamma={self.gamma} in the env kwargs for the shaping to "
-                    "leave the goal reward's optimal policy unchanged",
-                    stacklevel=3,
-                )
-                return
-
     def _excluded_save_params(self) -> list[str]:
         return [
             *super()._excluded_save_params(),
@@ -1011,10 +953,6 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_layouts",
             "_actor_grads",
             "_critic_grads",
-            "_critic_grad_list",
-            "_critics",
-            "_critic_targets",
-            "_mirror",
         ]
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
