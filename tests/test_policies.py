@@ -9,6 +9,7 @@ import torch as th
 from gymnasium import spaces
 from torch import nn
 
+from hfo2d.action_layout import hfo_flat_action_space
 from sb3_hfo import (
     ROUTERS,
     FieldHalfRouter,
@@ -23,7 +24,7 @@ from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg.policies import KICKABLE_FEATURE_INDEX
 
 OBS_SPACE = spaces.Box(-1.0, 1.0, (58,), np.float32)
-ACTION_SPACE = spaces.Box(0.0, 1.0, (8,), np.float32)
+ACTION_SPACE = hfo_flat_action_space()  # HFO's flat action, its layout declared
 
 
 def make_policy(**kwargs: object) -> HFOPolicy:
@@ -415,7 +416,9 @@ def test_parameter_mask_keeps_the_preferences_and_the_chosen_actions_parameters(
 
 
 def test_mask_unused_parameters_errors_name_the_problem() -> None:
-    with pytest.raises(ValueError, match="means HFO's flat action.*has 5"):
+    with pytest.raises(
+        ValueError, match="needs the action space's hybrid layout.*5-entry action space declares none"
+    ):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, mask_unused_parameters=True)
     with pytest.raises(ValueError, match=r"3 preferences \+ 4 parameters = 7 action entries.*has 8"):
         make_policy(mask_unused_parameters=(2, 1, 1))
@@ -453,7 +456,7 @@ def test_critic_choice_plays_the_best_one_hot_action_at_the_actors_parameters(ma
 def test_discrete_choice_errors_and_round_trip(tmp_path) -> None:
     with pytest.raises(ValueError, match="discrete_choice must be one of"):
         make_policy(discrete_choice="router")
-    with pytest.raises(ValueError, match="needs to know the discrete actions"):
+    with pytest.raises(ValueError, match="needs the discrete actions: an action space with a hybrid layout"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, discrete_choice="critic")
     policy = HFOPolicy(
         OBS_SPACE,
@@ -517,7 +520,7 @@ def test_kick_only_when_kickable_never_kicks_at_a_ball_out_of_reach(choice: str)
 
 
 def test_kick_only_when_kickable_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="needs HFO's 8-dimensional flat action"):
+    with pytest.raises(ValueError, match="needs an action layout with a kick"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, kick_only_when_kickable=True)
     with pytest.raises(ValueError, match="kick_only_when_kickable must be a bool"):
         make_policy(kick_only_when_kickable="yes")
@@ -648,7 +651,7 @@ def test_critic_direction_frequencies_errors_and_round_trip(tmp_path) -> None:
     for bad in ([0], [-1.0], [float("nan")], "1, 2", [True], 4):
         with pytest.raises(ValueError, match="critic_direction_frequencies must be"):
             make_policy(critic_direction_frequencies=bad)
-    with pytest.raises(ValueError, match="needs HFO's 8-dimensional flat action"):
+    with pytest.raises(ValueError, match="needs an action layout with direction parameters"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, critic_direction_frequencies=[1])
     model = SkillDDPG(
         "HFOPolicy",
@@ -706,7 +709,7 @@ def test_mirror_choice_keeps_a_state_that_is_its_own_mirror_image() -> None:
 
 
 def test_mirror_choice_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="mirror_choice needs HFO's 8-dimensional flat action"):
+    with pytest.raises(ValueError, match="mirror_choice needs HFO's flat action"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, mirror_choice=True)
     with pytest.raises(
         ValueError, match=r"mirror_choice: an HFO feature vector has 58 \+ 8 \* players entries"
@@ -806,3 +809,22 @@ def test_mirror_margin_errors_and_round_trip(tmp_path) -> None:
     model.policy.mirror_margin = 0.25
     model.save(tmp_path / "m.zip")
     assert SkillDDPG.load(tmp_path / "m.zip").policy.mirror_margin == 0.25
+
+
+def test_a_plain_box_without_a_layout_gets_plain_ddpg_semantics() -> None:
+    """An 8-entry ``Box`` that declares no hybrid layout is not taken for HFO's flat action: no discrete actions,
+    the actor's output played as it is, and the options that need the layout refused."""
+    plain = spaces.Box(0.0, 1.0, (8,), np.float32)
+    policy = HFOPolicy(OBS_SPACE, plain, lambda _: 1e-3)
+    assert policy.action_layout is None and policy.n_discrete_actions == 0
+    obs = th.rand(4, 58) * 2 - 1
+    th.testing.assert_close(policy._predict(obs), policy.actor(obs))
+    for option in (
+        {"mask_unused_parameters": True},
+        {"discrete_choice": "critic"},
+        {"kick_only_when_kickable": True},
+        {"critic_direction_frequencies": [1]},
+    ):
+        with pytest.raises(ValueError):
+            HFOPolicy(OBS_SPACE, plain, lambda _: 1e-3, **option)
+    assert SkillDDPG("HFOPolicy", "Pendulum-v1", seed=0)._n_discrete == 0

@@ -10,6 +10,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from hfo2d.action_layout import ACTION_NAMES, DASH, HFO_FLAT_ACTION_LAYOUT, KICK, TURN, hfo_flat_action_space
 from hfo2d.features import (
     KICKABLE_BUFFER,
     hfo_feature_list,
@@ -27,12 +28,10 @@ TASKS: tuple[str, ...] = ("empty_goal", "static_keeper", "keeper")
 ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
 #: Observation layouts: the paper era's (58 / 66, the default) or HFO master's (59 / 68).
 FEATURE_SETS: tuple[str, ...] = ("paper", "hfo")
-ACTION_NAMES: tuple[str, ...] = ("DASH", "TURN", "KICK")
-DASH, TURN, KICK = 0, 1, 2
-# [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir]
-FLAT_ACTION_SIZE = 8
-#: Where the three directions (dash_dir, turn_dir, kick_dir) sit in the flat action.
-FLAT_ACTION_DIRECTIONS: tuple[int, ...] = (4, 5, 7)
+# [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir]: the flat action's size
+# and its three directions (dash_dir, turn_dir, kick_dir), from its layout (hfo2d.action_layout).
+FLAT_ACTION_SIZE = HFO_FLAT_ACTION_LAYOUT.size
+FLAT_ACTION_DIRECTIONS: tuple[int, ...] = HFO_FLAT_ACTION_LAYOUT.direction_indices
 POWER_MIN, POWER_MAX = 0.0, 100.0  # gym-soccer / paper dash and kick power range (hfo_reference §3.3)
 DIRECTION_MIN, DIRECTION_MAX = -180.0, 180.0  # degrees relative to the body
 
@@ -292,9 +291,7 @@ class HFOEnv(gym.Env):
         n_features = hfo_num_features(0, n_opponents) if self._hfo_layout else num_features(0, n_opponents)
         self.observation_space = spaces.Box(-1.0, 1.0, shape=(n_features,), dtype=np.float32)
         if action_format == "flat":
-            self.action_space: spaces.Space = spaces.Box(
-                0.0, 1.0, shape=(FLAT_ACTION_SIZE,), dtype=np.float32
-            )
+            self.action_space: spaces.Space = hfo_flat_action_space()
         else:
             self.action_space = spaces.Tuple(
                 (
@@ -680,12 +677,10 @@ class HFOEnv(gym.Env):
             if not 0.0 <= value <= 1.0:  # also rejects NaN
                 what = "not finite" if not math.isfinite(value) else "outside [0, 1]"
                 raise ValueError(f"flat action element {index} is {what}: {value!r}")
-        pref_dash, pref_turn, pref_kick = values[0], values[1], values[2]
-        if pref_dash >= pref_turn and pref_dash >= pref_kick:
-            return DASH, POWER_MAX * values[3], DIRECTION_MIN + 360.0 * values[4]
-        if pref_turn >= pref_kick:
-            return TURN, 0.0, DIRECTION_MIN + 360.0 * values[5]
-        return KICK, POWER_MAX * values[6], DIRECTION_MIN + 360.0 * values[7]
+        kind, parameters = HFO_FLAT_ACTION_LAYOUT.decode(values)
+        if kind == TURN:
+            return TURN, 0.0, DIRECTION_MIN + 360.0 * parameters[0]
+        return kind, POWER_MAX * parameters[0], DIRECTION_MIN + 360.0 * parameters[1]
 
     def _parse_parameterized_action(self, action: Any) -> tuple[int, float, float]:
         if not isinstance(action, (tuple, list)) or len(action) != 4:

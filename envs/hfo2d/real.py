@@ -73,6 +73,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from hfo2d.action_layout import hfo_flat_action_space
 from hfo2d.features import (
     BALL_ANGLE_COS,
     BALL_ANGLE_SIN,
@@ -118,7 +119,6 @@ from hfo2d.hfo_env import (
     DEFAULT_UNTOUCHED_TIME,
     DIRECTION_MAX,
     DIRECTION_MIN,
-    FLAT_ACTION_SIZE,
     GOAL,
     IN_GAME,
     KICK,
@@ -803,9 +803,7 @@ class RealHFOEnv(gym.Env):
             -1.0, 1.0, shape=(num_features(0, self.num_opponents),), dtype=np.float32
         )
         if action_format == "flat":
-            self.action_space: spaces.Space = spaces.Box(
-                0.0, 1.0, shape=(FLAT_ACTION_SIZE,), dtype=np.float32
-            )
+            self.action_space: spaces.Space = hfo_flat_action_space()
         else:
             power_direction = spaces.Box(
                 np.array([POWER_MIN, DIRECTION_MIN], dtype=np.float32),

@@ -86,7 +86,7 @@ its estimate of that policy's value. With ``mirror_choice=True`` acting (``predi
 computes the greedy action in the state and in its mirror image and plays the one the critic values more
 (ties: the unmirrored one); a one-step policy improvement over two policies, decided afresh every step. Why: x27's
 E6 agent scores all its goals in one half of the goal, by one route (research/probes/failure_map.py, session 16). Can be
-switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action. ``mirror_margin=m > 0``
+switched on a trained model. Needs HFO's low-level features and flat action. ``mirror_margin=m > 0``
 keeps a side (plain or mirrored) through an episode: the first step of an episode takes the better side, later
 steps switch only when the other side's value exceeds the kept side's by more than ``m`` (``inf``: never). Why: a
 choice made afresh every step may alternate between the two routes; with ``m = 0.1`` x27 scores 79.25 % against
@@ -115,6 +115,7 @@ from stable_baselines3.common.type_aliases import PyTorchObs, Schedule
 from torch import nn
 from torch.nn import functional as F
 
+from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT, HybridActionLayout, action_layout
 from hfo2d.features import (
     GOAL_CENTER_COS,
     GOAL_CENTER_SIN,
@@ -126,7 +127,6 @@ from hfo2d.features import (
     GOALIE_ANGLE_SIN,
     KICKABLE,
 )
-from hfo2d.hfo_env import FLAT_ACTION_DIRECTIONS, KICK
 from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.common.routers import SkillRouter, check_skills, make_router, validate_skills
 
@@ -150,17 +150,12 @@ DEFAULT_NET_ARCH: dict[str, list[int]] = {"pi": [400, 300, 200], "qf": [400, 300
 LEAKY_RELU_SLOPE = 1e-2
 #: "Weights are initialized with a truncated normal distribution with a standard deviation 10^-2".
 WEIGHT_INIT_STD = 1e-2
-#: Parameters of HFO's DASH (power, direction), TURN (direction) and KICK (power, direction) in its flat action,
-#: after the three preferences (hfo2d's ``action_format="flat"``).
-HFO_ACTION_PARAMETER_SIZES = (2, 1, 2)
-#: DASH, TURN, KICK: the discrete actions whose preferences open HFO's flat action.
-HFO_N_DISCRETE_ACTIONS = len(HFO_ACTION_PARAMETER_SIZES)
-#: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
-HFO_FLAT_ACTION_DIM = HFO_N_DISCRETE_ACTIONS + sum(HFO_ACTION_PARAMETER_SIZES)
-# Where the three direction parameters (dash, turn, kick; [-1, 1] for [-180, 180] degrees) sit in the flat action.
-HFO_DIRECTION_PARAMETER_INDICES = FLAT_ACTION_DIRECTIONS
-#: Index of KICK among HFO's discrete actions (DASH, TURN, KICK: the flat action's first three preferences).
-HFO_KICK_ACTION = KICK
+# HFO's flat action as hfo2d declares it (hfo2d.action_layout.HFO_FLAT_ACTION_LAYOUT), by the names other modules
+# import: the parameter count of DASH, TURN and KICK, their number, the action's size and KICK's index.
+HFO_ACTION_PARAMETER_SIZES = HFO_FLAT_ACTION_LAYOUT.parameter_sizes
+HFO_N_DISCRETE_ACTIONS = HFO_FLAT_ACTION_LAYOUT.n_discrete
+HFO_FLAT_ACTION_DIM = HFO_FLAT_ACTION_LAYOUT.size
+HFO_KICK_ACTION = HFO_FLAT_ACTION_LAYOUT.ball_action
 #: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise); hfo2d
 #: owns the layout (HFO's LowLevelFeatureExtractor).
 KICKABLE_FEATURE_INDEX = KICKABLE
@@ -199,7 +194,9 @@ def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[l
     return [int(n) for n in actor_arch], [int(n) for n in critic_arch]
 
 
-def _direction_frequencies(frequencies: Sequence[float], action_dim: int) -> tuple[float, ...]:
+def _direction_frequencies(
+    frequencies: Sequence[float], layout: HybridActionLayout | None
+) -> tuple[float, ...]:
     """Validated ``critic_direction_frequencies`` as a tuple of floats (YAML gives a list)."""
     if isinstance(frequencies, (str, bytes)) or not isinstance(frequencies, Iterable):
         raise ValueError(f"critic_direction_frequencies must be a sequence of numbers, got {frequencies!r}")
@@ -212,10 +209,10 @@ def _direction_frequencies(frequencies: Sequence[float], action_dim: int) -> tup
         for k in values
     ):
         raise ValueError(f"critic_direction_frequencies must be finite numbers > 0, got {frequencies!r}")
-    if values and action_dim != HFO_FLAT_ACTION_DIM:
+    if values and (layout is None or not layout.direction_indices):
         raise ValueError(
-            f"critic_direction_frequencies needs HFO's {HFO_FLAT_ACTION_DIM}-dimensional flat action (directions at "
-            f"{HFO_DIRECTION_PARAMETER_INDICES}), got action dim {action_dim}"
+            "critic_direction_frequencies needs an action layout with direction parameters (HFO's flat action), "
+            f"got layout {layout}"
         )
     return tuple(float(k) for k in values)
 
@@ -230,7 +227,7 @@ KICK_REFERENCE_BEARINGS: dict[str, tuple[int, int]] = {
 
 
 def _kick_references(
-    names: Sequence[str], frequencies: tuple[float, ...], obs_dim: int
+    names: Sequence[str], frequencies: tuple[float, ...], obs_dim: int, layout: HybridActionLayout | None
 ) -> tuple[tuple[int, int, int], ...]:
     """Validated ``critic_kick_relative_to`` as (kick action index, bearing sin column, bearing cos column) triples."""
     if isinstance(names, (str, bytes)) or not isinstance(names, Iterable):
@@ -245,6 +242,13 @@ def _kick_references(
         raise ValueError(
             "critic_kick_relative_to needs critic_direction_frequencies (it uses the same frequencies)"
         )
+    kick_direction = None
+    if names and layout is not None and layout.ball_action is not None:
+        kick_direction = layout.action_direction(layout.ball_action)
+    if names and kick_direction is None:
+        raise ValueError(
+            f"critic_kick_relative_to needs an action layout with a kick direction, got layout {layout}"
+        )
     triples = []
     for name in names:
         sin_column, cos_column = KICK_REFERENCE_BEARINGS[name]
@@ -253,21 +257,29 @@ def _kick_references(
                 f"critic_kick_relative_to: {name!r} needs observation column {max(sin_column, cos_column)}, but the "
                 f"observation has {obs_dim} features (the goalie's bearing exists only on goalie tasks)"
             )
-        triples.append((HFO_DIRECTION_PARAMETER_INDICES[KICK], sin_column, cos_column))
+        triples.append((kick_direction, sin_column, cos_column))
     return tuple(triples)
 
 
-def _parameter_sizes(option: bool | tuple[int, ...] | list[int], action_dim: int) -> tuple[int, ...] | None:
-    """The per-discrete-action parameter counts that ``mask_unused_parameters=option`` means (``None``: off)."""
-    if option is False or option is None:
-        return None
-    if option is True:
-        if action_dim != HFO_FLAT_ACTION_DIM:
+def _resolve_layout(
+    space_layout: HybridActionLayout | None, mask_unused_parameters: object, action_dim: int
+) -> HybridActionLayout | None:
+    """The action layout the policy works with: the action space's (:func:`hfo2d.action_layout.action_layout`), or
+    one given by ``mask_unused_parameters`` as the parameter count of each discrete action; ``None`` (a plain
+    ``Box``, no discrete actions) otherwise.
+
+    :raises ValueError: a bad ``mask_unused_parameters``, sizes that do not fit the action or the space's layout, or
+        ``True`` without a layout.
+    """
+    option = mask_unused_parameters
+    if isinstance(option, (bool, np.bool_)) or option is None:
+        if option and space_layout is None:
             raise ValueError(
-                f"mask_unused_parameters=True means HFO's flat action (8 entries), but the action has {action_dim}; "
-                "pass the parameter count of each discrete action instead, e.g. (2, 1, 2)"
+                f"mask_unused_parameters=True needs the action space's hybrid layout (hfo2d's HybridActionBox, as "
+                f"the HFO envs have), but the {action_dim}-entry action space declares none; pass the parameter "
+                "count of each discrete action instead, e.g. (2, 1, 2)"
             )
-        return HFO_ACTION_PARAMETER_SIZES
+        return space_layout
     if isinstance(option, (str, bytes)) or not isinstance(option, (tuple, list)):
         raise ValueError(f"mask_unused_parameters must be a bool or a sequence of ints, got {option!r}")
     sizes = tuple(option)
@@ -280,7 +292,14 @@ def _parameter_sizes(option: bool | tuple[int, ...] | list[int], action_dim: int
             f"mask_unused_parameters={option!r} describes {len(sizes)} preferences + {sum(sizes)} parameters = "
             f"{len(sizes) + sum(sizes)} action entries, but the action has {action_dim}"
         )
-    return tuple(int(n) for n in sizes)
+    if space_layout is not None:
+        if space_layout.parameter_sizes != tuple(int(n) for n in sizes):
+            raise ValueError(
+                f"mask_unused_parameters={option!r} differs from the action space's layout "
+                f"{space_layout.parameter_sizes}"
+            )
+        return space_layout
+    return HybridActionLayout.from_sizes(sizes)
 
 
 def _make_activation(activation_fn: type[nn.Module]) -> nn.Module:
@@ -722,25 +741,26 @@ class HFOPolicy(BasePolicy):
         ``"field_half"``) or ``None`` (``"single"`` for 1 skill, ``"field_half"`` for 2).
     :param inverting_gradients: linear actor output + Hausknecht & Stone's inverting gradients (see module doc).
     :param mask_unused_parameters: the critic sees only the chosen discrete action's parameters (see module doc).
-        ``False`` (default, the paper), ``True`` (HFO's flat layout, :data:`HFO_ACTION_PARAMETER_SIZES`; needs an
-        8-dimensional action) or the number of parameters of each discrete action in order, e.g. ``(2, 1, 2)``:
-        the action is then ``[one preference per discrete action, their parameters in the same order]``.
+        ``False`` (default, the paper), ``True`` (by the action space's hybrid layout,
+        :func:`hfo2d.action_layout.action_layout`: the HFO envs declare theirs) or, for a plain ``Box``, the number
+        of parameters of each discrete action in order, e.g. ``(2, 1, 2)``: the action is then ``[one preference
+        per discrete action, their parameters in the same order]``.
     :param discrete_choice: who picks the discrete action when acting: ``"actor"`` (the paper: its largest
         preference) or ``"critic"`` (the best one-hot preference vector by the critic, see module doc; needs
-        the discrete layout: HFO's 8-dimensional action or ``mask_unused_parameters`` given as sizes).
+        an action layout: the action space's or ``mask_unused_parameters`` given as sizes).
     :param kick_only_when_kickable: KICK is never the greedy choice while the ball is out of reach (observation
-        feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs HFO's 8-dimensional action and
-        low-level features. Can be switched on a trained model.
+        feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs a layout with a ball action (HFO's
+        KICK) and HFO's low-level features. Can be switched on a trained model.
     :param mirror_choice: play the better, by the critic, of the greedy action in the state and the greedy
-        action in its mirror image mirrored back (see module doc). Needs HFO's low-level features and 8-dimensional
-        flat action. Can be switched on a trained model.
+        action in its mirror image mirrored back (see module doc). Needs HFO's low-level features and flat
+        action. Can be switched on a trained model.
     :param mirror_margin: with ``mirror_choice``, keep the side played (plain or mirrored) through an episode and
         switch only when the other side's value (by the critic) exceeds it by more than this (>= 0, ``inf``: never
         switch; 0, the default: decide afresh every step); the side travels in ``predict``'s ``state`` (see module
         doc). Can be switched on a trained model.
     :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
         ``cos(k * theta)`` of the dash, turn and kick directions that the critic sees besides the action (see
-        module doc); ``()`` (default, the paper): none. Needs HFO's 8-dimensional flat action.
+        module doc); ``()`` (default, the paper): none. Needs a layout with direction parameters (HFO's).
     :param critic_kick_relative_to: landmark names (:data:`KICK_REFERENCE_BEARINGS`: ``"goalie"``,
         ``"goal_center"``, ``"goal_post_top"``, ``"goal_post_bottom"``) whose bearing the kick direction is also
         encoded relative to, at ``critic_direction_frequencies`` (see module doc); ``()`` (default): none.
@@ -817,7 +837,16 @@ class HFOPolicy(BasePolicy):
         self.obs_dim = get_flattened_obs_dim(observation_space)
         self.action_dim = get_action_dim(action_space)
         self.mask_unused_parameters = mask_unused_parameters
-        self.action_parameter_sizes = _parameter_sizes(mask_unused_parameters, self.action_dim)
+        #: The hybrid action layout (hfo2d.action_layout), or None: a plain Box, acted on as DDPG does.
+        self.action_layout = _resolve_layout(
+            action_layout(action_space), mask_unused_parameters, self.action_dim
+        )
+        #: Each discrete action's parameter count when the critic masks unused parameters, else None.
+        self.action_parameter_sizes = (
+            self.action_layout.parameter_sizes
+            if self.action_layout is not None and mask_unused_parameters is not False
+            else None
+        )
         self.discrete_choice = discrete_choice  # validated by the property setter
         self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
         self.mirror_choice = mirror_choice  # validated by the property setter
@@ -825,10 +854,10 @@ class HFOPolicy(BasePolicy):
         # The kept sides, set by predict for _predict while a call with mirror_margin > 0 runs.
         self._side_box: list[np.ndarray | None] | None = None
         self.critic_direction_frequencies = _direction_frequencies(
-            critic_direction_frequencies, self.action_dim
+            critic_direction_frequencies, self.action_layout
         )
         self.kick_references = _kick_references(
-            critic_kick_relative_to, self.critic_direction_frequencies, self.obs_dim
+            critic_kick_relative_to, self.critic_direction_frequencies, self.obs_dim, self.action_layout
         )
         self.critic_kick_relative_to = tuple(critic_kick_relative_to)
         self._build(lr_schedule)
@@ -855,7 +884,9 @@ class HFOPolicy(BasePolicy):
             net_arch=self.critic_arch,
             activation_fn=self.activation_fn,
             weight_init_std=self.weight_init_std,
-            direction_indices=HFO_DIRECTION_PARAMETER_INDICES if self.critic_direction_frequencies else (),
+            direction_indices=self.action_layout.direction_indices  # type: ignore[union-attr]
+            if self.critic_direction_frequencies
+            else (),
             direction_frequencies=self.critic_direction_frequencies,
             relative_directions=self.kick_references,
         )
@@ -885,17 +916,13 @@ class HFOPolicy(BasePolicy):
         ``j``'s parameters), and ``discrete_action_rows``: row ``j`` is ``j``'s one-hot preferences (+1 / -1) with
         every parameter 0, so that ``rows[j] + a * own_masks[j]`` is action ``a`` played as ``j`` as the critic sees
         it (SkillDDPG's ``parameter_loss="each_action"``). Not saved: they follow from ``mask_unused_parameters``."""
-        sizes = self.action_parameter_sizes
         masks = own_masks = rows = None
-        if sizes is not None:
-            n_discrete = len(sizes)
-            own_masks = th.zeros(n_discrete, self.action_dim)
-            start = n_discrete
-            for j, size in enumerate(sizes):
-                own_masks[j, start : start + size] = 1.0
-                start += size
-            masks = own_masks.clone()
-            masks[:, :n_discrete] = 1.0
+        if self.action_parameter_sizes is not None:
+            layout = self.action_layout
+            assert layout is not None
+            n_discrete = layout.n_discrete
+            own_masks = th.from_numpy(layout.parameter_masks(with_preferences=False))
+            masks = th.from_numpy(layout.parameter_masks())
             rows = th.zeros(n_discrete, self.action_dim)
             rows[:, :n_discrete] = one_hot_preferences(n_discrete, rows)
         self.parameter_masks: th.Tensor | None
@@ -907,7 +934,8 @@ class HFOPolicy(BasePolicy):
 
     def parameter_mask(self, actions: th.Tensor) -> th.Tensor | None:
         """``(B, action_dim)`` mask of what the environment executes for ``actions (B, action_dim)``: the
-        preferences and the parameters of their argmax (the first maximum on ties, like hfo2d); ``None`` when
+        preferences and the parameters of their argmax (the first maximum on ties, the layout's rule:
+        :meth:`hfo2d.action_layout.HybridActionLayout.choose`); ``None`` when
         ``mask_unused_parameters`` is off."""
         masks = self.parameter_masks
         if masks is None:
@@ -925,8 +953,8 @@ class HFOPolicy(BasePolicy):
             raise ValueError(f"discrete_choice must be one of {DISCRETE_CHOICES}, got {choice!r}")
         if choice == "critic" and self.n_discrete_actions == 0:
             raise ValueError(
-                f"discrete_choice='critic' needs to know the discrete actions: HFO's 8-dimensional flat action, or "
-                f"mask_unused_parameters given as per-action parameter counts (action dim {self.action_dim})"
+                "discrete_choice='critic' needs the discrete actions: an action space with a hybrid layout (the HFO "
+                "envs'), or mask_unused_parameters given as per-action parameter counts"
             )
         self._discrete_choice = choice
 
@@ -939,10 +967,11 @@ class HFOPolicy(BasePolicy):
     def kick_only_when_kickable(self, value: bool) -> None:
         if not isinstance(value, (bool, np.bool_)):
             raise ValueError(f"kick_only_when_kickable must be a bool, got {value!r}")
-        if value and (self.action_dim != HFO_FLAT_ACTION_DIM or self.obs_dim <= KICKABLE_FEATURE_INDEX):
+        layout = self.action_layout
+        if value and (layout is None or layout.ball_action is None or self.obs_dim <= KICKABLE_FEATURE_INDEX):
             raise ValueError(
-                f"kick_only_when_kickable needs HFO's {HFO_FLAT_ACTION_DIM}-dimensional flat action and its "
-                f"low-level features (at least {KICKABLE_FEATURE_INDEX + 1}), got action dim {self.action_dim} and "
+                "kick_only_when_kickable needs an action layout with a kick (HFO's flat action) and HFO's "
+                f"low-level features (at least {KICKABLE_FEATURE_INDEX + 1}), got layout {layout} and "
                 f"{self.obs_dim} features"
             )
         self._kick_only_when_kickable = bool(value)
@@ -969,7 +998,7 @@ class HFOPolicy(BasePolicy):
         if not isinstance(value, (bool, np.bool_)):
             raise ValueError(f"mirror_choice must be a bool, got {value!r}")
         self._mirror: Mirror | None = (
-            make_mirror((self.obs_dim,), self.action_dim, "mirror_choice") if value else None
+            make_mirror((self.obs_dim,), self.action_layout, "mirror_choice") if value else None
         )
 
     @contextlib.contextmanager
@@ -1005,10 +1034,8 @@ class HFOPolicy(BasePolicy):
 
     @property
     def n_discrete_actions(self) -> int:
-        """Number of discrete actions (leading preferences) of the action layout; 0 when unknown."""
-        if self.action_parameter_sizes is not None:
-            return len(self.action_parameter_sizes)
-        return HFO_N_DISCRETE_ACTIONS if self.action_dim == HFO_FLAT_ACTION_DIM else 0
+        """Number of discrete actions (leading preferences) of the action layout; 0 without a layout."""
+        return 0 if self.action_layout is None else self.action_layout.n_discrete
 
     def discrete_values(
         self, obs: th.Tensor, actions: th.Tensor, critic: HFOCritic | None = None
@@ -1031,7 +1058,7 @@ class HFOPolicy(BasePolicy):
         q_values = (critic or self.critic).forward(repeated_obs, seen).view(batch, n_discrete)
         no_kick = self.kick_unavailable(obs)
         if no_kick is not None:
-            q_values[:, HFO_KICK_ACTION].masked_fill_(no_kick, -th.inf)
+            q_values[:, self.action_layout.ball_action].masked_fill_(no_kick, -th.inf)  # type: ignore[union-attr]
         return candidates, q_values
 
     def critic_choice(self, obs: th.Tensor, actions: th.Tensor) -> th.Tensor:
@@ -1202,13 +1229,18 @@ class HFOPolicy(BasePolicy):
             return self.critic_choice(obs, action)
         no_kick = self.kick_unavailable(obs)
         if no_kick is not None:
-            preferences = action[:, :HFO_N_DISCRETE_ACTIONS]
-            replace = no_kick & (preferences.argmax(dim=1) == HFO_KICK_ACTION)
+            layout = self.action_layout
+            assert layout is not None and layout.ball_action is not None
+            n_discrete, kick = layout.n_discrete, layout.ball_action
+            preferences = action[:, :n_discrete]
+            replace = no_kick & (preferences.argmax(dim=1) == kick)
             if replace.any():
-                best = preferences[:, :HFO_KICK_ACTION].argmax(dim=1)  # DASH or TURN
-                one_hot = 2.0 * nn.functional.one_hot(best, HFO_N_DISCRETE_ACTIONS).to(action.dtype) - 1.0
+                best = preferences.index_fill(1, th.tensor([kick], device=action.device), -th.inf).argmax(
+                    dim=1
+                )
+                one_hot = 2.0 * nn.functional.one_hot(best, n_discrete).to(action.dtype) - 1.0
                 action = action.clone()
-                action[:, :HFO_N_DISCRETE_ACTIONS] = th.where(replace.unsqueeze(1), one_hot, preferences)
+                action[:, :n_discrete] = th.where(replace.unsqueeze(1), one_hot, preferences)
         return action
 
     def set_training_mode(self, mode: bool) -> None:

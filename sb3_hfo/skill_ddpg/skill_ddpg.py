@@ -45,13 +45,13 @@ products (~1.9 M multiply-adds per sample and update at 400-300-200), the Adam s
 skills two of them over the trunk, each streaming its own moments) and the target update.
 
 Exploration (``_sample_action``): SB3's random warm-up (``learning_starts``) and ``action_noise`` as usual, then
-epsilon-greedy over the discrete actions of a parameterised flat action (HFO: the first 3 of 8 entries are the
-DASH / TURN / KICK preferences; Hausknecht & Stone anneal epsilon 1 -> 0.1): with probability epsilon the whole
+epsilon-greedy over the discrete actions of a parameterised flat action (the action space's hybrid layout,
+:mod:`hfo2d.action_layout`; HFO: DASH / TURN / KICK preferences first; Hausknecht & Stone anneal epsilon 1 -> 0.1): with probability epsilon the whole
 action is redrawn uniformly and one of the ``n_discrete_actions`` preferences, chosen uniformly, is set to the
 maximum (1 in the buffer scale) so that the environment's argmax picks it. Epsilon anneals linearly from
 ``exploration_initial_eps`` to ``exploration_final_eps`` over the first ``exploration_fraction`` of the
-``learn()`` call (SB3's DQN convention). ``n_discrete_actions=None`` means 3 for 8-dimensional actions (HFO's
-flat layout) and 0 (no epsilon-greedy) otherwise, e.g. Pendulum. With ``exploration_keep_parameters=True`` an
+``learn()`` call (SB3's DQN convention). ``n_discrete_actions=None`` takes the number from the action layout
+and 0 (no epsilon-greedy) for a plain ``Box``, e.g. Pendulum. With ``exploration_keep_parameters=True`` an
 exploring step only re-picks the discrete action (its preference set to 1, the others to -1) and keeps the policy's
 (noisy) continuous parameters, so that a randomly chosen KICK is taken with the kick the actor would make.
 
@@ -86,20 +86,13 @@ from stable_baselines3.common.utils import (
     update_learning_rate,
 )
 
+from hfo2d.action_layout import action_layout, hfo_flat_action_space
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
-from sb3_hfo.skill_ddpg.policies import (
-    HFO_FLAT_ACTION_DIM,
-    HFO_KICK_ACTION,
-    HFO_N_DISCRETE_ACTIONS,
-    HFOPolicy,
-    Segment,
-)
+from sb3_hfo.skill_ddpg.policies import HFOPolicy, Segment
 
 __all__ = [
     "DISCRETE_TARGETS",
     "PARAMETER_LOSSES",
-    "HFO_FLAT_ACTION_DIM",
-    "HFO_N_DISCRETE_ACTIONS",
     "TORCH_THREAD_VARIABLES",
     "TRAINING_THREADS",
     "SkillDDPG",
@@ -287,7 +280,7 @@ def _check_int(name: str, value: object, minimum: int, meaning: str) -> None:
 
 
 class SkillDDPG(OffPolicyAlgorithm):
-    """DDPG with skills (seed paper) for Box-action environments, HFO's flat 8-dimensional action in particular.
+    """DDPG with skills (seed paper) for Box-action environments, HFO's flat hybrid action in particular.
 
     :param policy: ``"HFOPolicy"`` / ``"MlpPolicy"`` (the same class) or an :class:`HFOPolicy` subclass.
     :param env: environment or its registered id (``"HFO/EmptyGoal-v0"``).
@@ -310,7 +303,7 @@ class SkillDDPG(OffPolicyAlgorithm):
     :param exploration_keep_parameters: epsilon-greedy re-picks only the discrete action and keeps the policy's
         continuous parameters (``False``: the whole action is redrawn uniformly, as Hausknecht & Stone did).
     :param n_discrete_actions: number of leading action entries that are discrete-action preferences; ``None``:
-        3 if the action has 8 entries (HFO), else 0. 0 disables epsilon-greedy.
+        the policy's action layout's (HFO: 3), 0 without a layout. 0 disables epsilon-greedy.
     :param replay_buffer_class: SB3 replay buffer class (default ``ReplayBuffer``).
     :param replay_buffer_kwargs: its keyword arguments.
     :param optimize_memory_usage: SB3's memory-efficient replay buffer variant.
@@ -424,6 +417,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.preactivation_penalty = preactivation_penalty
         self.discrete_target = discrete_target
         self.parameter_loss = parameter_loss
+        # SB3's load builds the model with _init_setup_model=False, then sets the saved attributes.
+        self._loading = not _init_setup_model
         if _init_setup_model:
             self._setup_model()
 
@@ -478,7 +473,7 @@ class SkillDDPG(OffPolicyAlgorithm):
     def _resolve_n_discrete_actions(self) -> int:
         action_dim = int(np.prod(self.action_space.shape))
         if self.n_discrete_actions is None:
-            return HFO_N_DISCRETE_ACTIONS if action_dim == HFO_FLAT_ACTION_DIM else 0
+            return self.policy.n_discrete_actions
         n_discrete = self.n_discrete_actions
         if isinstance(n_discrete, bool) or not isinstance(n_discrete, (int, np.integer)):
             raise ValueError(f"n_discrete_actions must be None or an int, got {n_discrete!r}")
@@ -504,7 +499,16 @@ class SkillDDPG(OffPolicyAlgorithm):
                     raise ValueError(f"{name}={value!r}: the option was removed (only {name}={off!r} loads)")
         self.policy_kwargs = policy_kwargs
 
+    def _adopt_hfo_layout_of_a_legacy_model(self) -> None:
+        """A model saved before the action layout contract (hfo2d.action_layout) holds HFO's flat action space as a
+        plain ``Box(0, 1, (8,))``: on load it gets its layout back, so that it acts and trains as it was saved."""
+        if self._loading and action_layout(self.action_space) is None:
+            hfo_space = hfo_flat_action_space()
+            if isinstance(self.action_space, spaces.Box) and self.action_space == hfo_space:
+                self.action_space = hfo_space
+
     def _setup_model(self) -> None:
+        self._adopt_hfo_layout_of_a_legacy_model()
         self._drop_removed_options()
         self._check_arguments()
         self._select_replay_buffer()
@@ -515,8 +519,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._n_discrete = self._resolve_n_discrete_actions()
         if self.discrete_target == "max" and self.policy.n_discrete_actions == 0:
             raise ValueError(
-                "discrete_target='max' needs the discrete actions: HFO's 8-dimensional flat action, or the policy's "
-                "mask_unused_parameters given as per-action parameter counts"
+                "discrete_target='max' needs the discrete actions: an action space with a hybrid layout (the HFO "
+                "envs'), or the policy's mask_unused_parameters given as per-action parameter counts"
             )
         if self.parameter_loss == "each_action" and self.policy.parameter_masks is None:
             raise ValueError(
@@ -695,7 +699,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         grads = self.critic.action_gradient(q_inputs).view(n_discrete, batch_size, -1) * own_masks
         no_kick = policy.kick_unavailable(obs)
         if no_kick is not None:
-            grads[HFO_KICK_ACTION].masked_fill_(no_kick.unsqueeze(1), 0.0)
+            grads[policy.action_layout.ball_action].masked_fill_(no_kick.unsqueeze(1), 0.0)  # type: ignore[union-attr]
         result = grads.sum(dim=0)
         result[:, :n_discrete] = dq_da[:, :n_discrete]
         return result
@@ -953,6 +957,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_layouts",
             "_actor_grads",
             "_critic_grads",
+            "_loading",
         ]
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
