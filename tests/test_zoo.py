@@ -45,6 +45,11 @@ def _load_config(path: Path) -> tuple[str, dict[str, Any]]:
     return env_id, hyperparams
 
 
+def _algo(config: Path) -> str:
+    """The ``--algo`` a config's header command names: SkillPDQN (the preset) for the best configs."""
+    return "skill_pdqn" if "--algo skill_pdqn " in config.read_text() else "skill_ddpg"
+
+
 def _env_dir(env_id: str) -> str:
     # rl-zoo3 (huggingface_sb3.EnvironmentName) replaces "/" by "-" in folder names.
     return env_id.replace("/", "-")
@@ -58,7 +63,7 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
     n_envs = int(hyperparams.get("n_envs", 1))
     argv = [
         "--algo",
-        "skill_ddpg",
+        _algo(config),
         "--env",
         env_id,
         "--conf-file",
@@ -134,8 +139,9 @@ def trained_runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict[s
 
 
 def _model_path(root: Path, config_name: str) -> Path:
-    env_id, _ = _load_config(CONFIG_DIR / f"{config_name}.yml")
-    return root / "logs" / config_name / "skill_ddpg" / f"{_env_dir(env_id)}_1" / f"{_env_dir(env_id)}.zip"
+    config = CONFIG_DIR / f"{config_name}.yml"
+    env_id, _ = _load_config(config)
+    return root / "logs" / config_name / _algo(config) / f"{_env_dir(env_id)}_1" / f"{_env_dir(env_id)}.zip"
 
 
 # ------------------------------------------------------------------------------------------------------------------
@@ -184,11 +190,13 @@ def test_config_is_valid_and_documents_its_command(config: Path) -> None:
         )
     text = config.read_text()
     conf_file = config.relative_to(REPO).as_posix()
-    command = f"python -m sb3_hfo.train --algo skill_ddpg --env {env_id} --conf-file {conf_file} --seed 0"
+    command = (
+        f"python -m sb3_hfo.train --algo {_algo(config)} --env {env_id} --conf-file {conf_file} --seed 0"
+    )
     assert command in text, f"{conf_file} must document its own command line"
     skills = 2 if "skills" in config.stem else 1
     assert hyperparams["policy_kwargs"]["n_skills"] == skills
-    assert hyperparams["policy_kwargs"]["inverting_gradients"] is ("inverting" in config.stem)
+    assert hyperparams["policy_kwargs"].get("inverting_gradients", False) is ("inverting" in config.stem)
 
 
 # Only the e-configs claim the paper's settings; x-configs (beyond the paper) may differ in anything.
