@@ -435,6 +435,11 @@ class HFOActor(nn.Module):
         :param skills: ``(B,)`` long tensor of head indices; ``None`` means head 0 (only valid with one skill).
         :return: ``(B, action_dim)``; in [-1, 1] when ``squash`` is set.
         """
+        out = self.head_outputs(obs, skills)
+        return th.tanh(out) if self.squash else out
+
+    def head_outputs(self, obs: th.Tensor, skills: th.Tensor | None = None) -> th.Tensor:
+        """:meth:`forward` before the ``tanh``: each row's skill head's output ``(B, action_dim)``."""
         features = self.features(obs)
         if skills is None or self.n_skills == 1:
             weight, bias = self.head_layers[0]
@@ -455,80 +460,7 @@ class HFOActor(nn.Module):
             per_skill = th.stack([F.linear(features, w, b) for w, b in self.head_layers], dim=1)
             index = skills.view(-1, 1, 1).expand(-1, 1, self.action_dim)
             out = per_skill.gather(1, index).squeeze(1)
-        return th.tanh(out) if self.squash else out
-
-    def forward_for_backward(
-        self, obs: th.Tensor, segments: list[Segment]
-    ) -> tuple[th.Tensor, list[th.Tensor], th.Tensor]:
-        """:meth:`forward` on rows grouped by skill, keeping what the backward pass (:meth:`output_gradients`)
-        needs.
-
-        :param obs: ``(B, obs_dim)``, rows sorted by skill.
-        :param segments: ``(skill, start, stop)`` for each skill with rows: rows ``start:stop`` use head ``skill``.
-        :return: ``(action (B, action_dim), layer_inputs, head_outputs)``: the input of every trunk layer and of
-            the heads (``obs``, then each hidden activation ``(B, hidden[i])``), and the heads' outputs before
-            ``tanh`` ``(B, action_dim)``.
-        """
-        inputs = [obs]
-        for weight, bias in self.trunk_layers:
-            inputs.append(self.activation.forward(F.linear(inputs[-1], weight, bias)))
-        features = inputs[-1]
-        if len(segments) == 1:
-            weight, bias = self.head_layers[segments[0][0]]
-            out = F.linear(features, weight, bias)
-        else:
-            out = th.cat(
-                [
-                    F.linear(features[start:stop], self.head_layers[k][0], self.head_layers[k][1])
-                    for k, start, stop in segments
-                ]
-            )
-        return (th.tanh(out) if self.squash else out), inputs, out
-
-    def output_gradients(
-        self,
-        inputs: list[th.Tensor],
-        action: th.Tensor,
-        grad_action: th.Tensor,
-        segments: list[Segment],
-        grad_outputs: th.Tensor | None = None,
-    ) -> list[th.Tensor]:
-        """Explicit backward pass of ``grad_action`` for all rows: every layer's pre-activation gradient ``dZ``.
-
-        Rows never mix in an MLP, so one backward pass gives every layer's ``dZ`` for all rows at the current
-        parameters; skill ``k``'s weight gradients are then ``dZ[rows_k].T @ input[rows_k]`` over its
-        rows alone (the gradient of skill ``k``'s loss alone, for the FLOPs of one backward pass), needing no
-        parameter.
-
-        :param inputs: the layer inputs returned by :meth:`forward_for_backward` (same ``segments``).
-        :param action: ``(B, action_dim)``, the actions it returned.
-        :param grad_action: ``(B, action_dim)``, dLoss/daction (each row already weighted by its skill's loss).
-        :param segments: as for :meth:`forward_for_backward`.
-        :param grad_outputs: optional ``(B, action_dim)`` extra gradient with respect to the heads' outputs before
-            ``tanh`` (a loss term on them, e.g. SkillDDPG's ``preactivation_penalty``).
-        :return: ``dZ`` of every trunk layer, input side first, then of the heads' outputs ``(B, action_dim)``.
-        """
-        grad_out = _tanh_backward(grad_action, action) if self.squash else grad_action
-        if grad_outputs is not None:
-            grad_out = grad_out + grad_outputs
-        trunk_layers = self.trunk_layers
-        backward = self.activation.backward
-        if len(segments) == 1:
-            grad_hidden = grad_out.mm(self.head_layers[segments[0][0]][0])
-        else:
-            sizes = [stop - start for _, start, stop in segments]
-            grad_hidden = th.empty_like(inputs[-1])
-            for (k, _, _), grad_part, hidden_part in zip(
-                segments, grad_out.split(sizes), grad_hidden.split(sizes), strict=True
-            ):
-                th.mm(grad_part, self.head_layers[k][0], out=hidden_part)
-        grad_zs = [grad_out]  # collected from the output down, reversed at the end
-        for index in range(len(trunk_layers) - 1, -1, -1):
-            grad_z = backward(grad_hidden, inputs[index + 1])
-            grad_zs.append(grad_z)
-            if index > 0:
-                grad_hidden = grad_z.mm(trunk_layers[index][0])
-        return grad_zs[::-1]
+        return out
 
 
 def one_hot_preferences(n_discrete: int, like: th.Tensor) -> th.Tensor:
@@ -653,77 +585,9 @@ class HFOCritic(nn.Module):
             )
         return th.cat((action, th.sin(angles), th.cos(angles)), dim=1)
 
-    def _encoded_gradient_to_action(self, grad_seen: th.Tensor, seen: th.Tensor) -> th.Tensor:
-        """Chain rule through :meth:`encode_action`: ``grad_seen``, d/d(its output) ``(B, action_dim + 2 * n)``,
-        and that output ``seen`` -> d/d(action) ``(B, action_dim)``."""
-        if self.n_encoded == 0:
-            return grad_seen
-        dim, n = self.action_dim, self.n_encoded
-        sines, cosines = seen[:, dim : dim + n], seen[:, dim + n :]
-        grad_angles = (
-            grad_seen[:, dim : dim + n] * cosines - grad_seen[:, dim + n :] * sines
-        ) * self.encoded_scale
-        return grad_seen[:, :dim].index_add(1, self.encoded_index, grad_angles)
-
     def forward(self, obs: th.Tensor, action: th.Tensor) -> th.Tensor:
         """``obs (B, obs_dim)``, ``action (B, action_dim)`` in the buffer scale -> ``Q (B, 1)``."""
         return self.joint_net(th.cat((self.obs_net(obs), self.encode_action(action, obs)), dim=1))
-
-    def forward_for_backward(self, obs: th.Tensor, action: th.Tensor) -> tuple[th.Tensor, list[th.Tensor]]:
-        """:meth:`forward` (same numbers) keeping every layer's input for :meth:`output_gradients` /
-        :meth:`action_gradient`.
-
-        :return: ``(Q (B, 1), layer_inputs)``: ``obs``, ``[obs features, encoded action]
-            (B, qf[0] + action_dim + 2 * n_encoded)``, then each later hidden activation ``(B, qf[i])``.
-        """
-        layers = self.layers
-        weight, bias = layers[0]
-        features = self.activation.forward(F.linear(obs, weight, bias))
-        inputs = [obs, th.cat((features, self.encode_action(action, obs)), dim=1)]
-        for weight, bias in layers[1:-1]:
-            inputs.append(self.activation.forward(F.linear(inputs[-1], weight, bias)))
-        weight, bias = layers[-1]
-        return F.linear(inputs[-1], weight, bias), inputs
-
-    def output_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
-        """Explicit backward pass of ``grad_q = dLoss/dQ (B, 1)``: every layer's pre-activation gradient ``dZ``,
-        input side first (the last one is ``grad_q``). Layer ``i``'s weight gradient is ``dZ_i.T @ inputs[i]``,
-        its bias gradient the row sum of ``dZ_i``.
-
-        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
-        """
-        layers = self.layers
-        n_features = self.n_features
-        backward = self.activation.backward
-        grad_z = grad_q
-        grad_zs = [grad_z]  # collected from the output down, reversed at the end
-        for index in range(len(layers) - 1, 0, -1):
-            weight = layers[index][0]
-            if index == 1:  # only the features' gradient; the action's is not needed here
-                grad_z = backward(grad_z.mm(weight[:, :n_features]), inputs[1][:, :n_features])
-            else:
-                grad_z = backward(grad_z.mm(weight), inputs[index])
-            grad_zs.append(grad_z)
-        return grad_zs[::-1]
-
-    def action_gradient(self, inputs: list[th.Tensor]) -> th.Tensor:
-        """dQ/da ``(B, action_dim)`` of every row's own ``Q`` (i.e. of ``Q.sum()``), without any weight gradient.
-
-        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
-        """
-        layers = self.layers
-        n_features = self.n_features
-        # d(sum Q)/d(last layer's input) is the output layer's weight row, for every row of the batch.
-        grad_input = layers[-1][0].expand(inputs[0].shape[0], -1)
-        if len(layers) > 2:  # otherwise (qf = [n]) the action enters the output layer
-            for index in range(len(layers) - 2, 0, -1):
-                grad_z = self.activation.backward(grad_input, inputs[index + 1])
-                weight = layers[index][0]
-                # At the action layer only the action's columns: a (B, action_dim) product, not (B, qf[0] + ...).
-                grad_input = grad_z.mm(weight if index > 1 else weight[:, n_features:])
-        else:
-            grad_input = grad_input[:, n_features:]
-        return self._encoded_gradient_to_action(grad_input, inputs[1][:, n_features:])
 
 
 class HFOPolicy(BasePolicy):

@@ -25,24 +25,10 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``kick_only_when_kickable`` leaves it out); one extra critic pass over ``n_discrete * B`` rows.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
-Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on a quiet 2-core VM: 2.1-2.2x
-SB3's ``DDPG`` updates per second with 1 skill, 1.8x with 2, at 1 and 2 threads; see benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of
-through autograd (``HFOActor.forward_for_backward`` / ``output_gradients``,
-``HFOCritic.forward_for_backward`` / ``output_gradients`` / ``action_gradient``: ``F.linear`` forward passes that
-keep each layer's input, then ``dZ @ W`` input gradients with activation derivatives from the kept outputs,
-``dZ.T @ input`` weight gradients and row sums of ``dZ`` as bias gradients). That removes the graph building, the
-autograd engine and ``nn.Module.__call__`` from the hot path, and computes only what is needed: no input gradient
-for the first layer, no critic weight gradient in the actor step, and at the critic's action layer only the
-``(B, action_dim)`` action gradient. Skills: one router call for the states and next states, rows sorted by
-skill, one backward pass gives every layer's ``dZ`` for all rows, and each skill's weight gradients are the
-products over its own rows (the FLOPs of one backward pass), formed right before that skill's Adam step (they need
-no parameter) in buffers reused by every skill and update. All bias gradients of a network come from one product
-``indicator @ [dZ_1 | ... | dZ_n]``. Adam is torch's fused kernel called directly (``adam_step``, state lists
-gathered once, step counters advanced by one ``add_``), the targets move in one ``torch._foreach_lerp_``,
-statistics are summed in place by small products (no per-update ``.item()`` or ``.mean()``) and
-``set_training_mode`` writes the flags without ``nn.Module.train``'s recursion. What remains is mostly matrix
-products (~1.9 M multiply-adds per sample and update at 400-300-200), the Adam steps (one per optimiser: with 2
-skills two of them over the trunk, each streaming its own moments) and the target update.
+The update above is :meth:`SkillDDPG._autograd_update`, written with autograd in the style of SB3's
+``TD3.train``. By default (``fast_update=True``) training runs the same update back-propagated by hand, with
+torch's fused Adam kernel called directly (:mod:`sb3_hfo.skill_ddpg.fast_update`, about twice SB3's ``DDPG``
+updates per second with one skill); ``tests/test_skill_ddpg.py`` checks that both give the same parameters.
 
 Exploration (``_sample_action``): SB3's random warm-up (``learning_starts``) and ``action_noise`` as usual, then
 epsilon-greedy over the discrete actions of a parameterised flat action (the action space's hybrid layout,
@@ -68,7 +54,7 @@ import io
 import math
 import os
 import pathlib
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from typing import Any, ClassVar, TypeVar
 
 import numpy as np
@@ -83,12 +69,15 @@ from stable_baselines3.common.utils import (
     ConstantSchedule,
     FloatSchedule,
     LinearSchedule,
+    polyak_update,
     update_learning_rate,
 )
+from torch.nn import functional as F
 
 from hfo2d.action_layout import action_layout, hfo_flat_action_space
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
-from sb3_hfo.skill_ddpg.policies import HFOPolicy, Segment
+from sb3_hfo.skill_ddpg.fast_update import FastUpdate
+from sb3_hfo.skill_ddpg.policies import HFOPolicy
 
 __all__ = [
     "DISCRETE_TARGETS",
@@ -96,7 +85,6 @@ __all__ = [
     "TORCH_THREAD_VARIABLES",
     "TRAINING_THREADS",
     "SkillDDPG",
-    "adam_step",
     "training_threads",
 ]
 
@@ -116,127 +104,6 @@ REMOVED_POLICY_OPTIONS: dict[str, object] = {"n_critics": 1}
 # Layout of the running sums of training statistics (one row of a tensor, summed over updates).
 _STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3
 _N_GLOBAL_STATS = 4
-# Bound on SkillDDPG's cache of minibatch layouts (one per split of the batch between skills).
-_MAX_CACHED_LAYOUTS = 4096
-# (segments, row_weight, skill_weight, mean_weight): see SkillDDPG._skill_layout.
-_Layout = tuple[list[Segment], th.Tensor | float, th.Tensor, th.Tensor, th.Tensor]
-
-# torch's fused Adam kernel (an ATen op, present since torch 2.0); used directly by adam_step.
-_HAS_FUSED_ADAM = hasattr(th, "_fused_adam_")
-
-
-class _FusedAdamState:
-    """What :func:`adam_step`'s direct path needs of one optimiser's state for one parameter list, gathered once.
-
-    The step counters of the parameters are rebound to views of one 1-D tensor (same values, dtype and device), so
-    that one ``add_`` advances them all: ``torch._foreach_add_`` over 0-dim CPU tensors falls back to one ``add_``
-    per tensor (~18 us for 8 of them). ``Adam.step``, ``state_dict`` and saving see ordinary 0-dim step tensors.
-    Valid while ``optimizer.state`` is the same object (``load_state_dict`` replaces it) and holds these tensors.
-    """
-
-    __slots__ = ("exp_avg_sqs", "exp_avgs", "ones", "params", "state", "step_views", "steps")
-
-    def __init__(self, optimizer: th.optim.Optimizer, params: list[th.Tensor]) -> None:
-        states = optimizer.state
-        param_states = [states[param] for param in params]
-        self.state = states
-        self.params = params
-        self.steps = th.stack([state["step"] for state in param_states])
-        self.step_views = list(self.steps.unbind())
-        # Adding a tensor of ones: ``add_(1)`` would convert the wrapped Python scalar on every call.
-        self.ones = th.ones_like(self.steps)
-        for state, view in zip(param_states, self.step_views, strict=True):
-            state["step"] = view
-        self.exp_avgs = [state["exp_avg"] for state in param_states]
-        self.exp_avg_sqs = [state["exp_avg_sq"] for state in param_states]
-
-    def valid_for(self, optimizer: th.optim.Optimizer, params: list[th.Tensor]) -> bool:
-        return self.state is optimizer.state and self.params is params
-
-
-class _GradientBuffers:
-    """Gradient tensors reused from one update to the next for parameters laid out ``[W_1, b_1, ..., W_n, b_n]``.
-
-    One set of weight-gradient tensors, and the bias gradients of up to ``n_rows`` gradients (one per skill with
-    rows) as rows of one ``(n_rows, sum of bias sizes)`` tensor, so that all of them come from one product
-    ``indicator @ [dZ_1 | ... | dZ_n]`` (row ``j`` of ``indicator`` selects gradient ``j``'s minibatch rows)
-    instead of one ``sum`` per layer and skill. ``grads[j]`` is the parameter-ordered list handed to the
-    optimiser for gradient ``j``: the shared weight tensors and row ``j``'s bias views.
-    """
-
-    def __init__(self, params: list[th.Tensor], n_rows: int) -> None:
-        self.weights = [th.empty_like(weight) for weight in params[0::2]]
-        sizes = [bias.numel() for bias in params[1::2]]
-        self.biases = params[1].new_empty(n_rows, sum(sizes))
-        self.first_rows = [self.biases[:n] for n in range(1, n_rows + 1)]
-        self.grads: list[list[th.Tensor]] = []
-        for row in self.biases:
-            views = row.split(sizes)
-            self.grads.append([tensor for pair in zip(self.weights, views, strict=True) for tensor in pair])
-
-    def bias_gradients(self, indicator: th.Tensor, grad_zs: list[th.Tensor]) -> None:
-        """Row ``j`` of the bias gradients: the sums of every ``dZ`` over the rows that ``indicator[j]`` selects."""
-        th.mm(indicator, th.cat(grad_zs, dim=1), out=self.first_rows[indicator.shape[0] - 1])
-
-    def weight_gradients(self, parts: Sequence[tuple[th.Tensor, th.Tensor]]) -> None:
-        """``dZ.T @ input`` of every layer, for ``parts`` = ``(dZ.T, input)`` of each layer (rows of one gradient)."""
-        for (grad_z_t, layer_input), out in zip(parts, self.weights, strict=True):
-            th.mm(grad_z_t, layer_input, out=out)
-
-
-def adam_step(optimizer: th.optim.Optimizer, params: list[th.Tensor], grads: Sequence[th.Tensor]) -> None:
-    """One step of ``optimizer`` on ``params`` with gradients ``grads`` (same order as the optimizer's params).
-
-    For a fused ``torch.optim.Adam`` with one parameter group, no hooks and plain settings, whose state exists (after
-    its first step), this calls the fused kernel directly: exactly what ``Adam.step`` would run, without its ~0.15 ms
-    of Python bookkeeping per call. The optimizer's state tensors are updated in place, so ``state_dict`` / save /
-    load are unaffected. The state lists are gathered once per (optimizer state, ``params`` list object): pass the
-    same list object on every call. Any other case goes through ``optimizer.step()``.
-    """
-    groups = optimizer.param_groups
-    group = groups[0]
-    fast = (
-        _HAS_FUSED_ADAM
-        and type(optimizer) is th.optim.Adam
-        and len(groups) == 1
-        and group.get("fused")
-        and not (group["amsgrad"] or group["maximize"] or group.get("decoupled_weight_decay"))
-        and not (optimizer._optimizer_step_pre_hooks or optimizer._optimizer_step_post_hooks)
-    )
-    if fast:
-        cached: _FusedAdamState | None = optimizer.__dict__.get("_sb3_hfo_fused_adam")
-        if cached is None or not cached.valid_for(optimizer, params):
-            states = optimizer.state
-            cached = None
-            if all(param in states for param in params):
-                cached = _FusedAdamState(optimizer, params)
-                optimizer.__dict__["_sb3_hfo_fused_adam"] = cached
-        if cached is not None:
-            beta1, beta2 = group["betas"]
-            cached.steps.add_(cached.ones)
-            th._fused_adam_(
-                params,
-                grads if isinstance(grads, list) else list(grads),
-                cached.exp_avgs,
-                cached.exp_avg_sqs,
-                [],
-                cached.step_views,
-                amsgrad=False,
-                lr=group["lr"],
-                beta1=beta1,
-                beta2=beta2,
-                weight_decay=group["weight_decay"],
-                eps=group["eps"],
-                maximize=False,
-            )
-            return
-    for param, grad in zip(params, grads, strict=True):
-        param.grad = grad
-    optimizer.step()
-    for param in params:
-        param.grad = None
-
-
 #: torch threads ``SkillDDPG.learn`` trains with unless the user has chosen a count: what ``python -m
 #: sb3_hfo.train`` passes to rl-zoo3 (``--num-threads 1``, :func:`sb3_hfo.zoo.default_algo_argv`).
 TRAINING_THREADS = 1
@@ -329,6 +196,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         what is played, so under ``"chosen"`` the parameters played were ones the actor had not trained in that state
         in 31-51 % of the greedy steps of three committed agents (research/RESULTS.md, session 12). Needs
         ``mask_unused_parameters``.
+    :param fast_update: train with the hand-derived update (:mod:`sb3_hfo.skill_ddpg.fast_update`, the same
+        maths as :meth:`_autograd_update`, about twice as fast) where it applies; ``False``: the autograd update.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics, the goal rate among them: SB3's
         ``rollout/success_rate`` from the env's ``info["is_success"]`` (HFO's GOAL status), the one name the
         training goal rate is logged under.
@@ -371,6 +240,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         preactivation_penalty: float = 0.0,
         discrete_target: str = "actor",
         parameter_loss: str = "chosen",
+        fast_update: bool = True,
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -419,6 +289,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.parameter_loss = parameter_loss
         # SB3's load builds the model with _init_setup_model=False, then sets the saved attributes.
         self._loading = not _init_setup_model
+        self.fast_update = fast_update
         if _init_setup_model:
             self._setup_model()
 
@@ -542,15 +413,13 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.critic = self.policy.critic
         self.critic_target = self.policy.critic_target
         # Fixed parameter lists: module.to(device) and load_state_dict keep the same Parameter objects.
-        self._critic_params = list(self.critic.parameters())
-        self._online_params = [*self.actor.parameters(), *self._critic_params]
+        self._online_params = [*self.actor.parameters(), *self.critic.parameters()]
         self._target_params = [*self.actor_target.parameters(), *self.critic_target.parameters()]
         self._skill_params = [self.policy.skill_parameters(k) for k in range(self.policy.n_skills)]
         self._skill_optimizers = self.policy.actor_optimizers
-        self._layouts: dict[tuple[Any, ...], _Layout] = {}
-        # Every skill's gradients are written into the same tensors in turn (all skills' shapes are the same).
-        self._actor_grads = _GradientBuffers(self._skill_params[0], self.policy.n_skills)
-        self._critic_grads = _GradientBuffers(self._critic_params, 1)
+        self._fast_update = (
+            FastUpdate(self) if self.fast_update and FastUpdate.applies_to(self.policy) else None
+        )
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
@@ -589,183 +458,114 @@ class SkillDDPG(OffPolicyAlgorithm):
             self._update(batch)
         self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
 
-    @th.no_grad()
     def _update(self, batch: ReplayBufferSamples) -> None:
-        """One critic, actor and target update on ``batch`` (observations ``(B, obs_dim)``, actions ``(B, A)``
-        in [-1, 1], rewards / dones ``(B, 1)``), back-propagated explicitly (no autograd graph)."""
-        policy = self.policy
-        actor, critic = self.actor, self.critic
+        """One update on ``batch``: the fast update where it applies, else :meth:`_autograd_update` (same maths)."""
+        if self._fast_update is not None:
+            self._fast_update.update(batch)
+        else:
+            self._autograd_update(batch)
+
+    def _autograd_update(self, batch: ReplayBufferSamples) -> None:
+        """One critic, actor and target update, written with autograd: what SkillDDPG computes (module docstring).
+
+        ``batch``: observations ``(B, obs_dim)``, actions ``(B, A)`` in [-1, 1], rewards / dones ``(B, 1)``.
+        """
+        policy, actor, critic = self.policy, self.actor, self.critic
         obs = batch.observations
-        batch_size = obs.shape[0]
 
-        # Skills of the states and of the next states, from one router call.
-        skills = next_skills = None
-        if policy.n_skills > 1:
-            both = policy.route(th.cat((obs, batch.next_observations)))
-            assert both is not None
-            skills, next_skills = both[:batch_size], both[batch_size:]
+        # 1. Critic (eq. 5, 6): regress Q(s, a) on the TD target.
+        with th.no_grad():
+            target_q = self._critic_target(batch)
+        current_q = critic(obs, policy.critic_action(batch.actions))
+        critic_loss = F.mse_loss(current_q, target_q)
+        policy.critic_optimizer.zero_grad()
+        critic_loss.backward()
+        policy.critic_optimizer.step()
 
-        # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B.
-        target_q = self._critic_target(batch, next_skills)
-        current_q, critic_inputs = critic.forward_for_backward(obs, policy.critic_action(batch.actions))
-        error = current_q - target_q
-        grad_q = error * (2.0 / batch_size)
-        critic_grad_zs = critic.output_gradients(critic_inputs, grad_q)
-        critic_grads = self._critic_grads
-        critic_grads.weight_gradients(
-            [(g.t(), x) for g, x in zip(critic_grad_zs, critic_inputs, strict=True)]
-        )
-        critic_grads.bias_gradients(self._batch_ones(batch_size, obs), critic_grad_zs)
-        self._stat_views[0].addmm_(error.t(), grad_q, alpha=0.5)  # the loss: error . grad_q / 2
-        adam_step(policy.critic_optimizer, self._critic_params, critic_grads.grads[0])
-
-        # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
+        # 2. Actor (eq. 7), against the updated critic: skill k's loss is -mean over its rows of the value
+        # (plus the pre-activation penalty), its gradient taken over trunk + head k; all skills' gradients at
+        # the same parameters, then each skill's Adam steps.
+        skills = policy.route(obs)
         if skills is None:
-            counts: tuple[int, ...] = (batch_size,)
-        else:
-            # Rows sorted by skill, so that each skill's rows are one slice.
-            obs = obs.index_select(0, th.argsort(skills, stable=True))
-            counts = tuple(th.bincount(skills, minlength=policy.n_skills).tolist())
-        segments, row_weight, skill_weight, mean_weight, indicator = self._skill_layout(counts, obs)
-        actor_actions, actor_inputs, actor_outputs = actor.forward_for_backward(obs, segments)
-        parameter_mask = policy.parameter_mask(actor_actions)
-        if parameter_mask is None:
-            actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions)
-            dq_da = critic.action_gradient(q_inputs)
-        else:  # Q sees a * mask, so dQ/da = mask * dQ/d(a * mask): no gradient for parameters the env ignores
-            actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions * parameter_mask)
-            dq_da = critic.action_gradient(q_inputs) * parameter_mask
-            if self.parameter_loss == "each_action":
-                dq_da = self._each_action_gradient(obs, actor_actions, dq_da)
-        if policy.inverting_gradients:
-            dq_da = self._invert_gradients(dq_da, actor_actions)
-        # d(lambda * mean_k ||z||^2)/dz = 2 lambda z / n_k = -2 lambda z * row_weight.
-        grad_outputs = (
-            actor_outputs * (row_weight * (-2.0 * self.preactivation_penalty))
-            if self.preactivation_penalty > 0
-            else None
-        )
-        grad_zs = actor.output_gradients(
-            actor_inputs, actor_actions, dq_da * row_weight, segments, grad_outputs=grad_outputs
-        )
-        # All skills' dZ were taken at the same parameters and their weight gradients need no parameter: all bias
-        # gradients come from one product, then each skill with rows takes its weight gradients and its Adam step
-        # in turn, in the same buffers (hot in cache for the step).
-        buffers = self._actor_grads
-        buffers.bias_gradients(indicator, grad_zs)
-        if len(segments) == 1:
-            parts = [[(g.t(), x) for g, x in zip(grad_zs, actor_inputs, strict=True)]]
-        else:
-            sizes = [stop - start for _, start, stop in segments]
-            per_layer = [
-                zip(g.t().split(sizes, dim=1), x.split(sizes), strict=True)
-                for g, x in zip(grad_zs, actor_inputs, strict=True)
-            ]
-            parts = list(zip(*per_layer, strict=True))
-        for row, ((k, _, _), skill_parts) in enumerate(zip(segments, parts, strict=True)):
-            buffers.weight_gradients(skill_parts)
-            adam_step(self._skill_optimizers[k], self._skill_params[k], buffers.grads[row])
+            skills = th.zeros(obs.shape[0], dtype=th.long, device=obs.device)
+        preactivations = actor.head_outputs(obs, skills)
+        actions = th.tanh(preactivations) if actor.squash else preactivations
+        value, actor_q = self._actor_value(obs, actions)
+        row_loss = self.preactivation_penalty * preactivations.square().sum(dim=1, keepdim=True) - value
+        gradients = {}
+        for k in range(policy.n_skills):
+            rows = skills == k
+            if rows.any():
+                gradients[k] = th.autograd.grad(
+                    row_loss[rows].mean(), self._skill_params[k], retain_graph=True
+                )
+        for k, skill_gradients in gradients.items():
+            for param, gradient in zip(self._skill_params[k], skill_gradients, strict=True):
+                param.grad = gradient
+            self._skill_optimizers[k].step()
+            self._skill_optimizers[k].zero_grad()
             self._skill_updates[k] += 1
 
-        # 3. Targets.
-        th._foreach_lerp_(self._target_params, self._online_params, self.tau)
+        # 3. Target networks.
+        with th.no_grad():
+            polyak_update(self._online_params, self._target_params, self.tau)
+            critic_loss_sum, actor_loss, max_q, mean_q, skill_losses = self._stat_views
+            critic_loss_sum += critic_loss
+            actor_loss -= actor_q.mean()
+            max_q += current_q.max()
+            mean_q += current_q.mean()
+            for k in gradients:
+                skill_losses[k] -= actor_q[skills == k].mean()
+            self._stat_updates += 1
 
-        # Statistics, summed in place into views of self._stat_sums (no synchronisation; the critic loss above).
-        # Means are products with the (B, 1) column of 1 / B, and skill k's loss -mean_k Q is row k of
-        # skill_weight @ Q: one kernel each, where .mean() would also convert its divisor every time.
-        _, actor_loss, max_q, mean_q, skill_losses = self._stat_views
-        actor_loss.addmm_(actor_q.t(), mean_weight, alpha=-1.0)
-        max_q.add_(current_q.max())
-        mean_q.addmm_(current_q.t(), mean_weight)
-        skill_losses.addmm_(skill_weight, actor_q)
-        self._stat_updates += 1
+    def _actor_value(self, obs: th.Tensor, actions: th.Tensor) -> tuple[th.Tensor, th.Tensor]:
+        """What the actor ascends, per row ``(B, 1)``, and the critic's value of ``actions`` (detached).
 
-    def _each_action_gradient(self, obs: th.Tensor, actor_actions: th.Tensor, dq_da: th.Tensor) -> th.Tensor:
-        """``parameter_loss="each_action"``: ``dq_da (B, A)``'s preference columns (the actor's own action) with
-        every discrete action ``k``'s parameter columns replaced by ``dQ(s, e_k, x_k)/dx_k``, the gradient of ``k``
-        played with the actor's parameters (preferences ``e_k``: +1 for ``k``, -1 for the others; the other
-        actions' parameters at 0). Zero for KICK's parameters where :meth:`HFOPolicy.kick_unavailable`."""
-        policy = self.policy
-        rows, own_masks = policy.discrete_action_rows, policy.own_parameter_masks
-        assert rows is not None and own_masks is not None
-        n_discrete, batch_size = rows.shape[0], obs.shape[0]
-        own_masks = own_masks.unsqueeze(1)
-        # (n, B, A): block k is the actor's action played as discrete action k, as the critic sees it; the n * B
-        # rows go through one critic pass.
-        candidates = th.addcmul(rows.unsqueeze(1), actor_actions.unsqueeze(0), own_masks)
-        _, q_inputs = self.critic.forward_for_backward(
-            obs.repeat(n_discrete, 1), candidates.view(n_discrete * batch_size, -1)
-        )
-        grads = self.critic.action_gradient(q_inputs).view(n_discrete, batch_size, -1) * own_masks
-        no_kick = policy.kick_unavailable(obs)
-        if no_kick is not None:
-            grads[policy.action_layout.ball_action].masked_fill_(no_kick.unsqueeze(1), 0.0)  # type: ignore[union-attr]
-        result = grads.sum(dim=0)
-        result[:, :n_discrete] = dq_da[:, :n_discrete]
-        return result
-
-    def _skill_layout(self, counts: tuple[int, ...], like: th.Tensor) -> _Layout:
-        """Segments and loss weights of a minibatch sorted by skill with ``counts[k]`` rows of skill ``k``.
-
-        :return: ``(segments, row_weight, skill_weight (n_skills, B), mean_weight (B, 1), indicator)``: ``row_weight`` is
-            ``-1 / n_k`` on skill ``k``'s rows (the derivative of ``-mean_k Q`` by each row's ``Q``; a ``(B, 1)``
-            tensor, or the float ``-1 / B`` with one skill), ``skill_weight[k]`` is ``row_weight`` restricted to
-            skill ``k``'s rows (zero elsewhere), so that ``skill_weight @ Q`` gives every skill's loss, and
-            ``mean_weight`` is ``1 / B`` on every row; ``indicator (n_segments, B)`` is 1 on segment ``j``'s rows
-            in row ``j`` (0 elsewhere). Cached by ``counts``: a batch of 32 split between 2 skills
-            has 33 layouts, and building one takes ~10 small tensor operations.
+        ``parameter_loss="chosen"``: ``Q(s, mu(s))``. ``"each_action"``: ``Q`` of the actor's preferences with
+        its parameters held, plus ``Q(s, e_k, x_k(s))`` for every discrete action ``k`` (KICK's left out where the
+        ball is out of reach with ``kick_only_when_kickable``). With inverting gradients, a surrogate whose
+        gradient is the rescaled ``dQ/da`` pushed through the actor.
         """
-        key = (counts, like.dtype, like.device)
-        layout = self._layouts.get(key)
-        if layout is None:
-            segments: list[Segment] = []
-            batch_size = sum(counts)
-            skill_weight = th.zeros(len(counts), batch_size, dtype=like.dtype, device=like.device)
-            start = 0
-            for k, n_rows in enumerate(counts):
-                if n_rows > 0:
-                    segments.append((k, start, start + n_rows))
-                    skill_weight[k, start : start + n_rows] = -1.0 / n_rows
-                    start += n_rows
-            row_weight = -1.0 / batch_size if len(counts) == 1 else skill_weight.sum(0).unsqueeze(1)
-            mean_weight = th.full((batch_size, 1), 1.0 / batch_size, dtype=like.dtype, device=like.device)
-            indicator = (skill_weight[[k for k, _, _ in segments]] != 0).to(like.dtype)
-            if len(self._layouts) >= _MAX_CACHED_LAYOUTS:
-                self._layouts.clear()
-            layout = self._layouts[key] = (segments, row_weight, skill_weight, mean_weight, indicator)
-        return layout
+        policy, critic = self.policy, self.critic
+        actor_q = critic(obs, policy.critic_action(actions))
+        value = actor_q
+        if self.parameter_loss == "each_action":
+            n_discrete = policy.n_discrete_actions
+            held = th.cat((actions[:, :n_discrete], actions[:, n_discrete:].detach()), dim=1)
+            value = critic(obs, policy.critic_action(held))
+            no_kick = policy.kick_unavailable(obs)
+            rows, own_masks = policy.discrete_action_rows, policy.own_parameter_masks
+            assert rows is not None and own_masks is not None
+            for k in range(n_discrete):
+                value_k = critic(obs, rows[k] + actions * own_masks[k])
+                if no_kick is not None and k == policy.action_layout.ball_action:  # type: ignore[union-attr]
+                    value_k = value_k.masked_fill(no_kick.unsqueeze(1), 0.0)
+                value = value + value_k
+        if policy.inverting_gradients:
+            (dq_da,) = th.autograd.grad(value.sum(), actions, retain_graph=True)
+            inverted = self._invert_gradients(dq_da, actions.detach())
+            value = (inverted * actions).sum(dim=1, keepdim=True)
+        return value, actor_q.detach()
 
-    def _batch_ones(self, batch_size: int, like: th.Tensor) -> th.Tensor:
-        """``(1, batch_size)`` ones: the indicator of a gradient over all rows (cached)."""
-        return self._skill_layout((batch_size,), like)[4]
-
-    def _critic_target(self, batch: ReplayBufferSamples, next_skills: th.Tensor | None = None) -> th.Tensor:
-        """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``max_k Q'(s', e_k, x'(s'))`` with
-        ``discrete_target="max"``; ``gamma^n`` from ``batch.discounts``
-        with n-step returns), mixed
-        with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose return is known when
-        ``mc_mixing = beta > 0``. ``next_skills``: the routed skills of the next states
-        (``None``: routed here). Call under ``torch.no_grad()``."""
+    def _critic_target(self, batch: ReplayBufferSamples) -> th.Tensor:
+        """``y (B, 1) = r + gamma^n (1 - done) Q'(s', mu'(s'))`` (eq. 6; ``Q'`` of the best discrete action at the
+        target actor's parameters with ``discrete_target="max"``), mixed as ``y + beta (G - y)`` with the
+        episode's return ``G`` where it is known, when ``mc_mixing = beta > 0``."""
         policy = self.policy
         next_obs = batch.next_observations
-        if next_skills is None:
-            next_skills = policy.route(next_obs)
-        next_actions = self.actor_target.forward(next_obs, next_skills)
+        next_actions = self.actor_target(next_obs, policy.route(next_obs))
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
         if self.discrete_target == "max":
             _, next_values = policy.discrete_values(next_obs, next_actions, self.critic_target)
             next_q = next_values.max(dim=1, keepdim=True).values
         else:
-            next_q, _ = self.critic_target.forward_for_backward(next_obs, policy.critic_action(next_actions))
-        if batch.discounts is None:
-            # (1 - done) is 0 or 1, so this is r + gamma * (1 - done) * Q' with the same rounding, in one kernel.
-            target_q = th.addcmul(batch.rewards, 1 - batch.dones, next_q, value=self.gamma)
-        else:
-            target_q = batch.rewards + (1 - batch.dones) * batch.discounts * next_q
+            next_q = self.critic_target(next_obs, policy.critic_action(next_actions))
+        discounts = self.gamma if batch.discounts is None else batch.discounts
+        target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
         if self.mc_mixing > 0:
             mixed: MonteCarloReplayBufferSamples = batch  # type: ignore[assignment]
-            target_q += self.mc_mixing * mixed.mc_valid * (mixed.mc_returns - target_q)
+            target_q = target_q + self.mc_mixing * mixed.mc_valid * (mixed.mc_returns - target_q)
         return target_q
 
     @staticmethod
@@ -950,13 +750,10 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_online_params",
             "_target_params",
             "_skill_params",
-            "_critic_params",
             "_skill_optimizers",
             "_stat_sums",
             "_stat_views",
-            "_layouts",
-            "_actor_grads",
-            "_critic_grads",
+            "_fast_update",
             "_loading",
         ]
 
