@@ -265,9 +265,8 @@ class ActionNoiseDecayCallback(BaseCallback):
 
     SB3's ``action_noise`` keeps its ``sigma`` fixed, and rl-zoo3's ``noise_std`` sets it once. Wide noise early on
     shows the critic many kicks; late in training the same noise spoils aimed kicks, and the behaviour policy (whose
-    returns ``mc_mixing`` mixes into the targets) stays far worse than the greedy one. On E1 annealing the noise and
-    epsilon together lifted the greedy scoring rate from 36-52 % to 56-92 % over the same steps
-    (research/RESULTS.md, session 3). This callback moves every noise's ``sigma`` from its value at the start of
+    returns ``mc_mixing`` mixes into the targets) stays far worse than the greedy one; annealing the noise and
+    epsilon together helps (research/RESULTS.md). This callback moves every noise's ``sigma`` from its value at the start of
     each ``learn`` call to ``final_std`` over the first ``decay_fraction`` of that call (the schedule of SB3's
     epsilon), then holds it, and logs it as ``rollout/action_noise_std``.
 

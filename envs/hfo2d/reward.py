@@ -27,7 +27,7 @@ Shaped toward the gap (``"shaped_gap"``; not HFO's, an option of this package): 
 centre, i.e. 3.5 m beside a goalie standing at the centre, on the ball's side when the gaps are equal (within
 ``GAP_TIE_TOLERANCE``). Without a goalie (or with its slot empty) it equals ``"shaped"``. Why: the goal-centre term
 pays for moving the ball straight at a goalie on the goal line, and agents trained with it against the static
-keeper shoot at him from close range (research/RESULTS.md, sessions 8-9). The target is computed from the
+keeper shoot at him from close range (research/RESULTS.md). The target is computed from the
 features alone (goal centre, posts, ball and goalie landmarks, all in the agent's body frame).
 
 Shaped toward the gap, lost shots refunded (``"shaped_gap_refund"``; not HFO's, an option of this package):
@@ -36,7 +36,7 @@ or OUT_OF_TIME after 100 untouched cycles) its last step takes back the ball-to-
 was last kickable by the agent. Progress the agent carried the ball through (dribbling) stays paid; a kick's
 progress is kept only when it ends in a goal or the agent reaches the ball again. Why: under ``"shaped_gap"`` a
 long shot into the keeper's arms collects most of an episode's shaping early, which a discount below 1 favours
-over dribbling closer (research/RESULTS.md, session 15).
+over dribbling closer (research/RESULTS.md).
 
 Sparse: 1 on GOAL, else 0 (gym-soccer's Soccer-v0, hfo_reference §6.3).
 """

@@ -32,71 +32,44 @@ Inverting gradients (Hausknecht & Stone 2016, the paper's Figure 2 alternative):
 the actor's output layer is linear (no ``tanh``); the algorithm rescales dQ/da to keep actions inside [-1, 1] and
 acting clips actions to [-1, 1]. Figure 2's 1024-512-256-128 network is ``net_arch=[1024, 512, 256, 128]``.
 
-Unused parameters (an option beyond the paper, off by default): in a parameterised action only the chosen discrete
-action's parameters reach the environment, yet the paper's critic sees all of them, so dQ/da pushes the others
-along whatever the critic happens to have learnt about them. In HFO they drift into ``tanh``'s saturation (the
-kick direction of a trained E1 actor sits at +180 degrees in every probed state, research/RESULTS.md) and pass
-back no gradient when they are finally used. With ``mask_unused_parameters`` the critic receives the action with
-every other discrete action's parameters set to 0 (the middle of the [-1, 1] scale), from the replay buffer and
-from the actor alike, so their gradient is exactly zero and Q depends only on what the environment executed
-(the zeroing of other actions' parameters in Bester et al. 2019's multi-pass Q-network, MP-DQN).
+Options beyond the paper, each off by default; each says why in one sentence, and the measurements are in
+research/RESULTS.md (the results page, docs/results.md, gives the committed models' figures):
 
-The critic picks the discrete action (an option beyond the paper, off by default): with
-``discrete_choice="critic"`` acting (``predict``, and so SB3's rollouts) keeps the actor's parameters but tries
-each discrete action ``j`` as the one-hot preference vector (+1 for ``j``, -1 for the others: the form in which
-epsilon-greedy exploration with ``exploration_keep_parameters`` stores its steps) and plays the one the first
-critic values most, as P-DQN / MP-DQN choose (Xiong et al. 2018; Bester et al. 2019). The actor's own preferences
-are still trained and are what ``"actor"`` (the paper) plays. The option may be switched on a trained model
-(``model.policy.discrete_choice = "critic"``); it pays off with ``mask_unused_parameters``, whose critic values
-each discrete action by its own parameters (research/RESULTS.md, session 6).
-
-No kick without the ball (an option beyond the paper, off by default): rcssserver ignores a kick while the ball is
-out of the kickable area, so the state does not change and a deterministic policy that picks KICK there repeats
-it until HFO's 100-cycle limit (9 of the 17 OUT_OF_TIME episodes in a 300-episode trace of a critic's-choice
-E1 agent, session 7). With ``kick_only_when_kickable=True`` KICK is never the greedy choice while the
-observation's "able to kick" feature (:data:`KICKABLE_FEATURE_INDEX`) is -1: the critic's choice and SkillDDPG's
-``discrete_target="max"`` leave it out of their maximum, and the actor's choice falls to the larger of the DASH
-and TURN preferences (as a one-hot vector) where KICK was the largest. Invalid-action masking, as in
-sb3-contrib's MaskablePPO; exploration (epsilon-greedy, SB3's warm-up) may still try such kicks.
-
-Fourier features of the directions for the critic (an option beyond the paper, off by default): on the [-1, 1]
-scale a 5-degree change of the kick direction moves the critic's input by 0.028, and a static keeper blocks only
-a few degrees of the goal from a shot taken 30 m away. On the shots that x3's static-keeper agent had caught, its
-critic valued kicking 0-5 degrees from the keeper's bearing highest, changing by less than 0.3 over +-10 degrees
-(``research/probes/critic_kick_scan.py``, session 8), so the actor shot at the keeper. With
-``critic_direction_frequencies=(k1, k2, ...)`` the critic also sees ``sin(k * theta)`` and ``cos(k * theta)`` of
-each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions of
-its input (Tancik et al. 2020), used on value networks by Yang et al. 2022. The actor is unchanged; dQ/da goes
-through the features by the chain rule.
-
-Kick direction relative to landmarks for the critic (beyond the paper, off by default; needs the Fourier features
-above): with ``critic_kick_relative_to=("goalie", ...)`` the critic also sees ``sin(k * (kick - bearing))`` and
-``cos(k * (kick - bearing))`` for each named landmark's bearing (from the observation's (sin, cos) pair; both angles
-are relative to the body, as rcssserver's kick direction and HFO's bearings are). Why: with the absolute features
-alone, x11's and x12's critics still valued a shot at the static keeper within 0.1 of the best shot past him
-(``research/probes/critic_kick_scan.py``, session 10): "kick minus keeper bearing" is a difference of two inputs that
-the network has to form itself, and at frequency 32 a product of sines. With the relative features x15's critic
-shows a notch at the keeper's bearing (Q - max Q -1.27 there against -0.61 / -0.74 at -10 / +10 degrees) and x15
-scores 96.2 / 89.9 % against the static keeper (two seeds), x12 79.7-89.4 % (research/RESULTS.md, session 10).
-
-The better of the state and its mirror image (beyond the paper, off by default): HFO is symmetric about the
-pitch's long axis (:mod:`hfo2d.symmetry`), so the policy played in the mirror image of the state, its action
-mirrored back, is another policy for the real state, and the critic's value of the mirrored state and action is
-its estimate of that policy's value. With ``mirror_choice=True`` acting (``predict``; not SkillDDPG's training rollouts)
-computes the greedy action in the state and in its mirror image and plays the one the critic values more
-(ties: the unmirrored one); a one-step policy improvement over two policies, decided afresh every step. Why: x27's
-E6 agent scores all its goals in one half of the goal, by one route (research/probes/failure_map.py, session 16). Can be
-switched on a trained model. Needs HFO's low-level features and flat action. ``mirror_margin=m > 0``
-keeps a side (plain or mirrored) through an episode: the first step of an episode takes the better side, later
-steps switch only when the other side's value exceeds the kept side's by more than ``m`` (``inf``: never). Why: a
-choice made afresh every step may alternate between the two routes; with ``m = 0.1`` x27 scores 79.25 % against
-76.3 % over 2,000 episodes (research/RESULTS.md, session 17). The side is carried in ``predict``'s recurrent
-``state`` (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate``
-pass it; a call without ``state`` starts every row afresh, and so do SB3's training rollouts. Neither mends the
-empty goal, where the mirror choice costs some models points. HFO's start distribution is not mirror-symmetric
-(:mod:`hfo2d.symmetry`), and one such model's twin scores less from the starts whose mirror image HFO never draws,
-starts its training never saw mirrored; another's twin is as good as the policy and the choice still costs it a
-point (session 17, ``research/probes/mirror_twin.py``).
+* ``mask_unused_parameters``: the critic sees the action with every other discrete action's parameters set to 0
+  (the middle of the [-1, 1] scale), from the replay buffer and from the actor alike, as Bester et al. 2019's
+  multi-pass Q-network (MP-DQN) zeroes them. Why: only the chosen action's parameters reach the environment, and
+  without the mask dQ/da drives the others into ``tanh``'s saturation, from where they pass back no gradient when
+  they are finally used.
+* ``discrete_choice="critic"``: acting keeps the actor's parameters but tries each discrete action ``j`` as the
+  one-hot preference vector (+1 for ``j``, -1 for the others, the form epsilon-greedy exploration with
+  ``exploration_keep_parameters`` stores) and plays the one the critic values most, as P-DQN / MP-DQN choose
+  (Xiong et al. 2018; Bester et al. 2019). Why: with ``mask_unused_parameters`` the critic values each discrete
+  action by its own parameters, which the actor's preferences do not. Can be switched on a trained model.
+* ``kick_only_when_kickable``: KICK is never the greedy choice while the observation's "able to kick" feature
+  (:data:`KICKABLE_FEATURE_INDEX`) is -1; the critic's choice and SkillDDPG's ``discrete_target="max"`` leave it
+  out of their maximum, and the actor's choice falls to its best other preference (invalid-action masking, as in
+  sb3-contrib's MaskablePPO; exploration may still try such kicks). Why: rcssserver ignores a kick out of reach, so
+  a deterministic policy that picks KICK there repeats it until HFO's time limit.
+* ``critic_direction_frequencies=(k1, k2, ...)``: the critic also sees ``sin(k * theta)`` and ``cos(k * theta)``
+  of each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions
+  of its input (Tancik et al. 2020); the actor is unchanged and dQ/da goes through the features by the chain rule.
+  Why: on the [-1, 1] scale a 5-degree change of the kick direction moves the critic's input by 0.028, too little
+  for it to tell a shot past a keeper from one at him.
+* ``critic_kick_relative_to=("goalie", ...)`` (needs the frequencies above): the critic also sees the kick
+  direction relative to each named landmark's bearing (read from the observation's (sin, cos) pair; both angles are
+  relative to the body), at the same frequencies. Why: "kick minus keeper bearing" is otherwise a difference of two
+  inputs the network has to form itself.
+* ``mirror_choice``: HFO is symmetric about the pitch's long axis (:mod:`hfo2d.symmetry`), so the policy played in
+  the mirror image of the state, its action mirrored back, is another policy for the real state; acting
+  (``predict``; not SkillDDPG's training rollouts) computes the greedy action in the state and in its mirror image
+  and plays the one the critic values more (ties: the unmirrored one). Why: a one-step policy improvement over two
+  policies, for agents that score by one route only. Needs HFO's features and flat action; can be switched on a
+  trained model. HFO's start distribution is not mirror-symmetric, and on the empty goal the choice can cost points.
+* ``mirror_margin=m > 0``: the mirror choice keeps a side (plain or mirrored) through an episode and switches only
+  when the other side's value exceeds the kept side's by more than ``m`` (``inf``: never). Why: a choice made
+  afresh every step may alternate between two routes. The side travels in ``predict``'s recurrent ``state``
+  (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate`` pass
+  it; a call without ``state`` starts every row afresh.
 """
 
 from __future__ import annotations

@@ -192,10 +192,9 @@ class SkillDDPG(OffPolicyAlgorithm):
     :param parameter_loss: which continuous parameters the actor trains in a state: ``"chosen"`` (the paper, DDPG
         with the policy's ``mask_unused_parameters``) those of the discrete action its own preferences pick;
         ``"each_action"`` (P-DQN's loss, beyond the paper) every discrete action's, each by the critic's value of
-        that action played with them. With the policy's ``discrete_choice="critic"`` the preferences never pick
-        what is played, so under ``"chosen"`` the parameters played were ones the actor had not trained in that state
-        in 31-51 % of the greedy steps of three committed agents (research/RESULTS.md, session 12). Needs
-        ``mask_unused_parameters``.
+        that action played with them. Why: with the policy's ``discrete_choice="critic"`` the preferences do not
+        pick what is played, so under ``"chosen"`` the parameters played are often ones the actor never trained in
+        that state. Needs ``mask_unused_parameters``.
     :param fast_update: train with the hand-derived update (:mod:`sb3_hfo.skill_ddpg.fast_update`, the same
         maths as :meth:`_autograd_update`, about twice as fast) where it applies; ``False``: the autograd update.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics, the goal rate among them: SB3's
@@ -596,7 +595,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             self._skill_steps += np.bincount(skills, minlength=self.policy.n_skills)
         else:
             self._skill_steps[0] += n_envs
-        # The mirror choice is for evaluation: rollouts act with the plain greedy action (x31: no gain from it).
+        # The mirror choice is for evaluation: rollouts act with the plain greedy action (playing it while training measured no gain).
         with self.policy.mirror_choice_suspended():
             action, buffer_action = super()._sample_action(learning_starts, action_noise, n_envs)
         if self._n_discrete == 0 or self.num_timesteps < learning_starts or self.exploration_rate <= 0.0:
