@@ -121,6 +121,9 @@ OUT_OF_BOUNDS_LEFT = 46  # proximity of x = 0:    1 - 2 * min(x / 52.5, 1)
 OUT_OF_BOUNDS_RIGHT = 47  # proximity of x = 52.5: 1 - 2 * min((52.5 - x) / 52.5, 1)
 OUT_OF_BOUNDS_TOP = 48  # proximity of y = -34:   1 - 2 * min((34 + y) / 68, 1)
 OUT_OF_BOUNDS_BOTTOM = 49  # proximity of y = +34: 1 - 2 * min((34 - y) / 68, 1)
+#: The agent's own x position, as the field-half skill router reads it: the proximity of x = 0 above, positive
+#: exactly when x < 26.25 m (the half of the attacked half-field away from the goal).
+SELF_X = OUT_OF_BOUNDS_LEFT
 BALL_POS_VALID = 50
 BALL_ANGLE_SIN = 51
 BALL_ANGLE_COS = 52
