@@ -376,7 +376,7 @@ class World:
         *,
         pymunk_contacts: bool = False,
     ) -> None:
-        self.params = params
+        self.params = params  # (a property: also derives the per-cycle constants of step())
         self.noise = noise
         self.pymunk_contacts = pymunk_contacts
         self._rng = rng
@@ -408,6 +408,31 @@ class World:
         self._player_shapes: list[pymunk.Circle] = []
 
     # --- set-up ------------------------------------------------------------------------------------
+    @property
+    def params(self) -> ServerParams:
+        """The server parameters; assigning them also recomputes the constants :meth:`step` reads."""
+        return self._params
+
+    @params.setter
+    def params(self, params: ServerParams) -> None:
+        self._params = params
+        sp = params
+        # Products of parameters that step() would otherwise recompute every cycle, each formed with the same
+        # operation as in the rule that uses it (so the floats are the same).
+        smax = sp.stamina_max
+        self._stamina_thresholds = (
+            sp.recover_dec_thr * smax,
+            sp.effort_dec_thr * smax,
+            sp.effort_inc_thr * smax,
+        )
+        bp_limit = sp.ball_size + sp.player_size
+        pp_limit = 2.0 * sp.player_size
+        self._overlap_limits2 = (bp_limit * bp_limit, pp_limit * pp_limit)
+        self._move_params = (
+            (sp.player_size, sp.player_decay, sp.player_rand, sp.player_speed_max, sp.player_accel_max),
+            (sp.ball_size, sp.ball_decay, sp.ball_rand, sp.ball_speed_max, sp.ball_accel_max),
+        )
+
     @property
     def rng(self) -> np.random.Generator:
         """The generator all random numbers come from."""
@@ -835,30 +860,21 @@ class World:
     # --- one cycle ---------------------------------------------------------------------------------
     def step(self) -> None:
         """Advance one cycle (see the module docstring for the order) and increment ``cycle``."""
-        sp = self.params
-        noise = self.noise
+        (
+            (p_size, p_decay, p_rand, p_speed_max, p_accel_max),
+            (b_size, b_decay, b_rand, b_speed_max, b_accel_max),
+        ) = self._move_params
+        if not self.noise:
+            p_rand = b_rand = 0.0
+        move = self._move
         for player in self.players:
             if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
                 player.tackle_cycles -= 1
             player.collided_ball = player.collided_player = False
-            self._move(
-                player,
-                sp.player_size,
-                sp.player_decay,
-                sp.player_rand if noise else 0.0,
-                sp.player_speed_max,
-                sp.player_accel_max,
-            )
+            move(player, p_size, p_decay, p_rand, p_speed_max, p_accel_max)
         ball = self.ball
         ball.collided_player = False
-        self._move(
-            ball,
-            sp.ball_size,
-            sp.ball_decay,
-            sp.ball_rand if noise else 0.0,
-            sp.ball_speed_max,
-            sp.ball_accel_max,
-        )
+        move(ball, b_size, b_decay, b_rand, b_speed_max, b_accel_max)
         if self._catch_contacts:
             for obj, with_ball, with_player in self._catch_contacts:
                 if isinstance(obj, BallState):
@@ -868,8 +884,9 @@ class World:
                     obj.collided_player = obj.collided_player or with_player
             self._catch_contacts = []
         self._collisions()
+        update_stamina = self._update_stamina
         for player in self.players:
-            self._update_stamina(player)
+            update_stamina(player)
             if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
                 player.catch_ban -= 1
         self.cycle += 1
@@ -1004,10 +1021,13 @@ class World:
             return
         sp = self.params
         ball = self.ball
+        bp_limit2, pp_limit2 = self._overlap_limits2
+        # Most cycles nothing overlaps: then the first pass below would change nothing and stop, so the pairs
+        # are tested alone first (the same comparisons) and the bookkeeping is skipped.
+        if not _any_overlap(players, ball, bp_limit2, pp_limit2):
+            return
         bp_limit = sp.ball_size + sp.player_size
         pp_limit = 2.0 * sp.player_size
-        bp_limit2 = bp_limit * bp_limit
-        pp_limit2 = pp_limit * pp_limit
         ball_hit = False
         player_hit = [False] * n
         for _ in range(10):
@@ -1106,11 +1126,12 @@ class World:
         sp = self.params
         stamina = p.stamina
         smax = sp.stamina_max
-        if stamina <= sp.recover_dec_thr * smax and p.recovery > sp.recover_min:
+        recover_dec_thr, effort_dec_thr, effort_inc_thr = self._stamina_thresholds  # thr * stamina_max
+        if stamina <= recover_dec_thr and p.recovery > sp.recover_min:
             p.recovery = max(sp.recover_min, p.recovery - sp.recover_dec)
-        if stamina <= sp.effort_dec_thr * smax and p.effort > sp.effort_min:
+        if stamina <= effort_dec_thr and p.effort > sp.effort_min:
             p.effort = max(sp.effort_min, p.effort - sp.effort_dec)
-        if stamina >= sp.effort_inc_thr * smax and p.effort < sp.effort_init:
+        if stamina >= effort_inc_thr and p.effort < sp.effort_init:
             p.effort = min(sp.effort_init, p.effort + sp.effort_inc)
         inc = min(sp.stamina_inc_max * p.recovery, smax - stamina)
         if sp.stamina_capacity >= 0.0:
@@ -1120,6 +1141,28 @@ class World:
                 inc = p.capacity
                 p.capacity = 0.0
         p.stamina = min(smax, stamina + max(0.0, inc))
+
+
+def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float) -> bool:
+    """Whether any ball-player pair is closer than ``sqrt(bp_limit2)`` or any player pair than ``sqrt(pp_limit2)``
+    (the first-pass tests of :meth:`World._collisions`)."""
+    bx = ball.x
+    by = ball.y
+    for p in players:
+        dx = p.x - bx
+        dy = p.y - by
+        if dx * dx + dy * dy < bp_limit2:
+            return True
+    n = len(players)
+    for i in range(n - 1):
+        a = players[i]
+        for j in range(i + 1, n):
+            b = players[j]
+            dx = b.x - a.x
+            dy = b.y - a.y
+            if dx * dx + dy * dy < pp_limit2:
+                return True
+    return False
 
 
 # --- HFO referee (rcssserver referee.cpp HFORef::analyse, spec §5.4) --------------------------------------------
@@ -1233,7 +1276,10 @@ class HFOReferee:
         status = HFO_IN_GAME
         if world.play_on:
             self.cycles += 1
-            if crosses_right_goal_line(self.prev_ball_x, self.prev_ball_y, bx, by, self.params):
+            # (crosses_right_goal_line is False while |x| <= its line_x; that test alone first, as it fails most cycles)
+            if abs(bx) > PITCH_HALF_LENGTH + self.params.ball_size and crosses_right_goal_line(
+                self.prev_ball_x, self.prev_ball_y, bx, by, self.params
+            ):
                 status = HFO_GOAL
             elif not in_hfo_area(self.prev_ball_x, self.prev_ball_y):
                 status = HFO_OUT_OF_BOUNDS
