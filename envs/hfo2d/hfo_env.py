@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import struct
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -795,9 +796,17 @@ _NOT_REAL = (bool, np.bool_, complex, np.complexfloating)  # numbers an action o
 
 
 def _observation(features: list[float]) -> np.ndarray:
-    """The features as a float32 array: each float rounded to float32 as ``np.array(features, np.float32)`` does,
-    but faster for a list of known length."""
-    return np.fromiter(features, np.float32, len(features))
+    """The features as a new float32 array, each float rounded to float32 as ``np.array(features, np.float32)``
+    does (struct's "f" is C's double-to-float conversion, like numpy's cast; the features lie in [-1, 1], so it
+    never overflows). Packing them with a precompiled :class:`struct.Struct` costs about half of np.array's
+    element-by-element conversion."""
+    packer = _FLOAT32_PACKERS.get(len(features))
+    if packer is None:
+        packer = _FLOAT32_PACKERS[len(features)] = struct.Struct(f"={len(features)}f")
+    return np.frombuffer(packer.pack(*features), np.float32).copy()
+
+
+_FLOAT32_PACKERS: dict[int, struct.Struct] = {}
 
 
 def _check_keeper_skill(skill: Any) -> None:
