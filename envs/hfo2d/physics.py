@@ -376,7 +376,7 @@ class World:
         *,
         pymunk_contacts: bool = False,
     ) -> None:
-        self.params = params  # (a property: also derives the per-cycle constants of step())
+        self.params = params
         self.noise = noise
         self.pymunk_contacts = pymunk_contacts
         self._rng = rng
@@ -403,35 +403,28 @@ class World:
                 post.filter = pymunk.ShapeFilter(categories=_POST_CATEGORY)
                 self.space.add(post)
                 self._posts_by_quadrant[(sx > 0.0, sy > 0.0)] = post
+        self._derived: tuple = ()
+        self._derive()
         self._ball_body, self._ball_shape = self._new_body(params.ball_size)
         self._player_bodies: list[pymunk.Body] = []
         self._player_shapes: list[pymunk.Circle] = []
 
     # --- set-up ------------------------------------------------------------------------------------
-    @property
-    def params(self) -> ServerParams:
-        """The server parameters; assigning them also recomputes the constants :meth:`step` reads."""
-        return self._params
-
-    @params.setter
-    def params(self, params: ServerParams) -> None:
-        self._params = params
-        sp = params
-        # Products of parameters that step() would otherwise recompute every cycle, each formed with the same
-        # operation as in the rule that uses it (so the floats are the same).
+    def _derive(self) -> tuple:
+        """Products of parameters that step() would otherwise recompute every cycle, each formed with the same
+        operation as in the rule that uses it (so the floats are the same); recomputed if ``params`` is replaced."""
+        sp = self.params
         smax = sp.stamina_max
-        self._stamina_thresholds = (
-            sp.recover_dec_thr * smax,
-            sp.effort_dec_thr * smax,
-            sp.effort_inc_thr * smax,
-        )
         bp_limit = sp.ball_size + sp.player_size
         pp_limit = 2.0 * sp.player_size
-        self._overlap_limits2 = (bp_limit * bp_limit, pp_limit * pp_limit)
-        self._move_params = (
+        self._derived = (
+            sp,
             (sp.player_size, sp.player_decay, sp.player_rand, sp.player_speed_max, sp.player_accel_max),
             (sp.ball_size, sp.ball_decay, sp.ball_rand, sp.ball_speed_max, sp.ball_accel_max),
+            (bp_limit * bp_limit, pp_limit * pp_limit),
+            (sp.recover_dec_thr * smax, sp.effort_dec_thr * smax, sp.effort_inc_thr * smax),
         )
+        return self._derived
 
     @property
     def rng(self) -> np.random.Generator:
@@ -860,10 +853,11 @@ class World:
     # --- one cycle ---------------------------------------------------------------------------------
     def step(self) -> None:
         """Advance one cycle (see the module docstring for the order) and increment ``cycle``."""
-        (
-            (p_size, p_decay, p_rand, p_speed_max, p_accel_max),
-            (b_size, b_decay, b_rand, b_speed_max, b_accel_max),
-        ) = self._move_params
+        derived = self._derived
+        if derived[0] is not self.params:
+            derived = self._derive()
+        p_size, p_decay, p_rand, p_speed_max, p_accel_max = derived[1]
+        b_size, b_decay, b_rand, b_speed_max, b_accel_max = derived[2]
         if not self.noise:
             p_rand = b_rand = 0.0
         move = self._move
@@ -1021,7 +1015,10 @@ class World:
             return
         sp = self.params
         ball = self.ball
-        bp_limit2, pp_limit2 = self._overlap_limits2
+        derived = self._derived
+        if derived[0] is not sp:
+            derived = self._derive()
+        bp_limit2, pp_limit2 = derived[3]
         # Most cycles nothing overlaps: then the first pass below would change nothing and stop, so the pairs
         # are tested alone first (the same comparisons) and the bookkeeping is skipped.
         if not _any_overlap(players, ball, bp_limit2, pp_limit2):
@@ -1124,23 +1121,31 @@ class World:
     def _update_stamina(self, p: PlayerState) -> None:
         """``Player::updateStamina`` (hfo_reference §4.5): thresholds on the current stamina, then recover."""
         sp = self.params
+        derived = self._derived
+        if derived[0] is not sp:
+            derived = self._derive()
+        recover_dec_thr, effort_dec_thr, effort_inc_thr = derived[4]  # each thr * stamina_max
         stamina = p.stamina
         smax = sp.stamina_max
-        recover_dec_thr, effort_dec_thr, effort_inc_thr = self._stamina_thresholds  # thr * stamina_max
         if stamina <= recover_dec_thr and p.recovery > sp.recover_min:
             p.recovery = max(sp.recover_min, p.recovery - sp.recover_dec)
         if stamina <= effort_dec_thr and p.effort > sp.effort_min:
             p.effort = max(sp.effort_min, p.effort - sp.effort_dec)
         if stamina >= effort_inc_thr and p.effort < sp.effort_init:
             p.effort = min(sp.effort_init, p.effort + sp.effort_inc)
-        inc = min(sp.stamina_inc_max * p.recovery, smax - stamina)
+        # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
+        inc = sp.stamina_inc_max * p.recovery
+        room = smax - stamina
+        if room < inc:
+            inc = room
         if sp.stamina_capacity >= 0.0:
             if p.capacity >= inc:
                 p.capacity -= inc
             else:
                 inc = p.capacity
                 p.capacity = 0.0
-        p.stamina = min(smax, stamina + max(0.0, inc))
+        stamina += inc if inc > 0.0 else 0.0
+        p.stamina = stamina if stamina < smax else smax
 
 
 def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float) -> bool:
