@@ -4,7 +4,6 @@ Usage::
 
     python benchmarks/update_throughput.py --threads 1 --updates 300 --repeats 5 --out /tmp/update_throughput.json
     python benchmarks/update_throughput.py --threads 1 2 --updates 300 --repeats 5 --out /tmp/update_throughput.json
-    python benchmarks/update_throughput.py --twin-critics --out /tmp/update_throughput.json
 
 What is measured (all on ``HFO/EmptyGoal-v0``: 58 observation features, 8 action entries; batch 32):
 
@@ -20,11 +19,6 @@ LeakyReLU(0.01). SB3's critic concatenates the action with the state at its *inp
 while the paper's concatenates it at the second layer (58 -> 400, 408 -> 300, ...): the multiply-adds differ by
 under 1 % (8 x 400 vs 8 x 300 weights). The algorithms are otherwise the same maths (DDPG: one critic, no target
 smoothing, actor updated every step).
-
-With ``--twin-critics`` two more contestants join: SkillDDPG with 1 skill and ``n_critics=2`` (TD3's clipped
-double Q) and SB3's ``TD3`` with the same nets, ``policy_delay=1`` and ``target_policy_noise=0`` (so that it is
-the same maths: twin critics, min target, actor on the first critic, every step); their ratio is reported as
-``twin_ratio_vs_sb3_td3``.
 
 Measurements are interleaved (contestant A, B, C, A, B, C, ...) and the median of ``--repeats`` rounds is reported
 so that load from other processes affects all contestants alike. ``torch.set_num_threads`` applies to all; with
@@ -47,7 +41,7 @@ from typing import Any
 
 import gymnasium as gym
 import torch as th
-from stable_baselines3 import DDPG, TD3
+from stable_baselines3 import DDPG
 from stable_baselines3.common.base_class import BaseAlgorithm
 from torch import nn
 
@@ -59,13 +53,9 @@ PAPER_ARCH = [400, 300, 200]
 BATCH_SIZE = 32
 #: The contestant every ratio is taken against.
 BASELINE = "sb3_ddpg"
-#: With --twin-critics: our twin-critic contestant and the SB3 algorithm it is compared with.
-TWIN, TWIN_BASELINE = "skill_ddpg_1_skill_2_critics", "sb3_td3"
 
 
-def make_contestants(
-    buffer_size: int, learning_starts: int, twin_critics: bool = False
-) -> dict[str, Callable[[], BaseAlgorithm]]:
+def make_contestants(buffer_size: int, learning_starts: int) -> dict[str, Callable[[], BaseAlgorithm]]:
     """Model factories by name; every model uses batch 32, tau 1e-4 and one update per environment step."""
     common: dict[str, Any] = dict(
         buffer_size=buffer_size,
@@ -76,11 +66,11 @@ def make_contestants(
         device="cpu",
     )
 
-    def skill_ddpg(n_skills: int, n_critics: int = 1) -> Callable[[], BaseAlgorithm]:
+    def skill_ddpg(n_skills: int) -> Callable[[], BaseAlgorithm]:
         return lambda: SkillDDPG(
             "HFOPolicy",
             gym.make(ENV_ID),
-            policy_kwargs=dict(net_arch=PAPER_ARCH, n_skills=n_skills, n_critics=n_critics),
+            policy_kwargs=dict(net_arch=PAPER_ARCH, n_skills=n_skills),
             **common,
         )
 
@@ -91,25 +81,11 @@ def make_contestants(
             "MlpPolicy", gym.make(ENV_ID), learning_rate=1e-3, policy_kwargs=sb3_policy_kwargs, **common
         )
 
-    def sb3_td3() -> BaseAlgorithm:
-        return TD3(
-            "MlpPolicy",
-            gym.make(ENV_ID),
-            learning_rate=1e-3,
-            policy_delay=1,
-            target_policy_noise=0.0,
-            policy_kwargs=sb3_policy_kwargs,
-            **common,
-        )
-
-    contestants = {
+    return {
         "sb3_ddpg": sb3_ddpg,
         "skill_ddpg_1_skill": skill_ddpg(1),
         "skill_ddpg_2_skills": skill_ddpg(2),
     }
-    if twin_critics:
-        contestants |= {TWIN_BASELINE: sb3_td3, TWIN: skill_ddpg(1, n_critics=2)}
-    return contestants
 
 
 def time_train(model: BaseAlgorithm, updates: int) -> float:
@@ -149,20 +125,13 @@ def main() -> None:
     parser.add_argument(
         "--fill", type=int, default=2000, help="random transitions in the buffer before timing"
     )
-    parser.add_argument(
-        "--twin-critics",
-        action="store_true",
-        help=f"also time SkillDDPG with n_critics=2 against SB3's TD3 (same maths), as {TWIN} / {TWIN_BASELINE}",
-    )
     parser.add_argument("--out", type=Path, default=None, help="write the results as JSON here")
     args = parser.parse_args()
     if any(n < 1 for n in args.threads):
         parser.error(f"--threads must be >= 1, got {args.threads}")
 
     th.set_num_threads(args.threads[0])
-    contestants = make_contestants(
-        buffer_size=max(10 * args.fill, 100_000), learning_starts=args.fill, twin_critics=args.twin_critics
-    )
+    contestants = make_contestants(buffer_size=max(10 * args.fill, 100_000), learning_starts=args.fill)
     models: dict[str, BaseAlgorithm] = {}
     for name, factory in contestants.items():
         model = factory()
@@ -189,16 +158,6 @@ def main() -> None:
             "learn_steps_per_s": learn,
             "train_ratio_vs_sb3_ddpg": ratios(train),
             "learn_ratio_vs_sb3_ddpg": ratios(learn),
-            **(
-                {
-                    "twin_ratio_vs_sb3_td3": {
-                        "train": train[TWIN] / train[TWIN_BASELINE],
-                        "learn": learn[TWIN] / learn[TWIN_BASELINE],
-                    }
-                }
-                if args.twin_critics
-                else {}
-            ),
             "train_updates_per_s_all": train_rates[threads],
             "learn_steps_per_s_all": learn_rates[threads],
         }
@@ -223,11 +182,6 @@ def main() -> None:
                 f"{threads:>7}  {name:<22}{row['train_updates_per_s'][name]:>13.1f}"
                 f"{row['train_ratio_vs_sb3_ddpg'][name]:>8.2f}"
                 f"{row['learn_steps_per_s'][name]:>15.1f}{row['learn_ratio_vs_sb3_ddpg'][name]:>8.2f}"
-            )
-        if args.twin_critics:
-            twin = row["twin_ratio_vs_sb3_td3"]
-            print(
-                f"{threads:>7}  {TWIN} vs {TWIN_BASELINE}: train {twin['train']:.2f}x, learn {twin['learn']:.2f}x"
             )
     if len(args.threads) > 1:
         # Each contestant at its own fastest thread count: what a user who picks the setting gets.

@@ -1,12 +1,12 @@
 """sb3_hfo: Stable-Baselines3 plugin for RoboCup Half Field Offense.
 
 Importing it registers the HFO Gymnasium environments (``HFO/EmptyGoal-v0``, ``HFO/StaticKeeper-v0``,
-``HFO/Keeper-v0``, from :mod:`hfo2d`) and exports the SkillDDPG algorithm, its policy and the skill routers.
+``HFO/Keeper-v0``, from :mod:`hfo2d`) and exports the SkillDDPG algorithm, its preset SkillPDQN, their policy and the skill routers.
 """
 
 import hfo2d  # noqa: F401  (registers the HFO envs)
 from sb3_hfo.common.routers import ROUTERS, FieldHalfRouter, SingleSkillRouter, SkillRouter, make_router
-from sb3_hfo.skill_ddpg import HFOActor, HFOCritic, HFOPolicy, SkillDDPG
+from sb3_hfo.skill_ddpg import HFOActor, HFOCritic, HFOPolicy, SkillDDPG, SkillPDQN
 
 __version__ = "0.1.0"
 
@@ -18,6 +18,7 @@ __all__ = [
     "HFOPolicy",
     "SingleSkillRouter",
     "SkillDDPG",
+    "SkillPDQN",
     "SkillRouter",
     "__version__",
     "make_router",

@@ -6,7 +6,7 @@ MODEL is a committed model's name (``models/manifest.json``: ``e1``, ...; its en
 the manifest), a SkillDDPG ``.zip`` (full or stripped; the suffix may be left out) or an rl-zoo3 run folder such as
 ``logs/skill_ddpg/HFO-EmptyGoal-v0_1`` (its final model ``HFO-EmptyGoal-v0.zip`` is used, else
 ``best_model.zip``). With a run folder, ``--env`` and the training ``env_kwargs`` default to the run's own, less
-training aids (``random_start_fraction``: episodes start as in HFO unless ``--env-kwargs`` says otherwise).
+those the env no longer takes (:data:`REMOVED_ENV_KWARGS`).
 
 Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" and "avg steps to goal"):
 
@@ -70,8 +70,9 @@ PITCH_HALF_LENGTH = 52.5
 PITCH_HALF_WIDTH = 34.0
 GOAL_CENTRE = (PITCH_HALF_LENGTH, 0.0)
 EXIT_LINES: tuple[str, ...] = ("goal_line", "side_line", "halfway_line")
-#: Env kwargs of a training run that evaluation leaves out (they change the start state, not the task).
-TRAINING_ONLY_ENV_KWARGS: tuple[str, ...] = ("random_start_fraction",)
+#: Env kwargs that older training runs may name but the env no longer takes (``random_start_fraction``, a
+#: training aid no recommended config used): left out when a run folder's env is rebuilt.
+REMOVED_ENV_KWARGS: tuple[str, ...] = ("random_start_fraction",)
 
 
 def exit_line(ball_x: float, ball_y: float) -> str | None:
@@ -437,8 +438,7 @@ def load_for_evaluation(
 ) -> tuple[Any, Any, str, dict[str, Any], Path]:
     """Load a SkillDDPG model (one torch thread, CPU) and make the env to evaluate it on.
 
-    The env id and ``env_kwargs`` default to the run folder's own, less training aids such as
-    ``random_start_fraction`` (evaluation uses HFO's starts unless ``env_kwargs`` asks otherwise).
+    The env id and ``env_kwargs`` default to the run folder's own, less :data:`REMOVED_ENV_KWARGS`.
 
     :return: ``(model, env, env_id, env_kwargs used, model path)``; the caller closes the env.
     :raises EvaluationError: no model there, no or unknown env id, or observations of another shape.
@@ -452,7 +452,7 @@ def load_for_evaluation(
     if env_id is None:
         raise EvaluationError("--env is required (the model is not inside an rl-zoo3 run folder)")
     check_env_id(env_id)
-    run_kwargs = {k: v for k, v in resolved.env_kwargs.items() if k not in TRAINING_ONLY_ENV_KWARGS}
+    run_kwargs = {k: v for k, v in resolved.env_kwargs.items() if k not in REMOVED_ENV_KWARGS}
     kwargs = {**run_kwargs, **(env_kwargs or {})}
     kwargs.pop("render_mode", None)
 

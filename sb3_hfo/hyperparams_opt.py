@@ -4,7 +4,8 @@ rl-zoo3 calls ``HYPERPARAMS_SAMPLER[algo](trial, n_actions, n_envs, additional_a
 the returned dict straight to the algorithm's constructor (on top of the config file's values); with
 ``--trial-id`` it rebuilds the hyperparameters of a stored trial through ``HYPERPARAMS_CONVERTER[algo](params)``,
 where ``params`` are the raw Optuna values. So the sampler suggests raw values and the converter maps them onto
-constructor arguments. :func:`sb3_hfo.zoo.register_with_rl_zoo` installs both under ``"skill_ddpg"``.
+constructor arguments. :func:`sb3_hfo.zoo.register_with_rl_zoo` installs them under ``"skill_ddpg"`` and, with
+:func:`sample_skill_pdqn_params`, under ``"skill_pdqn"``.
 
 The experiment-defining policy keys (``n_skills``, ``skill_router``, ``inverting_gradients``) come from the
 config file and are never sampled; only ``net_arch`` is (see ``sb3_hfo.zoo.merge_policy_kwargs``).
@@ -105,4 +106,16 @@ def sample_skill_ddpg_params(
         hyperparams["action_noise"] = OrnsteinUhlenbeckActionNoise(
             np.zeros(n_actions), noise_std * np.ones(n_actions)
         )
+    return hyperparams
+
+
+def sample_skill_pdqn_params(
+    trial: optuna.Trial, n_actions: int, n_envs: int, additional_args: dict[str, Any]
+) -> dict[str, Any]:
+    """Suggest SkillPDQN hyperparameters: SkillDDPG's search space (:func:`sample_skill_ddpg_params`) and the
+    preset's two numeric defaults around their values, ``mc_mixing`` (0.2) and ``preactivation_penalty`` (1e-3).
+    The preset's switches stay on (they define it)."""
+    hyperparams = sample_skill_ddpg_params(trial, n_actions, n_envs, additional_args)
+    hyperparams["mc_mixing"] = trial.suggest_float("mc_mixing", 0.0, 0.5)
+    hyperparams["preactivation_penalty"] = trial.suggest_float("preactivation_penalty", 1e-4, 1e-2, log=True)
     return hyperparams

@@ -59,11 +59,9 @@ CHECK_EPISODES = 10
 
 
 def _target_source(key: str) -> str | None:
-    """The online parameter a target-network parameter copies (``actor_target.x`` -> ``actor.x``,
-    ``extra_critic_targets.0.x`` -> ``extra_critics.0.x``); None for a parameter that is not a target's."""
+    """The online parameter a target-network parameter copies (``actor_target.x`` -> ``actor.x``); None for a
+    parameter that is not a target's."""
     module, sep, rest = key.partition(".")
-    if module.endswith("_targets"):
-        return f"{module[: -len('_targets')]}s{sep}{rest}"
     if module.endswith("_target"):
         return f"{module[: -len('_target')]}{sep}{rest}"
     return None
@@ -217,7 +215,7 @@ def playback_argv(args: Sequence[str], run_root: Path) -> list[str]:
     from huggingface_sb3 import EnvironmentName
 
     from sb3_hfo.cli_errors import option_value, option_values
-    from sb3_hfo.evaluate import resolve_model
+    from sb3_hfo.evaluate import REMOVED_ENV_KWARGS, resolve_model
     from sb3_hfo.zoo import ALGO_NAME
 
     args = list(args)
@@ -239,7 +237,7 @@ def playback_argv(args: Sequence[str], run_root: Path) -> list[str]:
     (run / f"{env_name}.zip").symlink_to(resolved.path.resolve())
     extra = ["--env", env_id] if option_value(rest, "--env") is None else []
     if option_values(rest, "--env-kwargs") is None:
-        kwargs = {k: v for k, v in resolved.env_kwargs.items() if k != "random_start_fraction"}
+        kwargs = {k: v for k, v in resolved.env_kwargs.items() if k not in REMOVED_ENV_KWARGS}
         if kwargs:
             extra += ["--env-kwargs", *(f"{key}:{value!r}" for key, value in kwargs.items())]
     return [*rest, *extra, "-f", str(run_root), "--exp-id", "1"]
@@ -380,7 +378,7 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     import torch
 
     from sb3_hfo.cli_errors import check_model_zip
-    from sb3_hfo.evaluate import check_env_id, evaluate, resolve_model
+    from sb3_hfo.evaluate import REMOVED_ENV_KWARGS, check_env_id, evaluate, resolve_model
 
     if not looks_like_name(args.name) or not args.name.replace("_", "").replace("-", "").isalnum():
         raise UserError(f"model name {args.name!r}: use letters, digits, '_' and '-' only")
@@ -393,7 +391,7 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     if not Path(args.config).is_file():
         raise UserError(f"--config {args.config}: no such file")
     real_hfo = _real_hfo_entry(args)
-    env_kwargs = {k: v for k, v in resolved.env_kwargs.items() if k != "random_start_fraction"}
+    env_kwargs = {k: v for k, v in resolved.env_kwargs.items() if k not in REMOVED_ENV_KWARGS}
 
     import gymnasium as gym
 

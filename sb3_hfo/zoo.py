@@ -36,8 +36,11 @@ from typing import Any
 import numpy as np
 from stable_baselines3.common.callbacks import BaseCallback
 
-#: Name under which SkillDDPG appears in rl-zoo3 (``--algo skill_ddpg``, log folder ``logs/skill_ddpg/``).
+#: Name under which SkillDDPG appears in rl-zoo3 (``--algo skill_ddpg``, log folder ``logs/skill_ddpg/``): the
+#: default ``--algo`` of ``python -m sb3_hfo.train``, ``enjoy`` and ``record_video``.
 ALGO_NAME = "skill_ddpg"
+#: Name under which SkillPDQN, SkillDDPG's preset with the best recipe, appears in rl-zoo3 (``--algo skill_pdqn``).
+PRESET_ALGO_NAME = "skill_pdqn"
 
 #: Hyperparameters holding a learning rate that rl-zoo3 style strings (``"lin_1e-3"``) or floats may describe.
 SCHEDULE_KEYS: tuple[str, ...] = ("learning_rate", "learning_rate_actor", "learning_rate_critic")
@@ -57,6 +60,13 @@ def skill_ddpg_class() -> type:
     from sb3_hfo.skill_ddpg import SkillDDPG
 
     return SkillDDPG
+
+
+def algo_classes() -> dict[str, type]:
+    """The algorithms registered with rl-zoo3, by ``--algo`` name (imported lazily)."""
+    from sb3_hfo.skill_ddpg import SkillDDPG, SkillPDQN
+
+    return {ALGO_NAME: SkillDDPG, PRESET_ALGO_NAME: SkillPDQN}
 
 
 def parse_schedule(value: Any) -> Any:
@@ -167,7 +177,7 @@ def _playback_class(algo_class: type) -> type:
 
 
 def register_with_rl_zoo(playback: bool = False) -> None:
-    """Make rl-zoo3 know SkillDDPG and the HFO environments. Idempotent.
+    """Make rl-zoo3 know SkillDDPG, SkillPDQN and the HFO environments. Idempotent.
 
     :param playback: register a variant whose ``load`` uses a 1-transition replay buffer (enjoy, record_video).
     """
@@ -177,13 +187,19 @@ def register_with_rl_zoo(playback: bool = False) -> None:
     import rl_zoo3.utils
 
     import hfo2d  # noqa: F401  (registers the HFO/* Gymnasium ids)
-    from sb3_hfo.hyperparams_opt import convert_skill_ddpg_params, sample_skill_ddpg_params
+    from sb3_hfo.hyperparams_opt import (
+        convert_skill_ddpg_params,
+        sample_skill_ddpg_params,
+        sample_skill_pdqn_params,
+    )
 
-    algo_class = skill_ddpg_class()
-    # rl_zoo3.ALGOS, rl_zoo3.utils.ALGOS and the names imported by train/enjoy/record_video are one dict object.
-    rl_zoo3.utils.ALGOS[ALGO_NAME] = _playback_class(algo_class) if playback else algo_class
-    rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER[ALGO_NAME] = sample_skill_ddpg_params
-    rl_zoo3.hyperparams_opt.HYPERPARAMS_CONVERTER[ALGO_NAME] = convert_skill_ddpg_params
+    samplers = {ALGO_NAME: sample_skill_ddpg_params, PRESET_ALGO_NAME: sample_skill_pdqn_params}
+    for name, algo_class in algo_classes().items():
+        # rl_zoo3.ALGOS, rl_zoo3.utils.ALGOS and the names imported by train/enjoy/record_video are one dict object.
+        rl_zoo3.utils.ALGOS[name] = _playback_class(algo_class) if playback else algo_class
+        rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER[name] = samplers[name]
+        # The sampler's raw values map onto constructor arguments the same way for both.
+        rl_zoo3.hyperparams_opt.HYPERPARAMS_CONVERTER[name] = convert_skill_ddpg_params
     # train() looks ExperimentManager up in its module namespace at call time.
     rl_zoo3.train.ExperimentManager = _experiment_manager_class()  # type: ignore[misc]
 
@@ -249,9 +265,8 @@ class ActionNoiseDecayCallback(BaseCallback):
 
     SB3's ``action_noise`` keeps its ``sigma`` fixed, and rl-zoo3's ``noise_std`` sets it once. Wide noise early on
     shows the critic many kicks; late in training the same noise spoils aimed kicks, and the behaviour policy (whose
-    returns ``mc_mixing`` mixes into the targets) stays far worse than the greedy one. On E1 annealing the noise and
-    epsilon together lifted the greedy scoring rate from 36-52 % to 56-92 % over the same steps
-    (research/RESULTS.md, session 3). This callback moves every noise's ``sigma`` from its value at the start of
+    returns ``mc_mixing`` mixes into the targets) stays far worse than the greedy one; annealing the noise and
+    epsilon together helps (research/RESULTS.md). This callback moves every noise's ``sigma`` from its value at the start of
     each ``learn`` call to ``final_std`` over the first ``decay_fraction`` of that call (the schedule of SB3's
     epsilon), then holds it, and logs it as ``rollout/action_noise_std``.
 

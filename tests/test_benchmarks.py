@@ -33,20 +33,6 @@ def test_update_throughput_times_every_contestant_at_every_thread_count(tmp_path
         )
 
 
-def test_update_throughput_twin_critics_against_td3(tmp_path: Path) -> None:
-    out = tmp_path / "throughput.json"
-    command = [sys.executable, str(REPO / "benchmarks" / "update_throughput.py"), "--twin-critics"]
-    command += ["--updates", "2", "--learn-steps", "2", "--repeats", "1", "--fill", "64", "--out", str(out)]
-    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
-    assert completed.returncode == 0, completed.stderr[-2000:]
-    row = json.loads(out.read_text())["by_threads"]["1"]
-    assert {"sb3_td3", "skill_ddpg_1_skill_2_critics"} <= set(row["train_updates_per_s"])
-    rates = row["train_updates_per_s"]
-    twin = row["twin_ratio_vs_sb3_td3"]["train"]
-    assert twin == rates["skill_ddpg_1_skill_2_critics"] / rates["sb3_td3"] > 0
-    assert "skill_ddpg_1_skill_2_critics vs sb3_td3" in completed.stdout
-
-
 def test_update_throughput_rejects_a_zero_thread_count(tmp_path: Path) -> None:
     command = [sys.executable, str(REPO / "benchmarks" / "update_throughput.py"), "--threads", "0"]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=120, cwd=tmp_path)

@@ -383,32 +383,6 @@ def test_starting_state_follows_hfo_reset_field() -> None:
     assert all(p.stamina == world.params.stamina_max and p.effort == 1.0 for p in world.players)
 
 
-def test_exploring_starts_off_by_default_and_drawn_at_the_given_rate() -> None:
-    def starts(env: HFOEnv, episodes: int) -> list[tuple]:
-        env.reset(seed=3)
-        return [(env.reset()[1]["ball"], env.world.players[0].body_deg) for _ in range(episodes)]
-
-    default = starts(HFOEnv(), 50)
-    assert starts(HFOEnv(random_start_fraction=0.0), 50) == default  # same random stream as HFO's start
-    mixed = starts(HFOEnv(random_start_fraction=0.5), 400)
-    beyond = [ball for ball, _ in mixed if ball[0] > 10.5]  # outside HFO's start band
-    # About 0.5 * 400 * (50 - 10.5) / 50 = 158 starts expected beyond x = 10.5.
-    assert 120 <= len(beyond) <= 200
-    assert all(0.0 <= ball[0] <= 50.0 and abs(ball[1]) <= 27.2 for ball, _ in mixed)
-    env = HFOEnv(task="static_keeper", random_start_fraction=1.0)
-    env.reset(seed=0)
-    agents = []
-    for _ in range(300):
-        _, info = env.reset()
-        agents.append(info["player"][:2])
-        assert info["keeper"][:2] == (52.5, 0.0)
-    xs = [x for x, _ in agents]
-    assert min(xs) < 5.0 and max(xs) > 47.5 and all(abs(y) <= 27.2 for _, y in agents)
-    # reset options still win over the drawn start
-    _, info = env.reset(options=FAR_APART)
-    assert info["ball"][:2] == FAR_APART["ball"] and info["player"][:2] == FAR_APART["player"][:2]
-
-
 def test_reset_recovers_stamina() -> None:
     env = HFOEnv(untouched_time=1000)
     env.reset(seed=0, options=FAR_APART)
@@ -429,8 +403,6 @@ def test_reset_recovers_stamina() -> None:
         ({"reward": "dense"}, "sparse"),
         ({"keeper_skill": 1.5}, "keeper_skill"),
         ({"keeper_skill": -0.1}, "keeper_skill"),
-        ({"random_start_fraction": 1.5}, "random_start_fraction"),
-        ({"random_start_fraction": "half"}, "random_start_fraction"),
         ({"server_params": {"ball_decy": 0.9}}, "ball_decy"),
         ({"server_params": {"ball_decay": float("nan")}}, "finite"),
         ({"frames_per_trial": 0}, "frames_per_trial"),

@@ -368,3 +368,31 @@ def test_env_feature_set_hfo_flag_and_uniform_number() -> None:
 def test_env_rejects_an_unknown_feature_set() -> None:
     with pytest.raises(ValueError, match="'master'"):
         HFOEnv(feature_set="master")
+
+
+def test_unrolled_landmarks_equal_the_loop() -> None:
+    """low_level_feature_list's unrolled landmark block gives the loop's floats bit for bit (signed zeros too),
+    also on the landmarks' own lines and points."""
+    import struct
+
+    from hfo2d.features import _LANDMARK_POINTS, FIRST_LANDMARK, LANDMARKS, _landmark_features
+    from hfo2d.physics import BallState, PlayerState
+
+    rng = np.random.default_rng(7)
+    points = [(float(x), float(y)) for x, y in rng.uniform((-60.0, -45.0), (60.0, 45.0), size=(300, 2))]
+    for lx, ly in _LANDMARK_POINTS:  # on a landmark, and on its lines
+        points += [(lx, ly), (lx, float(rng.uniform(-40, 40))), (float(rng.uniform(-10, 60)), ly)]
+    bodies = [0.0, 90.0, -180.0, *rng.uniform(-180.0, 180.0, size=3).tolist()]
+    end = FIRST_LANDMARK + 3 * len(LANDMARKS)
+    for x, y in points:
+        for body in bodies:
+            player = PlayerState("l", 11, x=x, y=y, body_deg=body)
+            features = low_level_feature_list(player, BallState(x=1.0, y=2.0), 1.03)
+            rad = body * (math.pi / 180.0)  # as low_level_feature_list forms it
+            expected = _landmark_features(x, y, math.cos(rad), math.sin(rad))
+            got = features[FIRST_LANDMARK:end]
+            assert struct.pack(f"{len(got)}d", *got) == struct.pack(f"{len(expected)}d", *expected), (
+                x,
+                y,
+                body,
+            )

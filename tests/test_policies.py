@@ -9,6 +9,7 @@ import torch as th
 from gymnasium import spaces
 from torch import nn
 
+from hfo2d.action_layout import hfo_flat_action_space
 from sb3_hfo import (
     ROUTERS,
     FieldHalfRouter,
@@ -20,10 +21,11 @@ from sb3_hfo import (
 )
 from sb3_hfo.common.routers import validate_skills
 from sb3_hfo.common.toy_env import HybridTargetEnv
+from sb3_hfo.skill_ddpg.fast_update import critic_action_gradient, critic_forward_for_backward
 from sb3_hfo.skill_ddpg.policies import KICKABLE_FEATURE_INDEX
 
 OBS_SPACE = spaces.Box(-1.0, 1.0, (58,), np.float32)
-ACTION_SPACE = spaces.Box(0.0, 1.0, (8,), np.float32)
+ACTION_SPACE = hfo_flat_action_space()  # HFO's flat action, its layout declared
 
 
 def make_policy(**kwargs: object) -> HFOPolicy:
@@ -381,27 +383,6 @@ def test_policy_rejects_unsupported_spaces() -> None:
         HFOPolicy(spaces.Discrete(4), ACTION_SPACE, lambda _: 1e-3)
     with pytest.raises(ValueError, match="weight_init_std"):
         make_policy(weight_init_std=0.0)
-    for bad in (0, 1.5, True, "2"):
-        with pytest.raises(ValueError, match="n_critics"):
-            make_policy(n_critics=bad)
-
-
-def test_twin_critics_are_separate_and_share_one_optimizer() -> None:
-    """``n_critics=2``: a second critic and target of the paper's shape with their own weights; one Adam over both
-    critics; the paper's policy (one critic) has no extra entries in its state dict."""
-    paper, twin = make_policy(), make_policy(n_critics=2)
-    assert not any(name.startswith("extra_") for name in paper.state_dict())
-    assert len(twin.critics) == len(twin.critic_targets) == 2
-    second, second_target = twin.critics[1], twin.critic_targets[1]
-    assert linear_sizes(second.joint_net) == linear_sizes(twin.critic.joint_net)
-    assert not th.equal(second.obs_net[0].weight, twin.critic.obs_net[0].weight)
-    assert th.equal(second_target.obs_net[0].weight, second.obs_net[0].weight)
-    assert not second_target.obs_net[0].weight.requires_grad
-    optimized = {id(param) for group in twin.critic_optimizer.param_groups for param in group["params"]}
-    expected = {id(param) for critic in twin.critics for param in critic.parameters()}
-    assert optimized == expected
-    twin.set_training_mode(False)
-    assert not second.training and not second.obs_net[0].training
 
 
 def test_parameter_mask_keeps_the_preferences_and_the_chosen_actions_parameters() -> None:
@@ -436,7 +417,9 @@ def test_parameter_mask_keeps_the_preferences_and_the_chosen_actions_parameters(
 
 
 def test_mask_unused_parameters_errors_name_the_problem() -> None:
-    with pytest.raises(ValueError, match="means HFO's flat action.*has 5"):
+    with pytest.raises(
+        ValueError, match="needs the action space's hybrid layout.*5-entry action space declares none"
+    ):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, mask_unused_parameters=True)
     with pytest.raises(ValueError, match=r"3 preferences \+ 4 parameters = 7 action entries.*has 8"):
         make_policy(mask_unused_parameters=(2, 1, 1))
@@ -474,7 +457,7 @@ def test_critic_choice_plays_the_best_one_hot_action_at_the_actors_parameters(ma
 def test_discrete_choice_errors_and_round_trip(tmp_path) -> None:
     with pytest.raises(ValueError, match="discrete_choice must be one of"):
         make_policy(discrete_choice="router")
-    with pytest.raises(ValueError, match="needs to know the discrete actions"):
+    with pytest.raises(ValueError, match="needs the discrete actions: an action space with a hybrid layout"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, discrete_choice="critic")
     policy = HFOPolicy(
         OBS_SPACE,
@@ -538,7 +521,7 @@ def test_kick_only_when_kickable_never_kicks_at_a_ball_out_of_reach(choice: str)
 
 
 def test_kick_only_when_kickable_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="needs HFO's 8-dimensional flat action"):
+    with pytest.raises(ValueError, match="needs an action layout with a kick"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, kick_only_when_kickable=True)
     with pytest.raises(ValueError, match="kick_only_when_kickable must be a bool"):
         make_policy(kick_only_when_kickable="yes")
@@ -578,9 +561,9 @@ def test_critic_action_gradient_through_direction_features_equals_autograd(criti
     obs = batch_obs(16)
     action = th.empty(16, 8).uniform_(-1, 1, generator=th.Generator().manual_seed(1)).requires_grad_(True)
     critic(obs, action).sum().backward()
-    q, inputs = critic.forward_for_backward(obs, action.detach())
+    q, inputs = critic_forward_for_backward(critic, obs, action.detach())
     th.testing.assert_close(q, critic(obs, action).detach())
-    th.testing.assert_close(critic.action_gradient(inputs), action.grad, atol=1e-6, rtol=1e-5)
+    th.testing.assert_close(critic_action_gradient(critic, inputs), action.grad, atol=1e-6, rtol=1e-5)
     assert action.grad is not None and action.grad[:, [4, 5, 7]].abs().min() > 0
 
 
@@ -633,9 +616,9 @@ def test_critic_action_gradient_through_relative_kick_features_equals_autograd(
     obs = th.as_tensor(np.random.default_rng(0).uniform(-1, 1, (16, 66)), dtype=th.float32)
     action = th.empty(16, 8).uniform_(-1, 1, generator=th.Generator().manual_seed(1)).requires_grad_(True)
     critic(obs, action).sum().backward()
-    q, inputs = critic.forward_for_backward(obs, action.detach())
+    q, inputs = critic_forward_for_backward(critic, obs, action.detach())
     th.testing.assert_close(q, critic(obs, action).detach())
-    th.testing.assert_close(critic.action_gradient(inputs), action.grad, atol=1e-5, rtol=1e-5)
+    th.testing.assert_close(critic_action_gradient(critic, inputs), action.grad, atol=1e-5, rtol=1e-5)
 
 
 def test_critic_kick_relative_to_errors_and_round_trip(tmp_path) -> None:
@@ -669,7 +652,7 @@ def test_critic_direction_frequencies_errors_and_round_trip(tmp_path) -> None:
     for bad in ([0], [-1.0], [float("nan")], "1, 2", [True], 4):
         with pytest.raises(ValueError, match="critic_direction_frequencies must be"):
             make_policy(critic_direction_frequencies=bad)
-    with pytest.raises(ValueError, match="needs HFO's 8-dimensional flat action"):
+    with pytest.raises(ValueError, match="needs an action layout with direction parameters"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, critic_direction_frequencies=[1])
     model = SkillDDPG(
         "HFOPolicy",
@@ -727,7 +710,7 @@ def test_mirror_choice_keeps_a_state_that_is_its_own_mirror_image() -> None:
 
 
 def test_mirror_choice_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="mirror_choice needs HFO's 8-dimensional flat action"):
+    with pytest.raises(ValueError, match="mirror_choice needs HFO's flat action"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, mirror_choice=True)
     with pytest.raises(
         ValueError, match=r"mirror_choice: an HFO feature vector has 58 \+ 8 \* players entries"
@@ -827,3 +810,22 @@ def test_mirror_margin_errors_and_round_trip(tmp_path) -> None:
     model.policy.mirror_margin = 0.25
     model.save(tmp_path / "m.zip")
     assert SkillDDPG.load(tmp_path / "m.zip").policy.mirror_margin == 0.25
+
+
+def test_a_plain_box_without_a_layout_gets_plain_ddpg_semantics() -> None:
+    """An 8-entry ``Box`` that declares no hybrid layout is not taken for HFO's flat action: no discrete actions,
+    the actor's output played as it is, and the options that need the layout refused."""
+    plain = spaces.Box(0.0, 1.0, (8,), np.float32)
+    policy = HFOPolicy(OBS_SPACE, plain, lambda _: 1e-3)
+    assert policy.action_layout is None and policy.n_discrete_actions == 0
+    obs = th.rand(4, 58) * 2 - 1
+    th.testing.assert_close(policy._predict(obs), policy.actor(obs))
+    for option in (
+        {"mask_unused_parameters": True},
+        {"discrete_choice": "critic"},
+        {"kick_only_when_kickable": True},
+        {"critic_direction_frequencies": [1]},
+    ):
+        with pytest.raises(ValueError):
+            HFOPolicy(OBS_SPACE, plain, lambda _: 1e-3, **option)
+    assert SkillDDPG("HFOPolicy", "Pendulum-v1", seed=0)._n_discrete == 0

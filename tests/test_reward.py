@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 import pytest
@@ -13,14 +12,12 @@ from hfo2d.heuristic import heuristic
 from hfo2d.hfo_env import HFOEnv
 from hfo2d.reward import (
     GapShapedReward,
-    PotentialGapReward,
     RefundedGapShapedReward,
     ShapedReward,
     SparseReward,
     ball_to_gap_distance,
     ball_to_goal_distance,
     make_reward,
-    shaping_potential,
 )
 
 MAX_DIST = math.hypot(52.5, 34.0)
@@ -205,71 +202,6 @@ def test_env_kick_bonus_once() -> None:
         bonuses.append(info["reward_terms"]["kick_bonus"])
     assert False in kickable_trace and kickable_trace[-1]
     assert bonuses == [0.0] * len(bonuses)
-
-
-def discounted_shaping(
-    env: HFOEnv, gamma: float, seed: int, scripted: bool
-) -> tuple[float, float, dict[str, Any], bool]:
-    """Play one episode (the scripted striker, or random actions); (Σ γ^t shaping, Φ(s_0), last info, truncated)."""
-    obs, _ = env.reset(seed=seed)
-    start_potential = shaping_potential(obs.astype(np.float64))
-    rng = np.random.default_rng(seed)
-    total, discount = 0.0, 1.0
-    while True:
-        action = heuristic(env, obs) if scripted else rng.uniform(0, 1, 8).astype(np.float32)
-        obs, _, terminated, truncated, info = env.step(action)
-        terms = info["reward_terms"]
-        total += discount * (terms["move_to_ball"] + terms["ball_to_goal"])
-        discount *= gamma
-        if terminated or truncated:
-            return total, start_potential, info, truncated
-
-
-def test_potential_shaping_sums_to_minus_the_start_potential_whatever_the_outcome() -> None:
-    # Ng et al.'s identity: with Φ = 0 after termination, Σ_t γ^t (γΦ(s_{t+1}) − Φ(s_t)) = −Φ(s_0), so a lost
-    # ball earns no more shaping than a goal. The scripted striker against the keeper scores or is caught;
-    # random play runs out of time.
-    gamma = 0.98
-    env = HFOEnv(task="keeper", reward="potential_gap", shaping_gamma=gamma)
-    statuses = set()
-    for seed, scripted in [(seed, True) for seed in range(12)] + [(0, False)]:
-        total, start_potential, info, truncated = discounted_shaping(env, gamma, seed, scripted)
-        assert not truncated
-        statuses.add(info["status"])
-        assert total == pytest.approx(-start_potential, abs=1e-4)
-    assert {"GOAL", "CAPTURED_BY_DEFENSE", "OUT_OF_TIME"} <= statuses
-
-
-def test_potential_shaping_keeps_the_last_potential_when_truncated() -> None:
-    # A truncated episode bootstraps, so Φ(s_T) stays: Σ γ^t F_t = γ^T Φ(s_T) − Φ(s_0).
-    gamma = 0.9
-    env = HFOEnv(reward="potential_gap", shaping_gamma=gamma, frames_per_trial=5)
-    total, start_potential, _, truncated = discounted_shaping(env, gamma, 3, scripted=False)
-    assert truncated and env._steps == 5
-    last_potential = shaping_potential(env._features())
-    assert total == pytest.approx(gamma**5 * last_potential - start_potential, abs=1e-4)
-
-
-def test_potential_reward_terms_and_kick_bonus() -> None:
-    reward = PotentialGapReward(gamma=0.5)
-    reward.reset(synthetic(0.0, 0.0))
-    # Φ(s0) = 0 − 3·0 = 0; s1: proximity 0.2, ball_to_goal |0.8 − 1.0| = 0.2 → Φ(s1) = 0.2 − 0.6 = −0.4
-    value, terms = reward(synthetic(0.2, 0.0, kickable=1.0), "IN_GAME")
-    assert terms["move_to_ball"] == pytest.approx(0.5 * 0.2)
-    assert terms["ball_to_goal"] == pytest.approx(-3 * 0.5 * 0.2)
-    assert terms["kick_bonus"] == 1.0 and value == pytest.approx(0.1 - 0.3 + 1.0)
-    # terminal: Φ(s') = 0, so the step pays −Φ(s1) = 0.4, plus 5 for the goal
-    value, terms = reward(synthetic(0.9, 0.9, kickable=1.0), "GOAL")
-    assert value == pytest.approx(0.4 + 5.0) and terms["kick_bonus"] == 0.0
-    # without the reset observation the first step pays no shaping
-    reward.reset()
-    assert reward(synthetic(0.5, 0.5), "IN_GAME")[0] == 0.0
-
-
-@pytest.mark.parametrize("gamma", [-0.1, 1.5, "0.98", True, float("nan")])
-def test_bad_shaping_gamma_is_refused(gamma: object) -> None:
-    with pytest.raises(ValueError, match="shaping gamma"):
-        HFOEnv(reward="potential_gap", shaping_gamma=gamma)  # type: ignore[arg-type]
 
 
 def test_refund_takes_back_the_progress_since_the_ball_was_last_kickable() -> None:

@@ -48,6 +48,11 @@ def _load_config(path: Path) -> tuple[str, dict[str, Any]]:
     return env_id, hyperparams
 
 
+def _algo(config: Path) -> str:
+    """The ``--algo`` a config's header command names: SkillPDQN (the preset) for the best configs."""
+    return "skill_pdqn" if "--algo skill_pdqn " in config.read_text() else "skill_ddpg"
+
+
 def _env_dir(env_id: str) -> str:
     # rl-zoo3 (huggingface_sb3.EnvironmentName) replaces "/" by "-" in folder names.
     return env_id.replace("/", "-")
@@ -75,7 +80,7 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
     n_envs = int(hyperparams.get("n_envs", 1))
     argv = [
         "--algo",
-        "skill_ddpg",
+        _algo(config),
         "--env",
         env_id,
         "--conf-file",
@@ -155,8 +160,9 @@ def trained_runs(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, dict[s
 
 
 def _model_path(root: Path, config_name: str) -> Path:
-    env_id, _ = _load_config(CONFIG_DIR / f"{config_name}.yml")
-    return root / "logs" / config_name / "skill_ddpg" / f"{_env_dir(env_id)}_1" / f"{_env_dir(env_id)}.zip"
+    config = CONFIG_DIR / f"{config_name}.yml"
+    env_id, _ = _load_config(config)
+    return root / "logs" / config_name / _algo(config) / f"{_env_dir(env_id)}_1" / f"{_env_dir(env_id)}.zip"
 
 
 # ------------------------------------------------------------------------------------------------------------------
@@ -205,11 +211,13 @@ def test_config_is_valid_and_documents_its_command(config: Path) -> None:
         )
     text = config.read_text()
     conf_file = config.relative_to(REPO).as_posix()
-    command = f"python -m sb3_hfo.train --algo skill_ddpg --env {env_id} --conf-file {conf_file} --seed 0"
+    command = (
+        f"python -m sb3_hfo.train --algo {_algo(config)} --env {env_id} --conf-file {conf_file} --seed 0"
+    )
     assert command in text, f"{conf_file} must document its own command line"
     skills = 2 if "skills" in config.stem else 1
     assert hyperparams["policy_kwargs"]["n_skills"] == skills
-    assert hyperparams["policy_kwargs"]["inverting_gradients"] is ("inverting" in config.stem)
+    assert hyperparams["policy_kwargs"].get("inverting_gradients", False) is ("inverting" in config.stem)
 
 
 # Only the e-configs claim the paper's settings; x-configs (beyond the paper) may differ in anything.
@@ -694,7 +702,7 @@ def test_evaluate_reports_json_for_an_rl_zoo_run_folder(
     assert report["deterministic"] is True  # greedy unless --stochastic
 
 
-def test_evaluation_leaves_out_the_runs_exploring_starts(tmp_path: Path) -> None:
+def test_evaluation_leaves_out_env_kwargs_the_env_no_longer_takes(tmp_path: Path) -> None:
     import gymnasium as gym
     import yaml
 
@@ -712,10 +720,7 @@ def test_evaluation_leaves_out_the_runs_exploring_starts(tmp_path: Path) -> None
 
     _, env, env_id, kwargs, _ = load_for_evaluation(str(run))
     assert env_id == "HFO/EmptyGoal-v0" and kwargs == {"noise": False}  # the task's settings stay
-    assert env.unwrapped.random_start_fraction == 0.0 and env.unwrapped.noise is False
-    env.close()
-    _, env, _, kwargs, _ = load_for_evaluation(str(run), env_kwargs={"random_start_fraction": 0.25})
-    assert env.unwrapped.random_start_fraction == 0.25  # unless asked for
+    assert not hasattr(env.unwrapped, "random_start_fraction") and env.unwrapped.noise is False
     env.close()
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import struct
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -10,6 +11,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from hfo2d.action_layout import ACTION_NAMES, DASH, HFO_FLAT_ACTION_LAYOUT, KICK, TURN, hfo_flat_action_space
 from hfo2d.features import (
     KICKABLE_BUFFER,
     hfo_feature_list,
@@ -18,7 +20,7 @@ from hfo2d.features import (
     num_features,
 )
 from hfo2d.physics import PITCH_HALF_LENGTH, PITCH_HALF_WIDTH, HFOReferee, PlayerState, ServerParams, World
-from hfo2d.reward import DEFAULT_SHAPING_GAMMA, REWARD_NAMES, make_reward
+from hfo2d.reward import REWARD_NAMES, make_reward
 
 # ---------------------------------------------------------------------------------------------------------------
 # Tasks, actions, episode rules
@@ -27,12 +29,10 @@ TASKS: tuple[str, ...] = ("empty_goal", "static_keeper", "keeper")
 ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
 #: Observation layouts: the paper era's (58 / 66, the default) or HFO master's (59 / 68).
 FEATURE_SETS: tuple[str, ...] = ("paper", "hfo")
-ACTION_NAMES: tuple[str, ...] = ("DASH", "TURN", "KICK")
-DASH, TURN, KICK = 0, 1, 2
-# [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir]
-FLAT_ACTION_SIZE = 8
-#: Where the three directions (dash_dir, turn_dir, kick_dir) sit in the flat action.
-FLAT_ACTION_DIRECTIONS: tuple[int, ...] = (4, 5, 7)
+# [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir]: the flat action's size
+# and its three directions (dash_dir, turn_dir, kick_dir), from its layout (hfo2d.action_layout).
+FLAT_ACTION_SIZE = HFO_FLAT_ACTION_LAYOUT.size
+FLAT_ACTION_DIRECTIONS: tuple[int, ...] = HFO_FLAT_ACTION_LAYOUT.direction_indices
 POWER_MIN, POWER_MAX = 0.0, 100.0  # gym-soccer / paper dash and kick power range (hfo_reference §3.3)
 DIRECTION_MIN, DIRECTION_MAX = -180.0, 180.0  # degrees relative to the body
 
@@ -68,11 +68,6 @@ OFFENSE_OFFSETS: tuple[tuple[float, float], ...] = (
 )
 OFFENSE_X_RANGE = (-0.1, PITCH_HALF_LENGTH)
 OFFENSE_Y_RANGE = BALL_Y_RANGE
-# Exploring starts (random_start_fraction; not HFO's, a training aid): ball and agent drawn independently over
-# most of the HFO half. The ball stays 2.5 m short of the goal line, out of the goalie's 1.085 m capture reach.
-RANDOM_START_BALL_X_RANGE = (0.0, 50.0)  # m
-RANDOM_START_AGENT_X_RANGE = (0.0, PITCH_HALF_LENGTH)  # m
-RANDOM_START_Y_RANGE = BALL_Y_RANGE  # m
 KEEPER_START = (PITCH_HALF_LENGTH, 0.0)
 KEEPER_START_BODY_DEG = -180.0  # facing the field
 #: The goalies of task "keeper": hfo2d's own design (HFO/Keeper-v0) and HFO's agent2d goalie (HFO/Keeper-v1).
@@ -174,9 +169,6 @@ class HFOEnv(gym.Env):
         ball's progress measured toward the middle of the wider goalie-post gap (the goal centre without a goalie).
         ``"shaped_gap_refund"`` (not HFO's): ``"shaped_gap"`` whose last step, when an episode ends without a goal,
         takes back the progress paid since the ball was last kickable by the agent (a lost shot pays nothing).
-        ``"potential_gap"`` (not HFO's): ``"shaped_gap"``'s progress terms as potential-based shaping discounted by
-        ``shaping_gamma``: every terminated episode's shaping sums (discounted) to the same total, so only a goal
-        pays more than losing the ball.
         ``"sparse"``: 1 for a goal, else 0.
         ``info["reward_terms"]`` holds each term.
 
@@ -197,10 +189,6 @@ class HFOEnv(gym.Env):
         ``reset(options=...)`` may place things by hand: ``{"player": (x, y, body_deg[, vx, vy]),
         "ball": (x, y[, vx, vy]), "keeper": (x, y, body_deg)}``, on the pitch or within rcssserver's 5 m margin
         of it (|x| <= 57.5, |y| <= 39), with no two of the placed bodies (and the goalie's start) overlapping.
-        Exploring starts (not part of HFO; off by default): with ``random_start_fraction = p > 0`` each episode,
-        with probability ``p``, starts instead with the ball at rest at x ~ U(0, 50), y ~ U(-27.2, 27.2) and the
-        agent, independently, at x ~ U(0, 52.5), y ~ U(-27.2, 27.2), body ~ U(-180, 180): states near the goal and
-        far from the ball that the default start rarely reaches, for training. Evaluate with the default (0).
 
     Info (every step): ``status``; ``is_success`` (status is GOAL); ``player`` (x, y, vx, vy, body_deg); ``ball`` (x, y, vx, vy); ``keeper``
     (x, y, vx, vy, body_deg) with a goalie; ``reward_terms``; ``action`` ("DASH" / "TURN" / "KICK");
@@ -212,9 +200,7 @@ class HFOEnv(gym.Env):
         render_mode: None, "human" (pygame window, drawn every step) or "rgb_array".
         action_format: "flat" or "parameterized".
         feature_set: "paper" (default, the table above) or "hfo" (HFO master's 59 / 68 features).
-        reward: "shaped", "shaped_gap", "shaped_gap_refund", "potential_gap" or "sparse".
-        shaping_gamma: discount of the ``"potential_gap"`` shaping, in [0, 1] (set it to the agent's ``gamma``);
-            the other rewards ignore it.
+        reward: "shaped", "shaped_gap", "shaped_gap_refund" or "sparse".
         noise: False turns off player, ball and kick noise (HFO's --deterministic); a bool.
         server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}`` (a mapping; each
             value range-checked, :data:`hfo2d.physics.SERVER_PARAM_RANGES`).
@@ -230,7 +216,6 @@ class HFOEnv(gym.Env):
             from the placement, i.e. after ``frames_per_trial - 1`` agent steps, as a truncation).
         frames_per_trial: steps after which an episode is truncated.
         untouched_time: cycles without a player near the ball after which the episode ends.
-        random_start_fraction: probability in [0, 1] that an episode uses the exploring start above (0: HFO's).
 
     Version History:
         * v1 (``HFO/Keeper-v1`` only): the goalie is HFO's own (agent2d's, with librcsc's intercept table, body
@@ -255,8 +240,6 @@ class HFOEnv(gym.Env):
         goalie: str = "hfo2d",
         frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
         untouched_time: int = DEFAULT_UNTOUCHED_TIME,
-        random_start_fraction: float = 0.0,
-        shaping_gamma: float = DEFAULT_SHAPING_GAMMA,
         feature_set: str = "paper",
     ) -> None:
         if task not in TASKS:
@@ -284,14 +267,6 @@ class HFOEnv(gym.Env):
             raise ValueError(f"unknown goalie {goalie!r}; choose one of {GOALIES}")
         if goalie != "hfo2d" and task != "keeper":
             raise ValueError(f"goalie={goalie!r} needs task 'keeper'; task {task!r} has no scripted goalie")
-        if isinstance(random_start_fraction, bool) or not isinstance(
-            random_start_fraction, (int, float, np.number)
-        ):
-            raise ValueError(
-                f"random_start_fraction must be a number in [0, 1], got {random_start_fraction!r}"
-            )
-        if not 0.0 <= float(random_start_fraction) <= 1.0:
-            raise ValueError(f"random_start_fraction must lie in [0, 1], got {random_start_fraction!r}")
         for name, value in (("frames_per_trial", frames_per_trial), ("untouched_time", untouched_time)):
             if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
                 raise ValueError(f"{name} must be a positive integer, got {value!r}")
@@ -308,7 +283,6 @@ class HFOEnv(gym.Env):
         self._hfo_referee: HFOReferee | None = None
         self.frames_per_trial = int(frames_per_trial)
         self.untouched_time = int(untouched_time)
-        self.random_start_fraction = float(random_start_fraction)
         self.params: ServerParams = ServerParams.with_overrides(server_params)
         self.has_keeper = task != "empty_goal"
         self._kickable_distance = self.params.kickable_area - KICKABLE_BUFFER
@@ -318,9 +292,7 @@ class HFOEnv(gym.Env):
         n_features = hfo_num_features(0, n_opponents) if self._hfo_layout else num_features(0, n_opponents)
         self.observation_space = spaces.Box(-1.0, 1.0, shape=(n_features,), dtype=np.float32)
         if action_format == "flat":
-            self.action_space: spaces.Space = spaces.Box(
-                0.0, 1.0, shape=(FLAT_ACTION_SIZE,), dtype=np.float32
-            )
+            self.action_space: spaces.Space = hfo_flat_action_space()
         else:
             self.action_space = spaces.Tuple(
                 (
@@ -343,8 +315,7 @@ class HFOEnv(gym.Env):
                 )
             )
 
-        self._reward_fn = make_reward(reward, shaping_gamma)
-        self.shaping_gamma = float(shaping_gamma)
+        self._reward_fn = make_reward(reward)
         # The world and its players live as long as the env; reset() re-places them and hands them the env's
         # (possibly reseeded) generator, so references to env.world / env.agent stay valid across episodes.
         rng = self.np_random
@@ -411,12 +382,6 @@ class HFOEnv(gym.Env):
             max(ball_y + OFFENSE_SPREAD * (rng.uniform() + offset_y), OFFENSE_Y_RANGE[0]), OFFENSE_Y_RANGE[1]
         )
         agent_body = rng.uniform(-180.0, 180.0)
-        # Drawn after HFO's start (and only when enabled), so that the default episodes keep their random stream.
-        if self.random_start_fraction > 0.0 and rng.uniform() < self.random_start_fraction:
-            ball_x = rng.uniform(*RANDOM_START_BALL_X_RANGE)
-            ball_y = rng.uniform(*RANDOM_START_Y_RANGE)
-            agent_x = rng.uniform(*RANDOM_START_AGENT_X_RANGE)
-            agent_y = rng.uniform(*RANDOM_START_Y_RANGE)
 
         ball = placements.get("ball", (ball_x, ball_y, 0.0, 0.0))
         world.place_ball(*ball)
@@ -469,7 +434,7 @@ class HFOEnv(gym.Env):
             self.render()
         # HFO's agent starts with its last action status false (agent.cpp)
         observation = self._hfo_features(False) if self._hfo_layout else features
-        return np.array(observation, dtype=np.float32), info
+        return _observation(observation), info
 
     def step(self, action: Any) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
         """Advance one server cycle: agent command, goalie command, physics, referee, features, reward."""
@@ -537,7 +502,7 @@ class HFOEnv(gym.Env):
         if self.render_mode == "human":
             self.render()
         observation = self._hfo_features(success) if self._hfo_layout else features
-        return np.array(observation, dtype=np.float32), reward, terminated, truncated, info
+        return _observation(observation), reward, terminated, truncated, info
 
     def _agent2d_wait_frame(self) -> None:
         """Real HFO plays one more cycle after an episode ends and before the next reset; the goalie acts in it
@@ -709,16 +674,18 @@ class HFOEnv(gym.Env):
             values = _as_float_list(action, "flat action")
             if len(values) != FLAT_ACTION_SIZE:
                 raise ValueError(f"flat action must have shape ({FLAT_ACTION_SIZE},), got {np.shape(action)}")
-        for index, value in enumerate(values):
-            if not 0.0 <= value <= 1.0:  # also rejects NaN
-                what = "not finite" if not math.isfinite(value) else "outside [0, 1]"
-                raise ValueError(f"flat action element {index} is {what}: {value!r}")
-        pref_dash, pref_turn, pref_kick = values[0], values[1], values[2]
-        if pref_dash >= pref_turn and pref_dash >= pref_kick:
-            return DASH, POWER_MAX * values[3], DIRECTION_MIN + 360.0 * values[4]
-        if pref_turn >= pref_kick:
-            return TURN, 0.0, DIRECTION_MIN + 360.0 * values[5]
-        return KICK, POWER_MAX * values[6], DIRECTION_MIN + 360.0 * values[7]
+        # min / max are exact unless a NaN hides among the values, and then the sum is NaN: one pass in C for the
+        # valid actions, the element-wise search only to name the bad element
+        total = sum(values)
+        if not (min(values) >= 0.0 and max(values) <= 1.0 and total == total):
+            for index, value in enumerate(values):
+                if not 0.0 <= value <= 1.0:  # also rejects NaN
+                    what = "not finite" if not math.isfinite(value) else "outside [0, 1]"
+                    raise ValueError(f"flat action element {index} is {what}: {value!r}")
+        kind, parameters = HFO_FLAT_ACTION_LAYOUT.decode(values)
+        if kind == TURN:
+            return TURN, 0.0, DIRECTION_MIN + 360.0 * parameters[0]
+        return kind, POWER_MAX * parameters[0], DIRECTION_MIN + 360.0 * parameters[1]
 
     def _parse_parameterized_action(self, action: Any) -> tuple[int, float, float]:
         if not isinstance(action, (tuple, list)) or len(action) != 4:
@@ -788,6 +755,20 @@ class HFOEnv(gym.Env):
 
 _NO_DECISION = object()  # step(): the goalie (if any) decides in the usual place
 _NOT_REAL = (bool, np.bool_, complex, np.complexfloating)  # numbers an action or a placement must not hold
+
+
+def _observation(features: list[float]) -> np.ndarray:
+    """The features as a new float32 array, each float rounded to float32 as ``np.array(features, np.float32)``
+    does (struct's "f" is C's double-to-float conversion, like numpy's cast; the features lie in [-1, 1], so it
+    never overflows). Packing them with a precompiled :class:`struct.Struct` costs about half of np.array's
+    element-by-element conversion."""
+    packer = _FLOAT32_PACKERS.get(len(features))
+    if packer is None:
+        packer = _FLOAT32_PACKERS[len(features)] = struct.Struct(f"={len(features)}f")
+    return np.frombuffer(packer.pack(*features), np.float32).copy()
+
+
+_FLOAT32_PACKERS: dict[int, struct.Struct] = {}
 
 
 def _check_keeper_skill(skill: Any) -> None:

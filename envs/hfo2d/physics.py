@@ -403,11 +403,29 @@ class World:
                 post.filter = pymunk.ShapeFilter(categories=_POST_CATEGORY)
                 self.space.add(post)
                 self._posts_by_quadrant[(sx > 0.0, sy > 0.0)] = post
+        self._derived: tuple = ()
+        self._derive()
         self._ball_body, self._ball_shape = self._new_body(params.ball_size)
         self._player_bodies: list[pymunk.Body] = []
         self._player_shapes: list[pymunk.Circle] = []
 
     # --- set-up ------------------------------------------------------------------------------------
+    def _derive(self) -> tuple:
+        """Products of parameters that step() would otherwise recompute every cycle, each formed with the same
+        operation as in the rule that uses it (so the floats are the same); recomputed if ``params`` is replaced."""
+        sp = self.params
+        smax = sp.stamina_max
+        bp_limit = sp.ball_size + sp.player_size
+        pp_limit = 2.0 * sp.player_size
+        self._derived = (
+            sp,
+            (sp.player_size, sp.player_decay, sp.player_rand, sp.player_speed_max, sp.player_accel_max),
+            (sp.ball_size, sp.ball_decay, sp.ball_rand, sp.ball_speed_max, sp.ball_accel_max),
+            (bp_limit * bp_limit, pp_limit * pp_limit),
+            (sp.recover_dec_thr * smax, sp.effort_dec_thr * smax, sp.effort_inc_thr * smax),
+        )
+        return self._derived
+
     @property
     def rng(self) -> np.random.Generator:
         """The generator all random numbers come from."""
@@ -835,30 +853,22 @@ class World:
     # --- one cycle ---------------------------------------------------------------------------------
     def step(self) -> None:
         """Advance one cycle (see the module docstring for the order) and increment ``cycle``."""
-        sp = self.params
-        noise = self.noise
+        derived = self._derived
+        if derived[0] is not self.params:
+            derived = self._derive()
+        p_size, p_decay, p_rand, p_speed_max, p_accel_max = derived[1]
+        b_size, b_decay, b_rand, b_speed_max, b_accel_max = derived[2]
+        if not self.noise:
+            p_rand = b_rand = 0.0
+        move = self._move
         for player in self.players:
             if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
                 player.tackle_cycles -= 1
             player.collided_ball = player.collided_player = False
-            self._move(
-                player,
-                sp.player_size,
-                sp.player_decay,
-                sp.player_rand if noise else 0.0,
-                sp.player_speed_max,
-                sp.player_accel_max,
-            )
+            move(player, p_size, p_decay, p_rand, p_speed_max, p_accel_max)
         ball = self.ball
         ball.collided_player = False
-        self._move(
-            ball,
-            sp.ball_size,
-            sp.ball_decay,
-            sp.ball_rand if noise else 0.0,
-            sp.ball_speed_max,
-            sp.ball_accel_max,
-        )
+        move(ball, b_size, b_decay, b_rand, b_speed_max, b_accel_max)
         if self._catch_contacts:
             for obj, with_ball, with_player in self._catch_contacts:
                 if isinstance(obj, BallState):
@@ -868,8 +878,9 @@ class World:
                     obj.collided_player = obj.collided_player or with_player
             self._catch_contacts = []
         self._collisions()
+        update_stamina = self._update_stamina
         for player in self.players:
-            self._update_stamina(player)
+            update_stamina(player)
             if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
                 player.catch_ban -= 1
         self.cycle += 1
@@ -1004,10 +1015,16 @@ class World:
             return
         sp = self.params
         ball = self.ball
+        derived = self._derived
+        if derived[0] is not sp:
+            derived = self._derive()
+        bp_limit2, pp_limit2 = derived[3]
+        # Most cycles nothing overlaps: then the first pass below would change nothing and stop, so the pairs
+        # are tested alone first (the same comparisons) and the bookkeeping is skipped.
+        if not _any_overlap(players, ball, bp_limit2, pp_limit2):
+            return
         bp_limit = sp.ball_size + sp.player_size
         pp_limit = 2.0 * sp.player_size
-        bp_limit2 = bp_limit * bp_limit
-        pp_limit2 = pp_limit * pp_limit
         ball_hit = False
         player_hit = [False] * n
         for _ in range(10):
@@ -1104,22 +1121,53 @@ class World:
     def _update_stamina(self, p: PlayerState) -> None:
         """``Player::updateStamina`` (hfo_reference §4.5): thresholds on the current stamina, then recover."""
         sp = self.params
+        derived = self._derived
+        if derived[0] is not sp:
+            derived = self._derive()
+        recover_dec_thr, effort_dec_thr, effort_inc_thr = derived[4]  # each thr * stamina_max
         stamina = p.stamina
         smax = sp.stamina_max
-        if stamina <= sp.recover_dec_thr * smax and p.recovery > sp.recover_min:
+        if stamina <= recover_dec_thr and p.recovery > sp.recover_min:
             p.recovery = max(sp.recover_min, p.recovery - sp.recover_dec)
-        if stamina <= sp.effort_dec_thr * smax and p.effort > sp.effort_min:
+        if stamina <= effort_dec_thr and p.effort > sp.effort_min:
             p.effort = max(sp.effort_min, p.effort - sp.effort_dec)
-        if stamina >= sp.effort_inc_thr * smax and p.effort < sp.effort_init:
+        if stamina >= effort_inc_thr and p.effort < sp.effort_init:
             p.effort = min(sp.effort_init, p.effort + sp.effort_inc)
-        inc = min(sp.stamina_inc_max * p.recovery, smax - stamina)
+        # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
+        inc = sp.stamina_inc_max * p.recovery
+        room = smax - stamina
+        if room < inc:
+            inc = room
         if sp.stamina_capacity >= 0.0:
             if p.capacity >= inc:
                 p.capacity -= inc
             else:
                 inc = p.capacity
                 p.capacity = 0.0
-        p.stamina = min(smax, stamina + max(0.0, inc))
+        stamina += inc if inc > 0.0 else 0.0
+        p.stamina = stamina if stamina < smax else smax
+
+
+def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float) -> bool:
+    """Whether any ball-player pair is closer than ``sqrt(bp_limit2)`` or any player pair than ``sqrt(pp_limit2)``
+    (the first-pass tests of :meth:`World._collisions`)."""
+    bx = ball.x
+    by = ball.y
+    for p in players:
+        dx = p.x - bx
+        dy = p.y - by
+        if dx * dx + dy * dy < bp_limit2:
+            return True
+    n = len(players)
+    for i in range(n - 1):
+        a = players[i]
+        for j in range(i + 1, n):
+            b = players[j]
+            dx = b.x - a.x
+            dy = b.y - a.y
+            if dx * dx + dy * dy < pp_limit2:
+                return True
+    return False
 
 
 # --- HFO referee (rcssserver referee.cpp HFORef::analyse, spec §5.4) --------------------------------------------
@@ -1233,7 +1281,10 @@ class HFOReferee:
         status = HFO_IN_GAME
         if world.play_on:
             self.cycles += 1
-            if crosses_right_goal_line(self.prev_ball_x, self.prev_ball_y, bx, by, self.params):
+            # (crosses_right_goal_line is False while |x| <= its line_x; that test alone first, as it fails most cycles)
+            if abs(bx) > PITCH_HALF_LENGTH + self.params.ball_size and crosses_right_goal_line(
+                self.prev_ball_x, self.prev_ball_y, bx, by, self.params
+            ):
                 status = HFO_GOAL
             elif not in_hfo_area(self.prev_ball_x, self.prev_ball_y):
                 status = HFO_OUT_OF_BOUNDS

@@ -73,6 +73,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from hfo2d.action_layout import hfo_flat_action_space
 from hfo2d.features import (
     BALL_ANGLE_COS,
     BALL_ANGLE_SIN,
@@ -118,7 +119,6 @@ from hfo2d.hfo_env import (
     DEFAULT_UNTOUCHED_TIME,
     DIRECTION_MAX,
     DIRECTION_MIN,
-    FLAT_ACTION_SIZE,
     GOAL,
     IN_GAME,
     KICK,
@@ -129,7 +129,7 @@ from hfo2d.hfo_env import (
     TURN,
     HFOEnv,
 )
-from hfo2d.reward import DEFAULT_SHAPING_GAMMA, REWARD_NAMES, make_reward
+from hfo2d.reward import REWARD_NAMES, make_reward
 
 # ---------------------------------------------------------------------------------------------------------------
 # Tasks, HFO's numbers, session settings
@@ -705,7 +705,7 @@ class RealHFOEnv(gym.Env):
     [-180, 180] degrees; invalid actions raise ValueError) and sent as HFO's ``act(DASH, power, dir)``,
     ``act(TURN, dir)`` or ``act(KICK, power, dir)``.
 
-    Reward (``reward``, ``shaping_gamma``): hfo2d's rewards (:mod:`hfo2d.reward`), computed from the features.
+    Reward (``reward``): hfo2d's rewards (:mod:`hfo2d.reward`), computed from the features.
 
     Episodes: HFO's referee ends them (GOAL, CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME after
     ``untouched_time`` untouched cycles: ``terminated``; OUT_OF_TIME at ``frames_per_trial``: ``truncated``). HFO
@@ -726,7 +726,6 @@ class RealHFOEnv(gym.Env):
         hfo_dir: the HFO build (folder with ``bin/HFO``); None: ``$HFO_DIR``.
         action_format: "flat" or "parameterized".
         reward: one of hfo2d's REWARD_NAMES.
-        shaping_gamma: discount of the ``"potential_gap"`` shaping.
         noise: False runs HFO ``--deterministic`` (no player, ball, kick or wind noise).
         seed: HFO's ``--seed`` (start positions), an int in [0, 2**31 - 1]; None: the seed of the first
             ``reset(seed=...)``, else HFO's own (time).
@@ -750,7 +749,6 @@ class RealHFOEnv(gym.Env):
         hfo_dir: str | os.PathLike[str] | None = None,
         action_format: str = "flat",
         reward: str = "shaped",
-        shaping_gamma: float = DEFAULT_SHAPING_GAMMA,
         noise: bool = True,
         seed: int | None = None,
         frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
@@ -799,15 +797,13 @@ class RealHFOEnv(gym.Env):
         self.fullstate = bool(fullstate)
         self.has_keeper = task != "empty_goal"
         self.num_opponents = DEFENSE_NPCS[task] + DEFENSE_AGENTS[task]
-        self._reward_fn = make_reward(reward, shaping_gamma)
+        self._reward_fn = make_reward(reward)
 
         self.observation_space = spaces.Box(
             -1.0, 1.0, shape=(num_features(0, self.num_opponents),), dtype=np.float32
         )
         if action_format == "flat":
-            self.action_space: spaces.Space = spaces.Box(
-                0.0, 1.0, shape=(FLAT_ACTION_SIZE,), dtype=np.float32
-            )
+            self.action_space: spaces.Space = hfo_flat_action_space()
         else:
             power_direction = spaces.Box(
                 np.array([POWER_MIN, DIRECTION_MIN], dtype=np.float32),

@@ -27,31 +27,16 @@ Shaped toward the gap (``"shaped_gap"``; not HFO's, an option of this package): 
 centre, i.e. 3.5 m beside a goalie standing at the centre, on the ball's side when the gaps are equal (within
 ``GAP_TIE_TOLERANCE``). Without a goalie (or with its slot empty) it equals ``"shaped"``. Why: the goal-centre term
 pays for moving the ball straight at a goalie on the goal line, and agents trained with it against the static
-keeper shoot at him from close range (research/RESULTS.md, sessions 8-9). The target is computed from the
+keeper shoot at him from close range (research/RESULTS.md). The target is computed from the
 features alone (goal centre, posts, ball and goalie landmarks, all in the agent's body frame).
 
 Shaped toward the gap, lost shots refunded (``"shaped_gap_refund"``; not HFO's, an option of this package):
 ``"shaped_gap"``, except that when an episode ends without a goal (terminated: CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS,
 or OUT_OF_TIME after 100 untouched cycles) its last step takes back the ball-to-gap progress paid since the ball
 was last kickable by the agent. Progress the agent carried the ball through (dribbling) stays paid; a kick's
-progress is kept only when it ends in a goal or the agent reaches the ball again. Why: the x24 agent described
-below. On E6 (config x27, one seed) it took the greedy goal rate against the full keeper from x24's 16.5 % to
-68.0 % (research/RESULTS.md, session 15).
-
-Potential-based, toward the gap (``"potential_gap"``; not HFO's, an option of this package): the two progress
-terms of ``"shaped_gap"`` rewritten as potential-based shaping (Ng, Harada & Russell, ICML 1999), which provably
-leaves the optimal policy of the goal reward unchanged::
-
-    Φ(s) = ball_proximity(s) − 3 · ball_to_gap(s)
-    r_t = γ · Φ(s_{t+1}) − Φ(s_t) + I_kick + 5 · I_goal,    with Φ(s_{t+1}) = 0 when the episode terminates
-
-(γ = ``gamma``, which should equal the agent's discount; a truncated episode keeps Φ(s_{t+1}), since the agent
-bootstraps there). Over any terminated episode the shaping terms sum, discounted, to −Φ(s_0): the same for every
-outcome, so only the goal (and the one-time kick bonus, kept from HFO) separates a goal from a lost ball. Why: with
-the non-potential HFO terms and γ = 0.98, kicking the ball far up the field into the keeper's arms pays most of an
-episode's shaping early; the E6 agent x24 does it in 4 of 10 episodes, collecting 4.3 on average against 5.3 for
-losing the ball close to goal and 10.3 for a goal (research/RESULTS.md, session 15). Tried on that task (config
-x26) it scored no goal in 332k training steps, where ``"shaped_gap"`` had a 16 % training goal rate by 300k.
+progress is kept only when it ends in a goal or the agent reaches the ball again. Why: under ``"shaped_gap"`` a
+long shot into the keeper's arms collects most of an episode's shaping early, which a discount below 1 favours
+over dribbling closer (research/RESULTS.md).
 
 Sparse: 1 on GOAL, else 0 (gym-soccer's Soccer-v0, hfo_reference §6.3).
 """
@@ -59,7 +44,6 @@ Sparse: 1 on GOAL, else 0 (gym-soccer's Soccer-v0, hfo_reference §6.3).
 from __future__ import annotations
 
 import math
-import numbers
 from collections.abc import Sequence
 from typing import Protocol
 
@@ -85,7 +69,7 @@ from hfo2d.features import (
     landmark_position,
 )
 
-REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "potential_gap", "sparse")
+REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "sparse")
 STATUS_IN_GAME = "IN_GAME"
 STATUS_GOAL = "GOAL"
 
@@ -96,8 +80,6 @@ KICKABLE_JUMP = 1.0  # DQNHFO awards the bonus when the kickable feature rises b
 SPARSE_GOAL_REWARD = 1.0
 # m; gaps whose widths differ by less than this count as equal, and the ball's side picks the target
 GAP_TIE_TOLERANCE = 0.5
-# "potential_gap"'s discount unless told otherwise: Stable-Baselines3's default gamma
-DEFAULT_SHAPING_GAMMA = 0.99
 
 REWARD_TERM_NAMES: tuple[str, ...] = ("move_to_ball", "kick_bonus", "ball_to_goal", "goal")
 
@@ -289,101 +271,14 @@ class SparseReward:
         return goal, {"move_to_ball": 0.0, "kick_bonus": 0.0, "ball_to_goal": 0.0, "goal": goal}
 
 
-class PotentialGapReward:
-    """``shaped_gap``'s progress terms as potential-based shaping (see the module docstring).
-
-    :param gamma: discount of the shaping, in [0, 1]; the agent's own ``gamma`` for the optimal policy to be
-        exactly that of the goal reward alone.
-    """
-
-    def __init__(self, gamma: float) -> None:
-        _check_gamma(gamma)
-        self.gamma = float(gamma)
-        self._previous_ball_proximity: float | None = None
-        self._previous_ball_to_gap = 0.0
-        self._previous_kickable = -1.0
-        self._kick_bonus_paid = False
-
-    def reset(self, features: Sequence[float] | None = None) -> None:
-        """Start a new episode at the reset observation ``features``.
-
-        Without them the first step pays no shaping (its Φ(s_0) is unknown), as the other shaped rewards do.
-        """
-        self._kick_bonus_paid = False
-        if features is None:
-            self._previous_ball_proximity = None
-            self._previous_kickable = -1.0
-            return
-        self._previous_ball_proximity = float(features[BALL_PROXIMITY])
-        self._previous_ball_to_gap = ball_to_gap_distance(features)
-        self._previous_kickable = float(features[KICKABLE])
-
-    def __call__(
-        self, features: Sequence[float], status: str, terminated: bool | None = None
-    ) -> tuple[float, dict[str, float]]:
-        """Reward of the step that produced ``features`` and ended with ``status``.
-
-        Args:
-            features: the step's feature vector (58 or 66 values, feature units).
-            status: the step's HFO status ("IN_GAME", "GOAL", ...).
-            terminated: whether the episode ended for good (Φ = 0 after it); None: any status but IN_GAME.
-                A truncated episode (OUT_OF_TIME at ``frames_per_trial``) passes False.
-
-        Returns:
-            (reward, terms) where terms maps each of REWARD_TERM_NAMES to its share; they sum to reward.
-        """
-        if terminated is None:
-            terminated = status != STATUS_IN_GAME
-        ball_proximity = float(features[BALL_PROXIMITY])
-        kickable = float(features[KICKABLE])
-        ball_to_gap = ball_to_gap_distance(features)
-
-        move_to_ball = 0.0
-        ball_to_goal_term = 0.0
-        kick_bonus = 0.0
-        if self._previous_ball_proximity is not None:
-            # Φ(s') = 0 after a terminal step; Φ's two parts are kept apart only to report the terms
-            next_discount = 0.0 if terminated else self.gamma
-            move_to_ball = next_discount * ball_proximity - self._previous_ball_proximity
-            ball_to_goal_term = BALL_TO_GOAL_WEIGHT * (
-                self._previous_ball_to_gap - next_discount * ball_to_gap
-            )
-            if status == STATUS_IN_GAME and _kick_bonus_due(
-                kickable, self._previous_kickable, self._kick_bonus_paid
-            ):
-                kick_bonus = KICK_BONUS
-                self._kick_bonus_paid = True
-
-        self._previous_ball_proximity = ball_proximity
-        self._previous_ball_to_gap = ball_to_gap
-        self._previous_kickable = kickable
-        return _reward_and_terms(move_to_ball, kick_bonus, ball_to_goal_term, status)
-
-
-def shaping_potential(features: Sequence[float]) -> float:
-    """Φ of ``"potential_gap"`` at ``features``: ball proximity − 3 × ball-to-gap distance (feature units)."""
-    return float(features[BALL_PROXIMITY]) - BALL_TO_GOAL_WEIGHT * ball_to_gap_distance(features)
-
-
-def _check_gamma(gamma: float) -> None:
-    if isinstance(gamma, bool) or not isinstance(gamma, numbers.Real) or not 0.0 <= float(gamma) <= 1.0:
-        raise ValueError(f"shaping gamma must be a number in [0, 1], got {gamma!r}")
-
-
-def make_reward(name: str, gamma: float = DEFAULT_SHAPING_GAMMA) -> RewardFunction:
-    """The reward called ``name`` (one of REWARD_NAMES); ValueError naming the choices otherwise.
-
-    ``gamma`` is the shaping discount of ``"potential_gap"`` (checked, unused by the others).
-    """
-    _check_gamma(gamma)
+def make_reward(name: str) -> RewardFunction:
+    """The reward called ``name`` (one of REWARD_NAMES); ValueError naming the choices otherwise."""
     if name == "shaped":
         return ShapedReward()
     if name == "shaped_gap":
         return GapShapedReward()
     if name == "shaped_gap_refund":
         return RefundedGapShapedReward()
-    if name == "potential_gap":
-        return PotentialGapReward(gamma)
     if name == "sparse":
         return SparseReward()
     raise ValueError(f"unknown reward {name!r}; choose one of {REWARD_NAMES}")

@@ -30,6 +30,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT
 from hfo2d.features import (
     BALL_ANGLE_SIN,
     BALL_VEL_ANGLE_SIN,
@@ -55,8 +56,6 @@ from hfo2d.features import (
     SELF_VEL_ANGLE_SIN,
 )
 from hfo2d.hfo_env import (
-    FLAT_ACTION_DIRECTIONS,
-    FLAT_ACTION_SIZE,
     OFFENSE_OFFSETS,
     OFFENSE_SPREAD,
     OFFENSE_Y_RANGE,
@@ -125,8 +124,10 @@ def mirror_features(features: Sequence[float] | np.ndarray) -> np.ndarray:
 
 
 def flat_action_mirror_signs() -> list[float]:
-    """Per-entry signs that mirror a flat action in a scale centred on 0 (SB3's replay-buffer scale [-1, 1])."""
-    return [-1.0 if index in FLAT_ACTION_DIRECTIONS else 1.0 for index in range(FLAT_ACTION_SIZE)]
+    """Per-entry signs that mirror a flat action in a scale centred on 0 (SB3's replay-buffer scale [-1, 1]): the
+    directions of :data:`~hfo2d.action_layout.HFO_FLAT_ACTION_LAYOUT` negated."""
+    layout = HFO_FLAT_ACTION_LAYOUT
+    return [-1.0 if index in layout.direction_indices else 1.0 for index in range(layout.size)]
 
 
 def mirror_flat_action(action: Sequence[float] | np.ndarray) -> np.ndarray:
@@ -135,9 +136,11 @@ def mirror_flat_action(action: Sequence[float] | np.ndarray) -> np.ndarray:
     array = np.array(action)  # a copy
     if array.dtype.kind != "f":
         array = array.astype(np.float64)
-    if array.shape[-1:] != (FLAT_ACTION_SIZE,):
-        raise ValueError(f"a flat HFO action has {FLAT_ACTION_SIZE} entries, got shape {array.shape}")
-    array[..., FLAT_ACTION_DIRECTIONS] = 1.0 - array[..., FLAT_ACTION_DIRECTIONS]
+    layout = HFO_FLAT_ACTION_LAYOUT
+    if array.shape[-1:] != (layout.size,):
+        raise ValueError(f"a flat HFO action has {layout.size} entries, got shape {array.shape}")
+    directions = list(layout.direction_indices)
+    array[..., directions] = 1.0 - array[..., directions]
     return array
 
 

@@ -6,7 +6,7 @@ from typing import NamedTuple
 
 import torch as th
 
-from hfo2d.hfo_env import FLAT_ACTION_SIZE
+from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT, HybridActionLayout
 from hfo2d.symmetry import feature_mirror, flat_action_mirror_signs
 
 __all__ = ["Mirror", "make_mirror"]
@@ -33,14 +33,14 @@ class Mirror(NamedTuple):
         return Mirror(*(tensor.to(device) for tensor in self))
 
 
-def make_mirror(obs_shape: tuple[int, ...] | None, action_dim: int, option: str) -> Mirror:
-    """The :class:`Mirror` of HFO observations of ``obs_shape`` and flat actions of ``action_dim`` entries (CPU).
+def make_mirror(obs_shape: tuple[int, ...] | None, layout: HybridActionLayout | None, option: str) -> Mirror:
+    """The :class:`Mirror` of HFO observations of ``obs_shape`` and flat actions laid out by ``layout`` (CPU).
 
-    :raises ValueError: naming ``option`` when the spaces are not HFO's feature vector and 8-dimensional action.
+    :raises ValueError: naming ``option`` when the spaces are not HFO's feature vector and flat action.
     """
-    if action_dim != FLAT_ACTION_SIZE:
+    if layout != HFO_FLAT_ACTION_LAYOUT:
         raise ValueError(
-            f"{option} needs HFO's {FLAT_ACTION_SIZE}-dimensional flat action, got action dim {action_dim}"
+            f"{option} needs HFO's flat action (hfo2d's HFO_FLAT_ACTION_LAYOUT), got layout {layout}"
         )
     if obs_shape is None or len(obs_shape) != 1:
         raise ValueError(f"{option} needs HFO's 1-D feature vector, got observation shape {obs_shape}")

@@ -24,6 +24,8 @@ from typing import Any
 import numpy as np
 import torch as th
 
+from hfo2d.features import SELF_X
+
 __all__ = [
     "ROUTERS",
     "FieldHalfRouter",
@@ -34,11 +36,10 @@ __all__ = [
     "validate_skills",
 ]
 
-#: Index of the agent's own x-position feature in HFO's low-level feature set (58 / 66 features):
-#: ``obs[46] = 1 - 2 * min(x / 52.5, 1)`` (the paper-era out-of-bounds normaliser), hence ``obs[46] > 0`` exactly
-#: when ``x < 26.25`` m, i.e. the agent stands in the half of the attacked half-field away from the goal.
-#: Source: HFO's LowLevelFeatureExtractor via the project contract (hfo2d.features owns the feature layout).
-SELF_X_FEATURE_INDEX = 46
+#: Column of the agent's own x-position feature in HFO's low-level features (hfo2d.features owns the layout):
+#: ``1 - 2 * min(x / 52.5, 1)`` (the paper-era out-of-bounds normaliser), positive exactly when ``x < 26.25`` m, i.e.
+#: the agent stands in the half of the attacked half-field away from the goal.
+SELF_X_FEATURE_INDEX = SELF_X
 
 
 class SkillRouter:
@@ -91,8 +92,8 @@ class FieldHalfRouter(SkillRouter):
       (with HFO's features: agent x < 26.25 m);
     * skill 1 ("shoot"): the agent is in the half near the goal (x >= 26.25 m).
 
-    :param feature_index: column of ``obs`` holding the agent's normalised x-position feature (default 46, HFO's
-        self-x feature ``1 - 2 * min(x / 52.5, 1)``; positive away from goal).
+    :param feature_index: column of ``obs`` holding the agent's normalised x-position feature (default
+        :data:`SELF_X_FEATURE_INDEX`, HFO's ``1 - 2 * min(x / 52.5, 1)``; positive away from goal).
     :param threshold: feature value at the dividing line (0.0 is x = 26.25 m with HFO's normalisation).
     """
 

@@ -10,7 +10,7 @@ features, the rest are zeros:
   (KICK), in the action's [0, 1] scale.
 
 Action: ``Box(0, 1, (8,))`` like ``HFO/*-v0`` (``[pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir,
-kick_power, kick_dir]``); the argmax of the first three entries is the chosen discrete action. Reward: ``1 - 2 |p -
+kick_power, kick_dir]``, :data:`~hfo2d.action_layout.HFO_FLAT_ACTION_LAYOUT`), decoded by its rule. Reward: ``1 - 2 |p -
 target|`` (in [0.2, 1]) for the right discrete action, ``-1`` otherwise. ``info["status"]`` is ``"GOAL"`` when the
 discrete action is right and ``|p - target| < 0.1``, ``"OUT_OF_TIME"`` otherwise, and ``info["is_success"]`` is true
 at a ``"GOAL"`` (as in HFO: SB3 logs it as ``rollout/success_rate``).
@@ -25,11 +25,14 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
+from hfo2d.action_layout import DASH, HFO_FLAT_ACTION_LAYOUT, KICK, hfo_flat_action_space
+from hfo2d.features import SELF_X
+
 __all__ = ["HybridTargetEnv"]
 
-#: DASH and KICK preference indices and their power entries in HFO's flat action.
-DASH, KICK = 0, 2
-DASH_POWER_INDEX, KICK_POWER_INDEX = 3, 6
+#: DASH's and KICK's power entries (their first parameters) in HFO's flat action.
+DASH_POWER_INDEX = HFO_FLAT_ACTION_LAYOUT.parameter_slice(DASH).start
+KICK_POWER_INDEX = HFO_FLAT_ACTION_LAYOUT.parameter_slice(KICK).start
 #: A parameter within this distance of its target counts as a "GOAL".
 GOAL_TOLERANCE = 0.1
 
@@ -38,13 +41,13 @@ class HybridTargetEnv(gym.Env[np.ndarray, np.ndarray]):
     """One-step "pick the right discrete action and set its power" task (see the module docstring).
 
     :param obs_dim: observation size (default 58 like ``HFO/EmptyGoal-v0``).
-    :param region_index: column of the region feature (default 46, HFO's self-x feature read by the field-half
-        router); the target feature sits at ``region_index + 1``.
+    :param region_index: column of the region feature (default HFO's self-x feature, which the field-half router
+        reads); the target feature sits at ``region_index + 1``.
     """
 
     metadata: dict[str, Any] = {"render_modes": []}
 
-    def __init__(self, obs_dim: int = 58, region_index: int = 46) -> None:
+    def __init__(self, obs_dim: int = 58, region_index: int = SELF_X) -> None:
         if not 0 <= region_index < obs_dim - 1:
             raise ValueError(
                 f"region_index must lie in [0, obs_dim - 1) = [0, {obs_dim - 1}), got {region_index}"
@@ -52,7 +55,7 @@ class HybridTargetEnv(gym.Env[np.ndarray, np.ndarray]):
         self.obs_dim = obs_dim
         self.region_index = region_index
         self.observation_space = spaces.Box(-1.0, 1.0, (obs_dim,), np.float32)
-        self.action_space = spaces.Box(0.0, 1.0, (8,), np.float32)
+        self.action_space = hfo_flat_action_space()
         self._obs = np.zeros(obs_dim, dtype=np.float32)
 
     def _new_context(self) -> np.ndarray:
@@ -74,9 +77,9 @@ class HybridTargetEnv(gym.Env[np.ndarray, np.ndarray]):
         return self._new_context(), {}
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        action = np.clip(np.asarray(action, dtype=np.float64).reshape(8), 0.0, 1.0)
+        action = np.clip(np.asarray(action, dtype=np.float64).reshape(HFO_FLAT_ACTION_LAYOUT.size), 0.0, 1.0)
         discrete, power_index, target = self.correct_action(self._obs)
-        chosen = int(np.argmax(action[:3]))
+        chosen = int(HFO_FLAT_ACTION_LAYOUT.choose(action))
         error = abs(float(action[power_index]) - target)
         if chosen == discrete:
             reward = 1.0 - 2.0 * error

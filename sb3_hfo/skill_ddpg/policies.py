@@ -32,82 +32,50 @@ Inverting gradients (Hausknecht & Stone 2016, the paper's Figure 2 alternative):
 the actor's output layer is linear (no ``tanh``); the algorithm rescales dQ/da to keep actions inside [-1, 1] and
 acting clips actions to [-1, 1]. Figure 2's 1024-512-256-128 network is ``net_arch=[1024, 512, 256, 128]``.
 
-Unused parameters (an option beyond the paper, off by default): in a parameterised action only the chosen discrete
-action's parameters reach the environment, yet the paper's critic sees all of them, so dQ/da pushes the others
-along whatever the critic happens to have learnt about them. In HFO they drift into ``tanh``'s saturation (the
-kick direction of a trained E1 actor sits at +180 degrees in every probed state, research/RESULTS.md) and pass
-back no gradient when they are finally used. With ``mask_unused_parameters`` the critic receives the action with
-every other discrete action's parameters set to 0 (the middle of the [-1, 1] scale), from the replay buffer and
-from the actor alike, so their gradient is exactly zero and Q depends only on what the environment executed
-(the zeroing of other actions' parameters in Bester et al. 2019's multi-pass Q-network, MP-DQN).
+Options beyond the paper, each off by default; each says why in one sentence, and the measurements are in
+research/RESULTS.md (the results page, docs/results.md, gives the committed models' figures):
 
-Twin critics (an option beyond the paper, off by default): with ``n_critics=2`` the policy keeps a second critic
-and its target copy (``extra_critics`` / ``extra_critic_targets``), both critics regress to one target computed
-with the smaller of the two target critics' values, and the actor follows the first critic only: the clipped
-double Q-learning of TD3 (Fujimoto et al. 2018), against DDPG's overestimation of Q. One Adam
-(``policy.critic_optimizer``) owns every critic's parameters, as in SB3's ``TD3``.
-
-The critic picks the discrete action (an option beyond the paper, off by default): with
-``discrete_choice="critic"`` acting (``predict``, and so SB3's rollouts) keeps the actor's parameters but tries
-each discrete action ``j`` as the one-hot preference vector (+1 for ``j``, -1 for the others: the form in which
-epsilon-greedy exploration with ``exploration_keep_parameters`` stores its steps) and plays the one the first
-critic values most, as P-DQN / MP-DQN choose (Xiong et al. 2018; Bester et al. 2019). The actor's own preferences
-are still trained and are what ``"actor"`` (the paper) plays. The option may be switched on a trained model
-(``model.policy.discrete_choice = "critic"``); it pays off with ``mask_unused_parameters``, whose critic values
-each discrete action by its own parameters (research/RESULTS.md, session 6).
-
-No kick without the ball (an option beyond the paper, off by default): rcssserver ignores a kick while the ball is
-out of the kickable area, so the state does not change and a deterministic policy that picks KICK there repeats
-it until HFO's 100-cycle limit (9 of the 17 OUT_OF_TIME episodes in a 300-episode trace of a critic's-choice
-E1 agent, session 7). With ``kick_only_when_kickable=True`` KICK is never the greedy choice while the
-observation's "able to kick" feature (:data:`KICKABLE_FEATURE_INDEX`) is -1: the critic's choice and SkillDDPG's
-``discrete_target="max"`` leave it out of their maximum, and the actor's choice falls to the larger of the DASH
-and TURN preferences (as a one-hot vector) where KICK was the largest. Invalid-action masking, as in
-sb3-contrib's MaskablePPO; exploration (epsilon-greedy, SB3's warm-up) may still try such kicks.
-
-Fourier features of the directions for the critic (an option beyond the paper, off by default): on the [-1, 1]
-scale a 5-degree change of the kick direction moves the critic's input by 0.028, and a static keeper blocks only
-a few degrees of the goal from a shot taken 30 m away. On the shots that x3's static-keeper agent had caught, its
-critic valued kicking 0-5 degrees from the keeper's bearing highest, changing by less than 0.3 over +-10 degrees
-(``research/probes/critic_kick_scan.py``, session 8), so the actor shot at the keeper. With
-``critic_direction_frequencies=(k1, k2, ...)`` the critic also sees ``sin(k * theta)`` and ``cos(k * theta)`` of
-each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions of
-its input (Tancik et al. 2020), used on value networks by Yang et al. 2022. The actor is unchanged; dQ/da goes
-through the features by the chain rule.
-
-Kick direction relative to landmarks for the critic (beyond the paper, off by default; needs the Fourier features
-above): with ``critic_kick_relative_to=("goalie", ...)`` the critic also sees ``sin(k * (kick - bearing))`` and
-``cos(k * (kick - bearing))`` for each named landmark's bearing (from the observation's (sin, cos) pair; both angles
-are relative to the body, as rcssserver's kick direction and HFO's bearings are). Why: with the absolute features
-alone, x11's and x12's critics still valued a shot at the static keeper within 0.1 of the best shot past him
-(``research/probes/critic_kick_scan.py``, session 10): "kick minus keeper bearing" is a difference of two inputs that
-the network has to form itself, and at frequency 32 a product of sines. With the relative features x15's critic
-shows a notch at the keeper's bearing (Q - max Q -1.27 there against -0.61 / -0.74 at -10 / +10 degrees) and x15
-scores 96.2 / 89.9 % against the static keeper (two seeds), x12 79.7-89.4 % (research/RESULTS.md, session 10).
-
-The better of the state and its mirror image (beyond the paper, off by default): HFO is symmetric about the
-pitch's long axis (:mod:`hfo2d.symmetry`), so the policy played in the mirror image of the state, its action
-mirrored back, is another policy for the real state, and the critic's value of the mirrored state and action is
-its estimate of that policy's value. With ``mirror_choice=True`` acting (``predict``, and so SB3's rollouts)
-computes the greedy action in the state and in its mirror image and plays the one the first critic values more
-(ties: the unmirrored one); a one-step policy improvement over two policies, decided afresh every step. Why: x27's
-E6 agent scores all its goals in one half of the goal, by one route (research/probes/failure_map.py, session 16). Can be
-switched on a trained model. Needs HFO's low-level features and 8-dimensional flat action. ``mirror_margin=m > 0``
-keeps a side (plain or mirrored) through an episode: the first step of an episode takes the better side, later
-steps switch only when the other side's value exceeds the kept side's by more than ``m`` (``inf``: never). Why: a
-choice made afresh every step may alternate between the two routes; with ``m = 0.1`` x27 scores 79.25 % against
-76.3 % over 2,000 episodes (research/RESULTS.md, session 17). The side is carried in ``predict``'s recurrent
-``state`` (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate``
-pass it; a call without ``state`` starts every row afresh, and so do SB3's training rollouts. Neither mends the
-empty goal, where the mirror choice costs some models points. HFO's start distribution is not mirror-symmetric
-(:mod:`hfo2d.symmetry`), and one such model's twin scores less from the starts whose mirror image HFO never draws,
-starts its training never saw mirrored; another's twin is as good as the policy and the choice still costs it a
-point (session 17, ``research/probes/mirror_twin.py``).
+* ``mask_unused_parameters``: the critic sees the action with every other discrete action's parameters set to 0
+  (the middle of the [-1, 1] scale), from the replay buffer and from the actor alike, as Bester et al. 2019's
+  multi-pass Q-network (MP-DQN) zeroes them. Why: only the chosen action's parameters reach the environment, and
+  without the mask dQ/da drives the others into ``tanh``'s saturation, from where they pass back no gradient when
+  they are finally used.
+* ``discrete_choice="critic"``: acting keeps the actor's parameters but tries each discrete action ``j`` as the
+  one-hot preference vector (+1 for ``j``, -1 for the others, the form epsilon-greedy exploration with
+  ``exploration_keep_parameters`` stores) and plays the one the critic values most, as P-DQN / MP-DQN choose
+  (Xiong et al. 2018; Bester et al. 2019). Why: with ``mask_unused_parameters`` the critic values each discrete
+  action by its own parameters, which the actor's preferences do not. Can be switched on a trained model.
+* ``kick_only_when_kickable``: KICK is never the greedy choice while the observation's "able to kick" feature
+  (:data:`KICKABLE_FEATURE_INDEX`) is -1; the critic's choice and SkillDDPG's ``discrete_target="max"`` leave it
+  out of their maximum, and the actor's choice falls to its best other preference (invalid-action masking, as in
+  sb3-contrib's MaskablePPO; exploration may still try such kicks). Why: rcssserver ignores a kick out of reach, so
+  a deterministic policy that picks KICK there repeats it until HFO's time limit.
+* ``critic_direction_frequencies=(k1, k2, ...)``: the critic also sees ``sin(k * theta)`` and ``cos(k * theta)``
+  of each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions
+  of its input (Tancik et al. 2020); the actor is unchanged and dQ/da goes through the features by the chain rule.
+  Why: on the [-1, 1] scale a 5-degree change of the kick direction moves the critic's input by 0.028, too little
+  for it to tell a shot past a keeper from one at him.
+* ``critic_kick_relative_to=("goalie", ...)`` (needs the frequencies above): the critic also sees the kick
+  direction relative to each named landmark's bearing (read from the observation's (sin, cos) pair; both angles are
+  relative to the body), at the same frequencies. Why: "kick minus keeper bearing" is otherwise a difference of two
+  inputs the network has to form itself.
+* ``mirror_choice``: HFO is symmetric about the pitch's long axis (:mod:`hfo2d.symmetry`), so the policy played in
+  the mirror image of the state, its action mirrored back, is another policy for the real state; acting
+  (``predict``; not SkillDDPG's training rollouts) computes the greedy action in the state and in its mirror image
+  and plays the one the critic values more (ties: the unmirrored one). Why: a one-step policy improvement over two
+  policies, for agents that score by one route only. Needs HFO's features and flat action; can be switched on a
+  trained model. HFO's start distribution is not mirror-symmetric, and on the empty goal the choice can cost points.
+* ``mirror_margin=m > 0``: the mirror choice keeps a side (plain or mirrored) through an episode and switches only
+  when the other side's value exceeds the kept side's by more than ``m`` (``inf``: never). Why: a choice made
+  afresh every step may alternate between two routes. The side travels in ``predict``'s recurrent ``state``
+  (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate`` pass
+  it; a call without ``state`` starts every row afresh.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
+import contextlib
+from collections.abc import Iterable, Iterator, Sequence
 from typing import Any, ClassVar
 
 import numpy as np
@@ -120,6 +88,7 @@ from stable_baselines3.common.type_aliases import PyTorchObs, Schedule
 from torch import nn
 from torch.nn import functional as F
 
+from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT, HybridActionLayout, action_layout
 from hfo2d.features import (
     GOAL_CENTER_COS,
     GOAL_CENTER_SIN,
@@ -131,7 +100,6 @@ from hfo2d.features import (
     GOALIE_ANGLE_SIN,
     KICKABLE,
 )
-from hfo2d.hfo_env import FLAT_ACTION_DIRECTIONS, KICK
 from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.common.routers import SkillRouter, check_skills, make_router, validate_skills
 
@@ -155,17 +123,12 @@ DEFAULT_NET_ARCH: dict[str, list[int]] = {"pi": [400, 300, 200], "qf": [400, 300
 LEAKY_RELU_SLOPE = 1e-2
 #: "Weights are initialized with a truncated normal distribution with a standard deviation 10^-2".
 WEIGHT_INIT_STD = 1e-2
-#: Parameters of HFO's DASH (power, direction), TURN (direction) and KICK (power, direction) in its flat action,
-#: after the three preferences (hfo2d's ``action_format="flat"``).
-HFO_ACTION_PARAMETER_SIZES = (2, 1, 2)
-#: DASH, TURN, KICK: the discrete actions whose preferences open HFO's flat action.
-HFO_N_DISCRETE_ACTIONS = len(HFO_ACTION_PARAMETER_SIZES)
-#: HFO's flat action: [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir].
-HFO_FLAT_ACTION_DIM = HFO_N_DISCRETE_ACTIONS + sum(HFO_ACTION_PARAMETER_SIZES)
-# Where the three direction parameters (dash, turn, kick; [-1, 1] for [-180, 180] degrees) sit in the flat action.
-HFO_DIRECTION_PARAMETER_INDICES = FLAT_ACTION_DIRECTIONS
-#: Index of KICK among HFO's discrete actions (DASH, TURN, KICK: the flat action's first three preferences).
-HFO_KICK_ACTION = KICK
+# HFO's flat action as hfo2d declares it (hfo2d.action_layout.HFO_FLAT_ACTION_LAYOUT), by the names other modules
+# import: the parameter count of DASH, TURN and KICK, their number, the action's size and KICK's index.
+HFO_ACTION_PARAMETER_SIZES = HFO_FLAT_ACTION_LAYOUT.parameter_sizes
+HFO_N_DISCRETE_ACTIONS = HFO_FLAT_ACTION_LAYOUT.n_discrete
+HFO_FLAT_ACTION_DIM = HFO_FLAT_ACTION_LAYOUT.size
+HFO_KICK_ACTION = HFO_FLAT_ACTION_LAYOUT.ball_action
 #: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise); hfo2d
 #: owns the layout (HFO's LowLevelFeatureExtractor).
 KICKABLE_FEATURE_INDEX = KICKABLE
@@ -204,7 +167,9 @@ def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[l
     return [int(n) for n in actor_arch], [int(n) for n in critic_arch]
 
 
-def _direction_frequencies(frequencies: Sequence[float], action_dim: int) -> tuple[float, ...]:
+def _direction_frequencies(
+    frequencies: Sequence[float], layout: HybridActionLayout | None
+) -> tuple[float, ...]:
     """Validated ``critic_direction_frequencies`` as a tuple of floats (YAML gives a list)."""
     if isinstance(frequencies, (str, bytes)) or not isinstance(frequencies, Iterable):
         raise ValueError(f"critic_direction_frequencies must be a sequence of numbers, got {frequencies!r}")
@@ -217,10 +182,10 @@ def _direction_frequencies(frequencies: Sequence[float], action_dim: int) -> tup
         for k in values
     ):
         raise ValueError(f"critic_direction_frequencies must be finite numbers > 0, got {frequencies!r}")
-    if values and action_dim != HFO_FLAT_ACTION_DIM:
+    if values and (layout is None or not layout.direction_indices):
         raise ValueError(
-            f"critic_direction_frequencies needs HFO's {HFO_FLAT_ACTION_DIM}-dimensional flat action (directions at "
-            f"{HFO_DIRECTION_PARAMETER_INDICES}), got action dim {action_dim}"
+            "critic_direction_frequencies needs an action layout with direction parameters (HFO's flat action), "
+            f"got layout {layout}"
         )
     return tuple(float(k) for k in values)
 
@@ -235,7 +200,7 @@ KICK_REFERENCE_BEARINGS: dict[str, tuple[int, int]] = {
 
 
 def _kick_references(
-    names: Sequence[str], frequencies: tuple[float, ...], obs_dim: int
+    names: Sequence[str], frequencies: tuple[float, ...], obs_dim: int, layout: HybridActionLayout | None
 ) -> tuple[tuple[int, int, int], ...]:
     """Validated ``critic_kick_relative_to`` as (kick action index, bearing sin column, bearing cos column) triples."""
     if isinstance(names, (str, bytes)) or not isinstance(names, Iterable):
@@ -250,6 +215,13 @@ def _kick_references(
         raise ValueError(
             "critic_kick_relative_to needs critic_direction_frequencies (it uses the same frequencies)"
         )
+    kick_direction = None
+    if names and layout is not None and layout.ball_action is not None:
+        kick_direction = layout.action_direction(layout.ball_action)
+    if names and kick_direction is None:
+        raise ValueError(
+            f"critic_kick_relative_to needs an action layout with a kick direction, got layout {layout}"
+        )
     triples = []
     for name in names:
         sin_column, cos_column = KICK_REFERENCE_BEARINGS[name]
@@ -258,21 +230,29 @@ def _kick_references(
                 f"critic_kick_relative_to: {name!r} needs observation column {max(sin_column, cos_column)}, but the "
                 f"observation has {obs_dim} features (the goalie's bearing exists only on goalie tasks)"
             )
-        triples.append((HFO_DIRECTION_PARAMETER_INDICES[KICK], sin_column, cos_column))
+        triples.append((kick_direction, sin_column, cos_column))
     return tuple(triples)
 
 
-def _parameter_sizes(option: bool | tuple[int, ...] | list[int], action_dim: int) -> tuple[int, ...] | None:
-    """The per-discrete-action parameter counts that ``mask_unused_parameters=option`` means (``None``: off)."""
-    if option is False or option is None:
-        return None
-    if option is True:
-        if action_dim != HFO_FLAT_ACTION_DIM:
+def _resolve_layout(
+    space_layout: HybridActionLayout | None, mask_unused_parameters: object, action_dim: int
+) -> HybridActionLayout | None:
+    """The action layout the policy works with: the action space's (:func:`hfo2d.action_layout.action_layout`), or
+    one given by ``mask_unused_parameters`` as the parameter count of each discrete action; ``None`` (a plain
+    ``Box``, no discrete actions) otherwise.
+
+    :raises ValueError: a bad ``mask_unused_parameters``, sizes that do not fit the action or the space's layout, or
+        ``True`` without a layout.
+    """
+    option = mask_unused_parameters
+    if isinstance(option, (bool, np.bool_)) or option is None:
+        if option and space_layout is None:
             raise ValueError(
-                f"mask_unused_parameters=True means HFO's flat action (8 entries), but the action has {action_dim}; "
-                "pass the parameter count of each discrete action instead, e.g. (2, 1, 2)"
+                f"mask_unused_parameters=True needs the action space's hybrid layout (hfo2d's HybridActionBox, as "
+                f"the HFO envs have), but the {action_dim}-entry action space declares none; pass the parameter "
+                "count of each discrete action instead, e.g. (2, 1, 2)"
             )
-        return HFO_ACTION_PARAMETER_SIZES
+        return space_layout
     if isinstance(option, (str, bytes)) or not isinstance(option, (tuple, list)):
         raise ValueError(f"mask_unused_parameters must be a bool or a sequence of ints, got {option!r}")
     sizes = tuple(option)
@@ -285,7 +265,14 @@ def _parameter_sizes(option: bool | tuple[int, ...] | list[int], action_dim: int
             f"mask_unused_parameters={option!r} describes {len(sizes)} preferences + {sum(sizes)} parameters = "
             f"{len(sizes) + sum(sizes)} action entries, but the action has {action_dim}"
         )
-    return tuple(int(n) for n in sizes)
+    if space_layout is not None:
+        if space_layout.parameter_sizes != tuple(int(n) for n in sizes):
+            raise ValueError(
+                f"mask_unused_parameters={option!r} differs from the action space's layout "
+                f"{space_layout.parameter_sizes}"
+            )
+        return space_layout
+    return HybridActionLayout.from_sizes(sizes)
 
 
 def _make_activation(activation_fn: type[nn.Module]) -> nn.Module:
@@ -421,6 +408,11 @@ class HFOActor(nn.Module):
         :param skills: ``(B,)`` long tensor of head indices; ``None`` means head 0 (only valid with one skill).
         :return: ``(B, action_dim)``; in [-1, 1] when ``squash`` is set.
         """
+        out = self.head_outputs(obs, skills)
+        return th.tanh(out) if self.squash else out
+
+    def head_outputs(self, obs: th.Tensor, skills: th.Tensor | None = None) -> th.Tensor:
+        """:meth:`forward` before the ``tanh``: each row's skill head's output ``(B, action_dim)``."""
         features = self.features(obs)
         if skills is None or self.n_skills == 1:
             weight, bias = self.head_layers[0]
@@ -441,80 +433,7 @@ class HFOActor(nn.Module):
             per_skill = th.stack([F.linear(features, w, b) for w, b in self.head_layers], dim=1)
             index = skills.view(-1, 1, 1).expand(-1, 1, self.action_dim)
             out = per_skill.gather(1, index).squeeze(1)
-        return th.tanh(out) if self.squash else out
-
-    def forward_for_backward(
-        self, obs: th.Tensor, segments: list[Segment]
-    ) -> tuple[th.Tensor, list[th.Tensor], th.Tensor]:
-        """:meth:`forward` on rows grouped by skill, keeping what the backward pass (:meth:`output_gradients`)
-        needs.
-
-        :param obs: ``(B, obs_dim)``, rows sorted by skill.
-        :param segments: ``(skill, start, stop)`` for each skill with rows: rows ``start:stop`` use head ``skill``.
-        :return: ``(action (B, action_dim), layer_inputs, head_outputs)``: the input of every trunk layer and of
-            the heads (``obs``, then each hidden activation ``(B, hidden[i])``), and the heads' outputs before
-            ``tanh`` ``(B, action_dim)``.
-        """
-        inputs = [obs]
-        for weight, bias in self.trunk_layers:
-            inputs.append(self.activation.forward(F.linear(inputs[-1], weight, bias)))
-        features = inputs[-1]
-        if len(segments) == 1:
-            weight, bias = self.head_layers[segments[0][0]]
-            out = F.linear(features, weight, bias)
-        else:
-            out = th.cat(
-                [
-                    F.linear(features[start:stop], self.head_layers[k][0], self.head_layers[k][1])
-                    for k, start, stop in segments
-                ]
-            )
-        return (th.tanh(out) if self.squash else out), inputs, out
-
-    def output_gradients(
-        self,
-        inputs: list[th.Tensor],
-        action: th.Tensor,
-        grad_action: th.Tensor,
-        segments: list[Segment],
-        grad_outputs: th.Tensor | None = None,
-    ) -> list[th.Tensor]:
-        """Explicit backward pass of ``grad_action`` for all rows: every layer's pre-activation gradient ``dZ``.
-
-        Rows never mix in an MLP, so one backward pass gives every layer's ``dZ`` for all rows at the current
-        parameters; skill ``k``'s weight gradients are then ``dZ[rows_k].T @ input[rows_k]`` over its
-        rows alone (the gradient of skill ``k``'s loss alone, for the FLOPs of one backward pass), needing no
-        parameter.
-
-        :param inputs: the layer inputs returned by :meth:`forward_for_backward` (same ``segments``).
-        :param action: ``(B, action_dim)``, the actions it returned.
-        :param grad_action: ``(B, action_dim)``, dLoss/daction (each row already weighted by its skill's loss).
-        :param segments: as for :meth:`forward_for_backward`.
-        :param grad_outputs: optional ``(B, action_dim)`` extra gradient with respect to the heads' outputs before
-            ``tanh`` (a loss term on them, e.g. SkillDDPG's ``preactivation_penalty``).
-        :return: ``dZ`` of every trunk layer, input side first, then of the heads' outputs ``(B, action_dim)``.
-        """
-        grad_out = _tanh_backward(grad_action, action) if self.squash else grad_action
-        if grad_outputs is not None:
-            grad_out = grad_out + grad_outputs
-        trunk_layers = self.trunk_layers
-        backward = self.activation.backward
-        if len(segments) == 1:
-            grad_hidden = grad_out.mm(self.head_layers[segments[0][0]][0])
-        else:
-            sizes = [stop - start for _, start, stop in segments]
-            grad_hidden = th.empty_like(inputs[-1])
-            for (k, _, _), grad_part, hidden_part in zip(
-                segments, grad_out.split(sizes), grad_hidden.split(sizes), strict=True
-            ):
-                th.mm(grad_part, self.head_layers[k][0], out=hidden_part)
-        grad_zs = [grad_out]  # collected from the output down, reversed at the end
-        for index in range(len(trunk_layers) - 1, -1, -1):
-            grad_z = backward(grad_hidden, inputs[index + 1])
-            grad_zs.append(grad_z)
-            if index > 0:
-                grad_hidden = grad_z.mm(trunk_layers[index][0])
-        return grad_zs[::-1]
+        return out
 
 
 def one_hot_preferences(n_discrete: int, like: th.Tensor) -> th.Tensor:
@@ -639,77 +558,9 @@ class HFOCritic(nn.Module):
             )
         return th.cat((action, th.sin(angles), th.cos(angles)), dim=1)
 
-    def _encoded_gradient_to_action(self, grad_seen: th.Tensor, seen: th.Tensor) -> th.Tensor:
-        """Chain rule through :meth:`encode_action`: ``grad_seen``, d/d(its output) ``(B, action_dim + 2 * n)``,
-        and that output ``seen`` -> d/d(action) ``(B, action_dim)``."""
-        if self.n_encoded == 0:
-            return grad_seen
-        dim, n = self.action_dim, self.n_encoded
-        sines, cosines = seen[:, dim : dim + n], seen[:, dim + n :]
-        grad_angles = (
-            grad_seen[:, dim : dim + n] * cosines - grad_seen[:, dim + n :] * sines
-        ) * self.encoded_scale
-        return grad_seen[:, :dim].index_add(1, self.encoded_index, grad_angles)
-
     def forward(self, obs: th.Tensor, action: th.Tensor) -> th.Tensor:
         """``obs (B, obs_dim)``, ``action (B, action_dim)`` in the buffer scale -> ``Q (B, 1)``."""
         return self.joint_net(th.cat((self.obs_net(obs), self.encode_action(action, obs)), dim=1))
-
-    def forward_for_backward(self, obs: th.Tensor, action: th.Tensor) -> tuple[th.Tensor, list[th.Tensor]]:
-        """:meth:`forward` (same numbers) keeping every layer's input for :meth:`output_gradients` /
-        :meth:`action_gradient`.
-
-        :return: ``(Q (B, 1), layer_inputs)``: ``obs``, ``[obs features, encoded action]
-            (B, qf[0] + action_dim + 2 * n_encoded)``, then each later hidden activation ``(B, qf[i])``.
-        """
-        layers = self.layers
-        weight, bias = layers[0]
-        features = self.activation.forward(F.linear(obs, weight, bias))
-        inputs = [obs, th.cat((features, self.encode_action(action, obs)), dim=1)]
-        for weight, bias in layers[1:-1]:
-            inputs.append(self.activation.forward(F.linear(inputs[-1], weight, bias)))
-        weight, bias = layers[-1]
-        return F.linear(inputs[-1], weight, bias), inputs
-
-    def output_gradients(self, inputs: list[th.Tensor], grad_q: th.Tensor) -> list[th.Tensor]:
-        """Explicit backward pass of ``grad_q = dLoss/dQ (B, 1)``: every layer's pre-activation gradient ``dZ``,
-        input side first (the last one is ``grad_q``). Layer ``i``'s weight gradient is ``dZ_i.T @ inputs[i]``,
-        its bias gradient the row sum of ``dZ_i``.
-
-        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
-        """
-        layers = self.layers
-        n_features = self.n_features
-        backward = self.activation.backward
-        grad_z = grad_q
-        grad_zs = [grad_z]  # collected from the output down, reversed at the end
-        for index in range(len(layers) - 1, 0, -1):
-            weight = layers[index][0]
-            if index == 1:  # only the features' gradient; the action's is not needed here
-                grad_z = backward(grad_z.mm(weight[:, :n_features]), inputs[1][:, :n_features])
-            else:
-                grad_z = backward(grad_z.mm(weight), inputs[index])
-            grad_zs.append(grad_z)
-        return grad_zs[::-1]
-
-    def action_gradient(self, inputs: list[th.Tensor]) -> th.Tensor:
-        """dQ/da ``(B, action_dim)`` of every row's own ``Q`` (i.e. of ``Q.sum()``), without any weight gradient.
-
-        :param inputs: the layer inputs returned by :meth:`forward_for_backward`.
-        """
-        layers = self.layers
-        n_features = self.n_features
-        # d(sum Q)/d(last layer's input) is the output layer's weight row, for every row of the batch.
-        grad_input = layers[-1][0].expand(inputs[0].shape[0], -1)
-        if len(layers) > 2:  # otherwise (qf = [n]) the action enters the output layer
-            for index in range(len(layers) - 2, 0, -1):
-                grad_z = self.activation.backward(grad_input, inputs[index + 1])
-                weight = layers[index][0]
-                # At the action layer only the action's columns: a (B, action_dim) product, not (B, qf[0] + ...).
-                grad_input = grad_z.mm(weight if index > 1 else weight[:, n_features:])
-        else:
-            grad_input = grad_input[:, n_features:]
-        return self._encoded_gradient_to_action(grad_input, inputs[1][:, n_features:])
 
 
 class HFOPolicy(BasePolicy):
@@ -727,26 +578,26 @@ class HFOPolicy(BasePolicy):
         ``"field_half"``) or ``None`` (``"single"`` for 1 skill, ``"field_half"`` for 2).
     :param inverting_gradients: linear actor output + Hausknecht & Stone's inverting gradients (see module doc).
     :param mask_unused_parameters: the critic sees only the chosen discrete action's parameters (see module doc).
-        ``False`` (default, the paper), ``True`` (HFO's flat layout, :data:`HFO_ACTION_PARAMETER_SIZES`; needs an
-        8-dimensional action) or the number of parameters of each discrete action in order, e.g. ``(2, 1, 2)``:
-        the action is then ``[one preference per discrete action, their parameters in the same order]``.
-    :param n_critics: number of critics (1: the paper; 2: TD3's clipped double Q, see module doc).
+        ``False`` (default, the paper), ``True`` (by the action space's hybrid layout,
+        :func:`hfo2d.action_layout.action_layout`: the HFO envs declare theirs) or, for a plain ``Box``, the number
+        of parameters of each discrete action in order, e.g. ``(2, 1, 2)``: the action is then ``[one preference
+        per discrete action, their parameters in the same order]``.
     :param discrete_choice: who picks the discrete action when acting: ``"actor"`` (the paper: its largest
-        preference) or ``"critic"`` (the best one-hot preference vector by the first critic, see module doc; needs
-        the discrete layout: HFO's 8-dimensional action or ``mask_unused_parameters`` given as sizes).
+        preference) or ``"critic"`` (the best one-hot preference vector by the critic, see module doc; needs
+        an action layout: the action space's or ``mask_unused_parameters`` given as sizes).
     :param kick_only_when_kickable: KICK is never the greedy choice while the ball is out of reach (observation
-        feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs HFO's 8-dimensional action and
-        low-level features. Can be switched on a trained model.
-    :param mirror_choice: play the better, by the first critic, of the greedy action in the state and the greedy
-        action in its mirror image mirrored back (see module doc). Needs HFO's low-level features and 8-dimensional
-        flat action. Can be switched on a trained model.
+        feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs a layout with a ball action (HFO's
+        KICK) and HFO's low-level features. Can be switched on a trained model.
+    :param mirror_choice: play the better, by the critic, of the greedy action in the state and the greedy
+        action in its mirror image mirrored back (see module doc). Needs HFO's low-level features and flat
+        action. Can be switched on a trained model.
     :param mirror_margin: with ``mirror_choice``, keep the side played (plain or mirrored) through an episode and
-        switch only when the other side's value (first critic) exceeds it by more than this (>= 0, ``inf``: never
+        switch only when the other side's value (by the critic) exceeds it by more than this (>= 0, ``inf``: never
         switch; 0, the default: decide afresh every step); the side travels in ``predict``'s ``state`` (see module
         doc). Can be switched on a trained model.
     :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
         ``cos(k * theta)`` of the dash, turn and kick directions that the critic sees besides the action (see
-        module doc); ``()`` (default, the paper): none. Needs HFO's 8-dimensional flat action.
+        module doc); ``()`` (default, the paper): none. Needs a layout with direction parameters (HFO's).
     :param critic_kick_relative_to: landmark names (:data:`KICK_REFERENCE_BEARINGS`: ``"goalie"``,
         ``"goal_center"``, ``"goal_post_top"``, ``"goal_post_bottom"``) whose bearing the kick direction is also
         encoded relative to, at ``critic_direction_frequencies`` (see module doc); ``()`` (default): none.
@@ -763,8 +614,6 @@ class HFOPolicy(BasePolicy):
     actor_target: HFOActor
     critic: HFOCritic
     critic_target: HFOCritic
-    extra_critics: nn.ModuleList
-    extra_critic_targets: nn.ModuleList
     critic_optimizer: th.optim.Optimizer
 
     def __init__(
@@ -778,7 +627,6 @@ class HFOPolicy(BasePolicy):
         skill_router: SkillRouter | str | None = None,
         inverting_gradients: bool = False,
         mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
-        n_critics: int = 1,
         discrete_choice: str = "actor",
         kick_only_when_kickable: bool = False,
         mirror_choice: bool = False,
@@ -806,10 +654,6 @@ class HFOPolicy(BasePolicy):
             raise ValueError("HFOPolicy only supports FlattenExtractor (feature-vector observations)")
         if weight_init_std <= 0:
             raise ValueError(f"weight_init_std must be > 0, got {weight_init_std}")
-        if isinstance(n_critics, bool) or not isinstance(n_critics, (int, np.integer)) or n_critics < 1:
-            raise ValueError(
-                f"n_critics must be an int >= 1 (1: the paper, 2: TD3's twin critics), got {n_critics!r}"
-            )
         super().__init__(
             observation_space,
             action_space,
@@ -827,11 +671,19 @@ class HFOPolicy(BasePolicy):
         self.n_skills = int(n_skills)
         self.inverting_gradients = bool(inverting_gradients)
         self.weight_init_std = float(weight_init_std)
-        self.n_critics = int(n_critics)
         self.obs_dim = get_flattened_obs_dim(observation_space)
         self.action_dim = get_action_dim(action_space)
         self.mask_unused_parameters = mask_unused_parameters
-        self.action_parameter_sizes = _parameter_sizes(mask_unused_parameters, self.action_dim)
+        #: The hybrid action layout (hfo2d.action_layout), or None: a plain Box, acted on as DDPG does.
+        self.action_layout = _resolve_layout(
+            action_layout(action_space), mask_unused_parameters, self.action_dim
+        )
+        #: Each discrete action's parameter count when the critic masks unused parameters, else None.
+        self.action_parameter_sizes = (
+            self.action_layout.parameter_sizes
+            if self.action_layout is not None and mask_unused_parameters is not False
+            else None
+        )
         self.discrete_choice = discrete_choice  # validated by the property setter
         self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
         self.mirror_choice = mirror_choice  # validated by the property setter
@@ -839,10 +691,10 @@ class HFOPolicy(BasePolicy):
         # The kept sides, set by predict for _predict while a call with mirror_margin > 0 runs.
         self._side_box: list[np.ndarray | None] | None = None
         self.critic_direction_frequencies = _direction_frequencies(
-            critic_direction_frequencies, self.action_dim
+            critic_direction_frequencies, self.action_layout
         )
         self.kick_references = _kick_references(
-            critic_kick_relative_to, self.critic_direction_frequencies, self.obs_dim
+            critic_kick_relative_to, self.critic_direction_frequencies, self.obs_dim, self.action_layout
         )
         self.critic_kick_relative_to = tuple(critic_kick_relative_to)
         self._build(lr_schedule)
@@ -869,7 +721,9 @@ class HFOPolicy(BasePolicy):
             net_arch=self.critic_arch,
             activation_fn=self.activation_fn,
             weight_init_std=self.weight_init_std,
-            direction_indices=HFO_DIRECTION_PARAMETER_INDICES if self.critic_direction_frequencies else (),
+            direction_indices=self.action_layout.direction_indices  # type: ignore[union-attr]
+            if self.critic_direction_frequencies
+            else (),
             direction_frequencies=self.critic_direction_frequencies,
             relative_directions=self.kick_references,
         )
@@ -879,22 +733,14 @@ class HFOPolicy(BasePolicy):
         self.critic = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
         self.critic_target = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
         self.critic_target.load_state_dict(self.critic.state_dict())
-        # Empty with one critic, so that the paper's policy has the same state dict as before the option existed.
-        self.extra_critics = nn.ModuleList(HFOCritic(**critic_kwargs) for _ in range(self.n_critics - 1))  # type: ignore[arg-type]
-        self.extra_critic_targets = nn.ModuleList(
-            HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
-            for _ in range(self.n_critics - 1)
-        )
-        self.extra_critic_targets.load_state_dict(self.extra_critics.state_dict())
-        for target in (self.actor_target, self.critic_target, self.extra_critic_targets):
+        for target in (self.actor_target, self.critic_target):
             target.requires_grad_(False)
             target.train(False)
         self._build_parameter_masks()
 
         lr = lr_schedule(1)
         kwargs = self._optimizer_kwargs()
-        critic_params = [param for critic in self.critics for param in critic.parameters()]
-        self.critic_optimizer = self.optimizer_class(critic_params, lr=lr, **kwargs)  # type: ignore[call-arg]
+        self.critic_optimizer = self.optimizer_class(self.critic.parameters(), lr=lr, **kwargs)  # type: ignore[call-arg]
         trunk = list(self.actor.trunk.parameters())
         for k, head in enumerate(self.actor.heads):
             optimizer = self.optimizer_class(trunk + list(head.parameters()), lr=lr, **kwargs)  # type: ignore[call-arg]
@@ -907,17 +753,13 @@ class HFOPolicy(BasePolicy):
         ``j``'s parameters), and ``discrete_action_rows``: row ``j`` is ``j``'s one-hot preferences (+1 / -1) with
         every parameter 0, so that ``rows[j] + a * own_masks[j]`` is action ``a`` played as ``j`` as the critic sees
         it (SkillDDPG's ``parameter_loss="each_action"``). Not saved: they follow from ``mask_unused_parameters``."""
-        sizes = self.action_parameter_sizes
         masks = own_masks = rows = None
-        if sizes is not None:
-            n_discrete = len(sizes)
-            own_masks = th.zeros(n_discrete, self.action_dim)
-            start = n_discrete
-            for j, size in enumerate(sizes):
-                own_masks[j, start : start + size] = 1.0
-                start += size
-            masks = own_masks.clone()
-            masks[:, :n_discrete] = 1.0
+        if self.action_parameter_sizes is not None:
+            layout = self.action_layout
+            assert layout is not None
+            n_discrete = layout.n_discrete
+            own_masks = th.from_numpy(layout.parameter_masks(with_preferences=False))
+            masks = th.from_numpy(layout.parameter_masks())
             rows = th.zeros(n_discrete, self.action_dim)
             rows[:, :n_discrete] = one_hot_preferences(n_discrete, rows)
         self.parameter_masks: th.Tensor | None
@@ -929,7 +771,8 @@ class HFOPolicy(BasePolicy):
 
     def parameter_mask(self, actions: th.Tensor) -> th.Tensor | None:
         """``(B, action_dim)`` mask of what the environment executes for ``actions (B, action_dim)``: the
-        preferences and the parameters of their argmax (the first maximum on ties, like hfo2d); ``None`` when
+        preferences and the parameters of their argmax (the first maximum on ties, the layout's rule:
+        :meth:`hfo2d.action_layout.HybridActionLayout.choose`); ``None`` when
         ``mask_unused_parameters`` is off."""
         masks = self.parameter_masks
         if masks is None:
@@ -947,8 +790,8 @@ class HFOPolicy(BasePolicy):
             raise ValueError(f"discrete_choice must be one of {DISCRETE_CHOICES}, got {choice!r}")
         if choice == "critic" and self.n_discrete_actions == 0:
             raise ValueError(
-                f"discrete_choice='critic' needs to know the discrete actions: HFO's 8-dimensional flat action, or "
-                f"mask_unused_parameters given as per-action parameter counts (action dim {self.action_dim})"
+                "discrete_choice='critic' needs the discrete actions: an action space with a hybrid layout (the HFO "
+                "envs'), or mask_unused_parameters given as per-action parameter counts"
             )
         self._discrete_choice = choice
 
@@ -961,10 +804,11 @@ class HFOPolicy(BasePolicy):
     def kick_only_when_kickable(self, value: bool) -> None:
         if not isinstance(value, (bool, np.bool_)):
             raise ValueError(f"kick_only_when_kickable must be a bool, got {value!r}")
-        if value and (self.action_dim != HFO_FLAT_ACTION_DIM or self.obs_dim <= KICKABLE_FEATURE_INDEX):
+        layout = self.action_layout
+        if value and (layout is None or layout.ball_action is None or self.obs_dim <= KICKABLE_FEATURE_INDEX):
             raise ValueError(
-                f"kick_only_when_kickable needs HFO's {HFO_FLAT_ACTION_DIM}-dimensional flat action and its "
-                f"low-level features (at least {KICKABLE_FEATURE_INDEX + 1}), got action dim {self.action_dim} and "
+                "kick_only_when_kickable needs an action layout with a kick (HFO's flat action) and HFO's "
+                f"low-level features (at least {KICKABLE_FEATURE_INDEX + 1}), got layout {layout} and "
                 f"{self.obs_dim} features"
             )
         self._kick_only_when_kickable = bool(value)
@@ -991,8 +835,17 @@ class HFOPolicy(BasePolicy):
         if not isinstance(value, (bool, np.bool_)):
             raise ValueError(f"mirror_choice must be a bool, got {value!r}")
         self._mirror: Mirror | None = (
-            make_mirror((self.obs_dim,), self.action_dim, "mirror_choice") if value else None
+            make_mirror((self.obs_dim,), self.action_layout, "mirror_choice") if value else None
         )
+
+    @contextlib.contextmanager
+    def mirror_choice_suspended(self) -> Iterator[None]:
+        """Act without the mirror choice inside the ``with`` block (SkillDDPG's training rollouts)."""
+        mirror, self._mirror = self._mirror, None
+        try:
+            yield
+        finally:
+            self._mirror = mirror
 
     @property
     def mirror_margin(self) -> float:
@@ -1018,19 +871,17 @@ class HFOPolicy(BasePolicy):
 
     @property
     def n_discrete_actions(self) -> int:
-        """Number of discrete actions (leading preferences) of the action layout; 0 when unknown."""
-        if self.action_parameter_sizes is not None:
-            return len(self.action_parameter_sizes)
-        return HFO_N_DISCRETE_ACTIONS if self.action_dim == HFO_FLAT_ACTION_DIM else 0
+        """Number of discrete actions (leading preferences) of the action layout; 0 without a layout."""
+        return 0 if self.action_layout is None else self.action_layout.n_discrete
 
     def discrete_values(
-        self, obs: th.Tensor, actions: th.Tensor, critics: Sequence[HFOCritic] | None = None
+        self, obs: th.Tensor, actions: th.Tensor, critic: HFOCritic | None = None
     ) -> tuple[th.Tensor, th.Tensor]:
         """Each discrete action at the actor's parameters, and its value.
 
         :param obs: ``(B, obs_dim)``.
         :param actions: ``(B, action_dim)`` in [-1, 1].
-        :param critics: critics to ask (default: the first critic); with several, the smallest value counts.
+        :param critic: the critic to ask (default: ``self.critic``; SkillDDPG's target passes the target critic).
         :return: ``candidates (B, n, action_dim)``, ``actions`` with the preferences replaced by discrete action
             ``k``'s one-hot vector (+1 / -1) in row ``k``, and their values ``(B, n)`` (``-inf`` for KICK where
             :meth:`kick_unavailable`).
@@ -1041,20 +892,15 @@ class HFOPolicy(BasePolicy):
         candidates[:, :, :n_discrete] = one_hot_preferences(n_discrete, actions)
         repeated_obs = obs.repeat_interleave(n_discrete, dim=0)
         seen = self.critic_action(candidates.view(batch * n_discrete, -1))
-        q_values = None
-        for critic in critics if critics is not None else [self.critic]:
-            values = critic.forward(repeated_obs, seen)
-            q_values = values if q_values is None else th.minimum(q_values, values)
-        assert q_values is not None, "critics must not be empty"
-        q_values = q_values.view(batch, n_discrete)
+        q_values = (critic or self.critic).forward(repeated_obs, seen).view(batch, n_discrete)
         no_kick = self.kick_unavailable(obs)
         if no_kick is not None:
-            q_values[:, HFO_KICK_ACTION].masked_fill_(no_kick, -th.inf)
+            q_values[:, self.action_layout.ball_action].masked_fill_(no_kick, -th.inf)  # type: ignore[union-attr]
         return candidates, q_values
 
     def critic_choice(self, obs: th.Tensor, actions: th.Tensor) -> th.Tensor:
         """``actions (B, action_dim)`` in [-1, 1] with their preferences replaced by the one-hot vector (+1 / -1)
-        of the discrete action the first critic values most at the actor's parameters (ties: the first)."""
+        of the discrete action the critic values most at the actor's parameters (ties: the first)."""
         candidates, q_values = self.discrete_values(obs, actions)
         best = q_values.argmax(dim=1)
         return candidates[th.arange(actions.shape[0], device=actions.device), best]
@@ -1064,16 +910,6 @@ class HFOPolicy(BasePolicy):
         ``mask_unused_parameters``, unchanged otherwise."""
         mask = self.parameter_mask(actions)
         return actions if mask is None else actions * mask
-
-    @property
-    def critics(self) -> list[HFOCritic]:
-        """Every critic, the one the actor follows (``critic``) first."""
-        return [self.critic, *self.extra_critics]  # type: ignore[list-item]
-
-    @property
-    def critic_targets(self) -> list[HFOCritic]:
-        """The target copy of each of :attr:`critics`, in the same order."""
-        return [self.critic_target, *self.extra_critic_targets]  # type: ignore[list-item]
 
     @property
     def actor_optimizers(self) -> list[th.optim.Optimizer]:
@@ -1119,7 +955,6 @@ class HFOPolicy(BasePolicy):
                 skill_router=self.skill_router,
                 inverting_gradients=self.inverting_gradients,
                 mask_unused_parameters=self.mask_unused_parameters,
-                n_critics=self.n_critics,
                 discrete_choice=self.discrete_choice,
                 kick_only_when_kickable=self.kick_only_when_kickable,
                 mirror_choice=self.mirror_choice,
@@ -1231,13 +1066,18 @@ class HFOPolicy(BasePolicy):
             return self.critic_choice(obs, action)
         no_kick = self.kick_unavailable(obs)
         if no_kick is not None:
-            preferences = action[:, :HFO_N_DISCRETE_ACTIONS]
-            replace = no_kick & (preferences.argmax(dim=1) == HFO_KICK_ACTION)
+            layout = self.action_layout
+            assert layout is not None and layout.ball_action is not None
+            n_discrete, kick = layout.n_discrete, layout.ball_action
+            preferences = action[:, :n_discrete]
+            replace = no_kick & (preferences.argmax(dim=1) == kick)
             if replace.any():
-                best = preferences[:, :HFO_KICK_ACTION].argmax(dim=1)  # DASH or TURN
-                one_hot = 2.0 * nn.functional.one_hot(best, HFO_N_DISCRETE_ACTIONS).to(action.dtype) - 1.0
+                best = preferences.index_fill(1, th.tensor([kick], device=action.device), -th.inf).argmax(
+                    dim=1
+                )
+                one_hot = 2.0 * nn.functional.one_hot(best, n_discrete).to(action.dtype) - 1.0
                 action = action.clone()
-                action[:, :HFO_N_DISCRETE_ACTIONS] = th.where(replace.unsqueeze(1), one_hot, preferences)
+                action[:, :n_discrete] = th.where(replace.unsqueeze(1), one_hot, preferences)
         return action
 
     def set_training_mode(self, mode: bool) -> None:
@@ -1250,7 +1090,7 @@ class HFOPolicy(BasePolicy):
         actor, critic = self.actor, self.critic
         cached = self.__dict__.get("_mode_modules")
         if cached is None or cached[0] is not actor or cached[1] is not critic:
-            cached = (actor, critic, [*actor.modules(), *critic.modules(), *self.extra_critics.modules()])
+            cached = (actor, critic, [*actor.modules(), *critic.modules()])
             self.__dict__["_mode_modules"] = cached
         for module in cached[2]:
             module.__dict__["training"] = mode

@@ -3,10 +3,7 @@
 One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``batch_size``):
 
 1. Critic: ``y = r + gamma * (1 - done) * Q'(s', mu'_{skill(s')}(s'))`` with the target networks (paper eq. 6),
-   ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``). With the policy's
-   ``n_critics=2`` (TD3's clipped double Q, beyond the paper) ``Q'`` in ``y`` is the smaller of the two target
-   critics' values, each critic takes the loss ``L`` on its own ``Q`` and one Adam step covers both; the actor
-   below follows the first critic (``policy.critic``) only.
+   ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``).
    With ``discrete_target="max"`` (P-DQN, beyond the paper) ``Q'(s', ...)`` is the best of the discrete actions
    at the target actor's parameters, the value of the policy that ``discrete_choice="critic"`` acts with.
 2. Actor (eq. 7), with the critic just updated: every row's action comes from the head its skill router picks;
@@ -28,34 +25,19 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    ``kick_only_when_kickable`` leaves it out); one extra critic pass over ``n_discrete * B`` rows.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
-Speed (same maths as SB3's DDPG, measured in benchmarks/update_throughput.py on a quiet 2-core VM: 2.1-2.2x
-SB3's ``DDPG`` updates per second with 1 skill, 1.8x with 2, 1.5x SB3's ``TD3`` with ``n_critics=2``, at 1 and 2
-threads; see benchmarks/README.md): the update is back-propagated by hand under ``torch.no_grad()`` instead of
-through autograd (``HFOActor.forward_for_backward`` / ``output_gradients``,
-``HFOCritic.forward_for_backward`` / ``output_gradients`` / ``action_gradient``: ``F.linear`` forward passes that
-keep each layer's input, then ``dZ @ W`` input gradients with activation derivatives from the kept outputs,
-``dZ.T @ input`` weight gradients and row sums of ``dZ`` as bias gradients). That removes the graph building, the
-autograd engine and ``nn.Module.__call__`` from the hot path, and computes only what is needed: no input gradient
-for the first layer, no critic weight gradient in the actor step, and at the critic's action layer only the
-``(B, action_dim)`` action gradient. Skills: one router call for the states and next states, rows sorted by
-skill, one backward pass gives every layer's ``dZ`` for all rows, and each skill's weight gradients are the
-products over its own rows (the FLOPs of one backward pass), formed right before that skill's Adam step (they need
-no parameter) in buffers reused by every skill and update. All bias gradients of a network come from one product
-``indicator @ [dZ_1 | ... | dZ_n]``. Adam is torch's fused kernel called directly (``adam_step``, state lists
-gathered once, step counters advanced by one ``add_``), the targets move in one ``torch._foreach_lerp_``,
-statistics are summed in place by small products (no per-update ``.item()`` or ``.mean()``) and
-``set_training_mode`` writes the flags without ``nn.Module.train``'s recursion. What remains is mostly matrix
-products (~1.9 M multiply-adds per sample and update at 400-300-200), the Adam steps (one per optimiser: with 2
-skills two of them over the trunk, each streaming its own moments) and the target update.
+The update above is :meth:`SkillDDPG._autograd_update`, written with autograd in the style of SB3's
+``TD3.train``. By default (``fast_update=True``) training runs the same update back-propagated by hand, with
+torch's fused Adam kernel called directly (:mod:`sb3_hfo.skill_ddpg.fast_update`, about twice SB3's ``DDPG``
+updates per second with one skill); ``tests/test_skill_ddpg.py`` checks that both give the same parameters.
 
 Exploration (``_sample_action``): SB3's random warm-up (``learning_starts``) and ``action_noise`` as usual, then
-epsilon-greedy over the discrete actions of a parameterised flat action (HFO: the first 3 of 8 entries are the
-DASH / TURN / KICK preferences; Hausknecht & Stone anneal epsilon 1 -> 0.1): with probability epsilon the whole
+epsilon-greedy over the discrete actions of a parameterised flat action (the action space's hybrid layout,
+:mod:`hfo2d.action_layout`; HFO: DASH / TURN / KICK preferences first; Hausknecht & Stone anneal epsilon 1 -> 0.1): with probability epsilon the whole
 action is redrawn uniformly and one of the ``n_discrete_actions`` preferences, chosen uniformly, is set to the
 maximum (1 in the buffer scale) so that the environment's argmax picks it. Epsilon anneals linearly from
 ``exploration_initial_eps`` to ``exploration_final_eps`` over the first ``exploration_fraction`` of the
-``learn()`` call (SB3's DQN convention). ``n_discrete_actions=None`` means 3 for 8-dimensional actions (HFO's
-flat layout) and 0 (no epsilon-greedy) otherwise, e.g. Pendulum. With ``exploration_keep_parameters=True`` an
+``learn()`` call (SB3's DQN convention). ``n_discrete_actions=None`` takes the number from the action layout
+and 0 (no epsilon-greedy) for a plain ``Box``, e.g. Pendulum. With ``exploration_keep_parameters=True`` an
 exploring step only re-picks the discrete action (its preference set to 1, the others to -1) and keeps the policy's
 (noisy) continuous parameters, so that a randomly chosen KICK is taken with the kick the actor would make.
 
@@ -72,8 +54,7 @@ import io
 import math
 import os
 import pathlib
-import warnings
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable
 from typing import Any, ClassVar, TypeVar
 
 import numpy as np
@@ -88,28 +69,22 @@ from stable_baselines3.common.utils import (
     ConstantSchedule,
     FloatSchedule,
     LinearSchedule,
+    polyak_update,
     update_learning_rate,
 )
+from torch.nn import functional as F
 
+from hfo2d.action_layout import action_layout, hfo_flat_action_space
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
-from sb3_hfo.common.mirror import Mirror, make_mirror
-from sb3_hfo.skill_ddpg.policies import (
-    HFO_FLAT_ACTION_DIM,
-    HFO_KICK_ACTION,
-    HFO_N_DISCRETE_ACTIONS,
-    HFOPolicy,
-    Segment,
-)
+from sb3_hfo.skill_ddpg.fast_update import FastUpdate
+from sb3_hfo.skill_ddpg.policies import HFOPolicy
 
 __all__ = [
     "DISCRETE_TARGETS",
     "PARAMETER_LOSSES",
-    "HFO_FLAT_ACTION_DIM",
-    "HFO_N_DISCRETE_ACTIONS",
     "TORCH_THREAD_VARIABLES",
     "TRAINING_THREADS",
     "SkillDDPG",
-    "adam_step",
     "training_threads",
 ]
 
@@ -120,130 +95,15 @@ PARAMETER_LOSSES = ("chosen", "each_action")
 
 SelfSkillDDPG = TypeVar("SelfSkillDDPG", bound="SkillDDPG")
 
+#: Options removed because no recommended config used them and no measurement supported them, with the value that
+#: meant "off": models saved before carry it, and load drops it. Any other value is refused.
+REMOVED_OPTIONS: dict[str, object] = {"mirror_fraction": 0.0}
+#: The same for ``policy_kwargs`` (``n_critics=2``, TD3's clipped double Q, learned more slowly on E1).
+REMOVED_POLICY_OPTIONS: dict[str, object] = {"n_critics": 1}
+
 # Layout of the running sums of training statistics (one row of a tensor, summed over updates).
 _STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3
 _N_GLOBAL_STATS = 4
-# Bound on SkillDDPG's cache of minibatch layouts (one per split of the batch between skills).
-_MAX_CACHED_LAYOUTS = 4096
-# (segments, row_weight, skill_weight, mean_weight): see SkillDDPG._skill_layout.
-_Layout = tuple[list[Segment], th.Tensor | float, th.Tensor, th.Tensor, th.Tensor]
-
-# torch's fused Adam kernel (an ATen op, present since torch 2.0); used directly by adam_step.
-_HAS_FUSED_ADAM = hasattr(th, "_fused_adam_")
-
-
-class _FusedAdamState:
-    """What :func:`adam_step`'s direct path needs of one optimiser's state for one parameter list, gathered once.
-
-    The step counters of the parameters are rebound to views of one 1-D tensor (same values, dtype and device), so
-    that one ``add_`` advances them all: ``torch._foreach_add_`` over 0-dim CPU tensors falls back to one ``add_``
-    per tensor (~18 us for 8 of them). ``Adam.step``, ``state_dict`` and saving see ordinary 0-dim step tensors.
-    Valid while ``optimizer.state`` is the same object (``load_state_dict`` replaces it) and holds these tensors.
-    """
-
-    __slots__ = ("exp_avg_sqs", "exp_avgs", "ones", "params", "state", "step_views", "steps")
-
-    def __init__(self, optimizer: th.optim.Optimizer, params: list[th.Tensor]) -> None:
-        states = optimizer.state
-        param_states = [states[param] for param in params]
-        self.state = states
-        self.params = params
-        self.steps = th.stack([state["step"] for state in param_states])
-        self.step_views = list(self.steps.unbind())
-        # Adding a tensor of ones: ``add_(1)`` would convert the wrapped Python scalar on every call.
-        self.ones = th.ones_like(self.steps)
-        for state, view in zip(param_states, self.step_views, strict=True):
-            state["step"] = view
-        self.exp_avgs = [state["exp_avg"] for state in param_states]
-        self.exp_avg_sqs = [state["exp_avg_sq"] for state in param_states]
-
-    def valid_for(self, optimizer: th.optim.Optimizer, params: list[th.Tensor]) -> bool:
-        return self.state is optimizer.state and self.params is params
-
-
-class _GradientBuffers:
-    """Gradient tensors reused from one update to the next for parameters laid out ``[W_1, b_1, ..., W_n, b_n]``.
-
-    One set of weight-gradient tensors, and the bias gradients of up to ``n_rows`` gradients (one per skill with
-    rows) as rows of one ``(n_rows, sum of bias sizes)`` tensor, so that all of them come from one product
-    ``indicator @ [dZ_1 | ... | dZ_n]`` (row ``j`` of ``indicator`` selects gradient ``j``'s minibatch rows)
-    instead of one ``sum`` per layer and skill. ``grads[j]`` is the parameter-ordered list handed to the
-    optimiser for gradient ``j``: the shared weight tensors and row ``j``'s bias views.
-    """
-
-    def __init__(self, params: list[th.Tensor], n_rows: int) -> None:
-        self.weights = [th.empty_like(weight) for weight in params[0::2]]
-        sizes = [bias.numel() for bias in params[1::2]]
-        self.biases = params[1].new_empty(n_rows, sum(sizes))
-        self.first_rows = [self.biases[:n] for n in range(1, n_rows + 1)]
-        self.grads: list[list[th.Tensor]] = []
-        for row in self.biases:
-            views = row.split(sizes)
-            self.grads.append([tensor for pair in zip(self.weights, views, strict=True) for tensor in pair])
-
-    def bias_gradients(self, indicator: th.Tensor, grad_zs: list[th.Tensor]) -> None:
-        """Row ``j`` of the bias gradients: the sums of every ``dZ`` over the rows that ``indicator[j]`` selects."""
-        th.mm(indicator, th.cat(grad_zs, dim=1), out=self.first_rows[indicator.shape[0] - 1])
-
-    def weight_gradients(self, parts: Sequence[tuple[th.Tensor, th.Tensor]]) -> None:
-        """``dZ.T @ input`` of every layer, for ``parts`` = ``(dZ.T, input)`` of each layer (rows of one gradient)."""
-        for (grad_z_t, layer_input), out in zip(parts, self.weights, strict=True):
-            th.mm(grad_z_t, layer_input, out=out)
-
-
-def adam_step(optimizer: th.optim.Optimizer, params: list[th.Tensor], grads: Sequence[th.Tensor]) -> None:
-    """One step of ``optimizer`` on ``params`` with gradients ``grads`` (same order as the optimizer's params).
-
-    For a fused ``torch.optim.Adam`` with one parameter group, no hooks and plain settings, whose state exists (after
-    its first step), this calls the fused kernel directly: exactly what ``Adam.step`` would run, without its ~0.15 ms
-    of Python bookkeeping per call. The optimizer's state tensors are updated in place, so ``state_dict`` / save /
-    load are unaffected. The state lists are gathered once per (optimizer state, ``params`` list object): pass the
-    same list object on every call. Any other case goes through ``optimizer.step()``.
-    """
-    groups = optimizer.param_groups
-    group = groups[0]
-    fast = (
-        _HAS_FUSED_ADAM
-        and type(optimizer) is th.optim.Adam
-        and len(groups) == 1
-        and group.get("fused")
-        and not (group["amsgrad"] or group["maximize"] or group.get("decoupled_weight_decay"))
-        and not (optimizer._optimizer_step_pre_hooks or optimizer._optimizer_step_post_hooks)
-    )
-    if fast:
-        cached: _FusedAdamState | None = optimizer.__dict__.get("_sb3_hfo_fused_adam")
-        if cached is None or not cached.valid_for(optimizer, params):
-            states = optimizer.state
-            cached = None
-            if all(param in states for param in params):
-                cached = _FusedAdamState(optimizer, params)
-                optimizer.__dict__["_sb3_hfo_fused_adam"] = cached
-        if cached is not None:
-            beta1, beta2 = group["betas"]
-            cached.steps.add_(cached.ones)
-            th._fused_adam_(
-                params,
-                grads if isinstance(grads, list) else list(grads),
-                cached.exp_avgs,
-                cached.exp_avg_sqs,
-                [],
-                cached.step_views,
-                amsgrad=False,
-                lr=group["lr"],
-                beta1=beta1,
-                beta2=beta2,
-                weight_decay=group["weight_decay"],
-                eps=group["eps"],
-                maximize=False,
-            )
-            return
-    for param, grad in zip(params, grads, strict=True):
-        param.grad = grad
-    optimizer.step()
-    for param in params:
-        param.grad = None
-
-
 #: torch threads ``SkillDDPG.learn`` trains with unless the user has chosen a count: what ``python -m
 #: sb3_hfo.train`` passes to rl-zoo3 (``--num-threads 1``, :func:`sb3_hfo.zoo.default_algo_argv`).
 TRAINING_THREADS = 1
@@ -287,7 +147,7 @@ def _check_int(name: str, value: object, minimum: int, meaning: str) -> None:
 
 
 class SkillDDPG(OffPolicyAlgorithm):
-    """DDPG with skills (seed paper) for Box-action environments, HFO's flat 8-dimensional action in particular.
+    """DDPG with skills (seed paper) for Box-action environments, HFO's flat hybrid action in particular.
 
     :param policy: ``"HFOPolicy"`` / ``"MlpPolicy"`` (the same class) or an :class:`HFOPolicy` subclass.
     :param env: environment or its registered id (``"HFO/EmptyGoal-v0"``).
@@ -310,7 +170,7 @@ class SkillDDPG(OffPolicyAlgorithm):
     :param exploration_keep_parameters: epsilon-greedy re-picks only the discrete action and keeps the policy's
         continuous parameters (``False``: the whole action is redrawn uniformly, as Hausknecht & Stone did).
     :param n_discrete_actions: number of leading action entries that are discrete-action preferences; ``None``:
-        3 if the action has 8 entries (HFO), else 0. 0 disables epsilon-greedy.
+        the policy's action layout's (HFO: 3), 0 without a layout. 0 disables epsilon-greedy.
     :param replay_buffer_class: SB3 replay buffer class (default ``ReplayBuffer``).
     :param replay_buffer_kwargs: its keyword arguments.
     :param optimize_memory_usage: SB3's memory-efficient replay buffer variant.
@@ -327,21 +187,16 @@ class SkillDDPG(OffPolicyAlgorithm):
     :param discrete_target: the next action in the critic's TD target: ``"actor"`` (the paper, DDPG) values the
         target actor's action as it is, ``Q'(s', mu'(s'))``; ``"max"`` (P-DQN's target, beyond the paper) the best
         discrete action at the target actor's parameters, ``max_k Q'(s', e_k, x'(s'))`` with ``e_k`` discrete
-        action ``k``'s one-hot preferences (with ``n_critics > 1``: the smaller target value per ``k``). ``"max"``
+        action ``k``'s one-hot preferences. ``"max"``
         is the target of the policy ``discrete_choice="critic"`` acts with; it needs a known discrete layout.
     :param parameter_loss: which continuous parameters the actor trains in a state: ``"chosen"`` (the paper, DDPG
         with the policy's ``mask_unused_parameters``) those of the discrete action its own preferences pick;
         ``"each_action"`` (P-DQN's loss, beyond the paper) every discrete action's, each by the critic's value of
-        that action played with them. With the policy's ``discrete_choice="critic"`` the preferences never pick
-        what is played, so under ``"chosen"`` the parameters played were ones the actor had not trained in that state
-        in 31-51 % of the greedy steps of three committed agents (research/RESULTS.md, session 12). Needs
-        ``mask_unused_parameters``.
-    :param mirror_fraction: fraction of each minibatch's rows (each row independently, with this probability)
-        replaced by their mirror image about the pitch's long axis (y -> -y; :mod:`hfo2d.symmetry`): observations
-        and next observations mirrored, the flat action's three directions negated, reward and end unchanged. HFO
-        is symmetric that way (checked against the simulator in ``tests/test_symmetry.py``), so a mirrored
-        transition is one the environment could have produced. 0 (default): the paper. Needs HFO's feature
-        vector (58 + 8 per other player) and 8-dimensional flat action.
+        that action played with them. Why: with the policy's ``discrete_choice="critic"`` the preferences do not
+        pick what is played, so under ``"chosen"`` the parameters played are often ones the actor never trained in
+        that state. Needs ``mask_unused_parameters``.
+    :param fast_update: train with the hand-derived update (:mod:`sb3_hfo.skill_ddpg.fast_update`, the same
+        maths as :meth:`_autograd_update`, about twice as fast) where it applies; ``False``: the autograd update.
     :param stats_window_size: episodes averaged in ``rollout/*`` statistics, the goal rate among them: SB3's
         ``rollout/success_rate`` from the env's ``info["is_success"]`` (HFO's GOAL status), the one name the
         training goal rate is logged under.
@@ -384,7 +239,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         preactivation_penalty: float = 0.0,
         discrete_target: str = "actor",
         parameter_loss: str = "chosen",
-        mirror_fraction: float = 0.0,
+        fast_update: bool = True,
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -431,7 +286,9 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.preactivation_penalty = preactivation_penalty
         self.discrete_target = discrete_target
         self.parameter_loss = parameter_loss
-        self.mirror_fraction = mirror_fraction
+        # SB3's load builds the model with _init_setup_model=False, then sets the saved attributes.
+        self._loading = not _init_setup_model
+        self.fast_update = fast_update
         if _init_setup_model:
             self._setup_model()
 
@@ -466,8 +323,6 @@ class SkillDDPG(OffPolicyAlgorithm):
             )
         if self.parameter_loss not in PARAMETER_LOSSES:
             raise ValueError(f"parameter_loss must be one of {PARAMETER_LOSSES}, got {self.parameter_loss!r}")
-        if isinstance(self.mirror_fraction, bool) or not 0.0 <= self.mirror_fraction <= 1.0:
-            raise ValueError(f"mirror_fraction must lie in [0, 1], got {self.mirror_fraction!r}")
 
     def _select_replay_buffer(self) -> None:
         """``mc_mixing > 0`` needs the episode returns that only :class:`MonteCarloReplayBuffer` keeps."""
@@ -488,7 +343,7 @@ class SkillDDPG(OffPolicyAlgorithm):
     def _resolve_n_discrete_actions(self) -> int:
         action_dim = int(np.prod(self.action_space.shape))
         if self.n_discrete_actions is None:
-            return HFO_N_DISCRETE_ACTIONS if action_dim == HFO_FLAT_ACTION_DIM else 0
+            return self.policy.n_discrete_actions
         n_discrete = self.n_discrete_actions
         if isinstance(n_discrete, bool) or not isinstance(n_discrete, (int, np.integer)):
             raise ValueError(f"n_discrete_actions must be None or an int, got {n_discrete!r}")
@@ -503,7 +358,28 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.lr_schedule = FloatSchedule(self.learning_rate_actor)
         self.lr_schedule_critic = FloatSchedule(self.learning_rate_critic)
 
+    def _drop_removed_options(self) -> None:
+        """Drop the :data:`REMOVED_OPTIONS` (and :data:`REMOVED_POLICY_OPTIONS`) a saved model carries at their "off"
+        value; ``ValueError`` naming the option for any other value (the model would not train as it was saved)."""
+        policy_kwargs = dict(self.policy_kwargs)
+        for saved, removed in ((self.__dict__, REMOVED_OPTIONS), (policy_kwargs, REMOVED_POLICY_OPTIONS)):
+            for name, off in removed.items():
+                value = saved.pop(name, off)
+                if value != off:
+                    raise ValueError(f"{name}={value!r}: the option was removed (only {name}={off!r} loads)")
+        self.policy_kwargs = policy_kwargs
+
+    def _adopt_hfo_layout_of_a_legacy_model(self) -> None:
+        """A model saved before the action layout contract (hfo2d.action_layout) holds HFO's flat action space as a
+        plain ``Box(0, 1, (8,))``: on load it gets its layout back, so that it acts and trains as it was saved."""
+        if self._loading and action_layout(self.action_space) is None:
+            hfo_space = hfo_flat_action_space()
+            if isinstance(self.action_space, spaces.Box) and self.action_space == hfo_space:
+                self.action_space = hfo_space
+
     def _setup_model(self) -> None:
+        self._adopt_hfo_layout_of_a_legacy_model()
+        self._drop_removed_options()
         self._check_arguments()
         self._select_replay_buffer()
         super()._setup_model()
@@ -513,8 +389,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         self._n_discrete = self._resolve_n_discrete_actions()
         if self.discrete_target == "max" and self.policy.n_discrete_actions == 0:
             raise ValueError(
-                "discrete_target='max' needs the discrete actions: HFO's 8-dimensional flat action, or the policy's "
-                "mask_unused_parameters given as per-action parameter counts"
+                "discrete_target='max' needs the discrete actions: an action space with a hybrid layout (the HFO "
+                "envs'), or the policy's mask_unused_parameters given as per-action parameter counts"
             )
         if self.parameter_loss == "each_action" and self.policy.parameter_masks is None:
             raise ValueError(
@@ -527,31 +403,8 @@ class SkillDDPG(OffPolicyAlgorithm):
             )
         else:
             self.exploration_schedule = ConstantSchedule(self.exploration_final_eps)
-        self._setup_mirror()
         self._create_aliases()
         self._reset_stats()
-
-    def _setup_mirror(self) -> None:
-        """``mirror_fraction > 0``: the tensors that mirror a minibatch (HFO's layout only)."""
-        self._mirror: Mirror | None = None
-        if self.mirror_fraction > 0:
-            action_dim = int(np.prod(self.action_space.shape))
-            mirror = make_mirror(self.observation_space.shape, action_dim, "mirror_fraction > 0")
-            self._mirror = mirror.to(self.device)
-
-    def _mirror_rows(self, batch: ReplayBufferSamples) -> ReplayBufferSamples:
-        """``batch`` with each row, with probability ``mirror_fraction``, replaced by its mirror image
-        (observations and next observations ``(B, obs_dim)``, actions ``(B, 8)`` in [-1, 1]; the rest kept)."""
-        assert self._mirror is not None
-        mirror, observations = self._mirror, batch.observations
-        rows = th.rand(observations.shape[0], 1, device=observations.device) < self.mirror_fraction
-        return batch._replace(
-            observations=th.where(rows, mirror.observations(observations), observations),
-            next_observations=th.where(
-                rows, mirror.observations(batch.next_observations), batch.next_observations
-            ),
-            actions=th.where(rows, mirror.actions(batch.actions), batch.actions),
-        )
 
     def _create_aliases(self) -> None:
         self.actor = self.policy.actor
@@ -559,22 +412,13 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.critic = self.policy.critic
         self.critic_target = self.policy.critic_target
         # Fixed parameter lists: module.to(device) and load_state_dict keep the same Parameter objects.
-        self._critics, self._critic_targets = self.policy.critics, self.policy.critic_targets
-        critics, critic_targets = self._critics, self._critic_targets
-        self._critic_params = [param for critic in critics for param in critic.parameters()]
-        self._online_params = [*self.actor.parameters(), *self._critic_params]
-        self._target_params = [
-            *self.actor_target.parameters(),
-            *(param for target in critic_targets for param in target.parameters()),
-        ]
+        self._online_params = [*self.actor.parameters(), *self.critic.parameters()]
+        self._target_params = [*self.actor_target.parameters(), *self.critic_target.parameters()]
         self._skill_params = [self.policy.skill_parameters(k) for k in range(self.policy.n_skills)]
         self._skill_optimizers = self.policy.actor_optimizers
-        self._layouts: dict[tuple[Any, ...], _Layout] = {}
-        # Every skill's gradients are written into the same tensors in turn (all skills' shapes are the same).
-        self._actor_grads = _GradientBuffers(self._skill_params[0], self.policy.n_skills)
-        self._critic_grads = [_GradientBuffers(list(critic.parameters()), 1) for critic in critics]
-        # In the critic optimiser's parameter order (critic after critic): one list object, for adam_step's cache.
-        self._critic_grad_list = [grad for buffers in self._critic_grads for grad in buffers.grads[0]]
+        self._fast_update = (
+            FastUpdate(self) if self.fast_update and FastUpdate.applies_to(self.policy) else None
+        )
 
     def _reset_stats(self) -> None:
         """Clear the training and rollout statistics gathered since the last log dump."""
@@ -610,195 +454,117 @@ class SkillDDPG(OffPolicyAlgorithm):
         for _ in range(gradient_steps):
             self._n_updates += 1
             batch = self.replay_buffer.sample(batch_size, env=self._vec_normalize_env)
-            self._update(batch if self._mirror is None else self._mirror_rows(batch))
+            self._update(batch)
         self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
 
-    @th.no_grad()
     def _update(self, batch: ReplayBufferSamples) -> None:
-        """One critic, actor and target update on ``batch`` (observations ``(B, obs_dim)``, actions ``(B, A)``
-        in [-1, 1], rewards / dones ``(B, 1)``), back-propagated explicitly (no autograd graph)."""
-        policy = self.policy
-        actor, critic = self.actor, self.critic
+        """One update on ``batch``: the fast update where it applies, else :meth:`_autograd_update` (same maths)."""
+        if self._fast_update is not None:
+            self._fast_update.update(batch)
+        else:
+            self._autograd_update(batch)
+
+    def _autograd_update(self, batch: ReplayBufferSamples) -> None:
+        """One critic, actor and target update, written with autograd: what SkillDDPG computes (module docstring).
+
+        ``batch``: observations ``(B, obs_dim)``, actions ``(B, A)`` in [-1, 1], rewards / dones ``(B, 1)``.
+        """
+        policy, actor, critic = self.policy, self.actor, self.critic
         obs = batch.observations
-        batch_size = obs.shape[0]
 
-        # Skills of the states and of the next states, from one router call.
-        skills = next_skills = None
-        if policy.n_skills > 1:
-            both = policy.route(th.cat((obs, batch.next_observations)))
-            assert both is not None
-            skills, next_skills = both[:batch_size], both[batch_size:]
+        # 1. Critic (eq. 5, 6): regress Q(s, a) on the TD target.
+        with th.no_grad():
+            target_q = self._critic_target(batch)
+        current_q = critic(obs, policy.critic_action(batch.actions))
+        critic_loss = F.mse_loss(current_q, target_q)
+        policy.critic_optimizer.zero_grad()
+        critic_loss.backward()
+        policy.critic_optimizer.step()
 
-        # 1. Critic (eq. 5, 6): L = mean((Q - y)^2), dL/dQ = 2 (Q - y) / B, for each critic against the same y.
-        target_q = self._critic_target(batch, next_skills)
-        replayed_actions = policy.critic_action(batch.actions)
-        critic_loss_scale = (
-            0.5 / policy.n_critics
-        )  # statistics: the critics' mean loss, error . grad_q / 2 each
-        critic_loss = self._stat_views[0]
-        critic_qs = []
-        for each_critic, buffers in zip(self._critics, self._critic_grads, strict=True):
-            q_values, critic_inputs = each_critic.forward_for_backward(obs, replayed_actions)
-            critic_qs.append(q_values)
-            error = q_values - target_q
-            grad_q = error * (2.0 / batch_size)
-            critic_grad_zs = each_critic.output_gradients(critic_inputs, grad_q)
-            buffers.weight_gradients([(g.t(), x) for g, x in zip(critic_grad_zs, critic_inputs, strict=True)])
-            buffers.bias_gradients(self._batch_ones(batch_size, obs), critic_grad_zs)
-            critic_loss.addmm_(error.t(), grad_q, alpha=critic_loss_scale)
-        current_q = critic_qs[0]  # the critic the actor follows: the max_q / mean_q statistics
-        adam_step(policy.critic_optimizer, self._critic_params, self._critic_grad_list)
-
-        # 2. Actor (eq. 7) against the updated critic; skill k's loss is -mean over its n_k rows of Q(s, mu(s)).
+        # 2. Actor (eq. 7), against the updated critic: skill k's loss is -mean over its rows of the value
+        # (plus the pre-activation penalty), its gradient taken over trunk + head k; all skills' gradients at
+        # the same parameters, then each skill's Adam steps.
+        skills = policy.route(obs)
         if skills is None:
-            counts: tuple[int, ...] = (batch_size,)
-        else:
-            # Rows sorted by skill, so that each skill's rows are one slice.
-            obs = obs.index_select(0, th.argsort(skills, stable=True))
-            counts = tuple(th.bincount(skills, minlength=policy.n_skills).tolist())
-        segments, row_weight, skill_weight, mean_weight, indicator = self._skill_layout(counts, obs)
-        actor_actions, actor_inputs, actor_outputs = actor.forward_for_backward(obs, segments)
-        parameter_mask = policy.parameter_mask(actor_actions)
-        if parameter_mask is None:
-            actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions)
-            dq_da = critic.action_gradient(q_inputs)
-        else:  # Q sees a * mask, so dQ/da = mask * dQ/d(a * mask): no gradient for parameters the env ignores
-            actor_q, q_inputs = critic.forward_for_backward(obs, actor_actions * parameter_mask)
-            dq_da = critic.action_gradient(q_inputs) * parameter_mask
-            if self.parameter_loss == "each_action":
-                dq_da = self._each_action_gradient(obs, actor_actions, dq_da)
-        if policy.inverting_gradients:
-            dq_da = self._invert_gradients(dq_da, actor_actions)
-        # d(lambda * mean_k ||z||^2)/dz = 2 lambda z / n_k = -2 lambda z * row_weight.
-        grad_outputs = (
-            actor_outputs * (row_weight * (-2.0 * self.preactivation_penalty))
-            if self.preactivation_penalty > 0
-            else None
-        )
-        grad_zs = actor.output_gradients(
-            actor_inputs, actor_actions, dq_da * row_weight, segments, grad_outputs=grad_outputs
-        )
-        # All skills' dZ were taken at the same parameters and their weight gradients need no parameter: all bias
-        # gradients come from one product, then each skill with rows takes its weight gradients and its Adam step
-        # in turn, in the same buffers (hot in cache for the step).
-        buffers = self._actor_grads
-        buffers.bias_gradients(indicator, grad_zs)
-        if len(segments) == 1:
-            parts = [[(g.t(), x) for g, x in zip(grad_zs, actor_inputs, strict=True)]]
-        else:
-            sizes = [stop - start for _, start, stop in segments]
-            per_layer = [
-                zip(g.t().split(sizes, dim=1), x.split(sizes), strict=True)
-                for g, x in zip(grad_zs, actor_inputs, strict=True)
-            ]
-            parts = list(zip(*per_layer, strict=True))
-        for row, ((k, _, _), skill_parts) in enumerate(zip(segments, parts, strict=True)):
-            buffers.weight_gradients(skill_parts)
-            adam_step(self._skill_optimizers[k], self._skill_params[k], buffers.grads[row])
+            skills = th.zeros(obs.shape[0], dtype=th.long, device=obs.device)
+        preactivations = actor.head_outputs(obs, skills)
+        actions = th.tanh(preactivations) if actor.squash else preactivations
+        value, actor_q = self._actor_value(obs, actions)
+        row_loss = self.preactivation_penalty * preactivations.square().sum(dim=1, keepdim=True) - value
+        gradients = {}
+        for k in range(policy.n_skills):
+            rows = skills == k
+            if rows.any():
+                gradients[k] = th.autograd.grad(
+                    row_loss[rows].mean(), self._skill_params[k], retain_graph=True
+                )
+        for k, skill_gradients in gradients.items():
+            for param, gradient in zip(self._skill_params[k], skill_gradients, strict=True):
+                param.grad = gradient
+            self._skill_optimizers[k].step()
+            self._skill_optimizers[k].zero_grad()
             self._skill_updates[k] += 1
 
-        # 3. Targets.
-        th._foreach_lerp_(self._target_params, self._online_params, self.tau)
+        # 3. Target networks.
+        with th.no_grad():
+            polyak_update(self._online_params, self._target_params, self.tau)
+            critic_loss_sum, actor_loss, max_q, mean_q, skill_losses = self._stat_views
+            critic_loss_sum += critic_loss
+            actor_loss -= actor_q.mean()
+            max_q += current_q.max()
+            mean_q += current_q.mean()
+            for k in gradients:
+                skill_losses[k] -= actor_q[skills == k].mean()
+            self._stat_updates += 1
 
-        # Statistics, summed in place into views of self._stat_sums (no synchronisation; the critic loss above).
-        # Means are products with the (B, 1) column of 1 / B, and skill k's loss -mean_k Q is row k of
-        # skill_weight @ Q: one kernel each, where .mean() would also convert its divisor every time.
-        _, actor_loss, max_q, mean_q, skill_losses = self._stat_views
-        actor_loss.addmm_(actor_q.t(), mean_weight, alpha=-1.0)
-        max_q.add_(current_q.max())
-        mean_q.addmm_(current_q.t(), mean_weight)
-        skill_losses.addmm_(skill_weight, actor_q)
-        self._stat_updates += 1
+    def _actor_value(self, obs: th.Tensor, actions: th.Tensor) -> tuple[th.Tensor, th.Tensor]:
+        """What the actor ascends, per row ``(B, 1)``, and the critic's value of ``actions`` (detached).
 
-    def _each_action_gradient(self, obs: th.Tensor, actor_actions: th.Tensor, dq_da: th.Tensor) -> th.Tensor:
-        """``parameter_loss="each_action"``: ``dq_da (B, A)``'s preference columns (the actor's own action) with
-        every discrete action ``k``'s parameter columns replaced by ``dQ(s, e_k, x_k)/dx_k``, the gradient of ``k``
-        played with the actor's parameters (preferences ``e_k``: +1 for ``k``, -1 for the others; the other
-        actions' parameters at 0). Zero for KICK's parameters where :meth:`HFOPolicy.kick_unavailable`."""
-        policy = self.policy
-        rows, own_masks = policy.discrete_action_rows, policy.own_parameter_masks
-        assert rows is not None and own_masks is not None
-        n_discrete, batch_size = rows.shape[0], obs.shape[0]
-        own_masks = own_masks.unsqueeze(1)
-        # (n, B, A): block k is the actor's action played as discrete action k, as the critic sees it; the n * B
-        # rows go through one critic pass.
-        candidates = th.addcmul(rows.unsqueeze(1), actor_actions.unsqueeze(0), own_masks)
-        _, q_inputs = self.critic.forward_for_backward(
-            obs.repeat(n_discrete, 1), candidates.view(n_discrete * batch_size, -1)
-        )
-        grads = self.critic.action_gradient(q_inputs).view(n_discrete, batch_size, -1) * own_masks
-        no_kick = policy.kick_unavailable(obs)
-        if no_kick is not None:
-            grads[HFO_KICK_ACTION].masked_fill_(no_kick.unsqueeze(1), 0.0)
-        result = grads.sum(dim=0)
-        result[:, :n_discrete] = dq_da[:, :n_discrete]
-        return result
-
-    def _skill_layout(self, counts: tuple[int, ...], like: th.Tensor) -> _Layout:
-        """Segments and loss weights of a minibatch sorted by skill with ``counts[k]`` rows of skill ``k``.
-
-        :return: ``(segments, row_weight, skill_weight (n_skills, B), mean_weight (B, 1), indicator)``: ``row_weight`` is
-            ``-1 / n_k`` on skill ``k``'s rows (the derivative of ``-mean_k Q`` by each row's ``Q``; a ``(B, 1)``
-            tensor, or the float ``-1 / B`` with one skill), ``skill_weight[k]`` is ``row_weight`` restricted to
-            skill ``k``'s rows (zero elsewhere), so that ``skill_weight @ Q`` gives every skill's loss, and
-            ``mean_weight`` is ``1 / B`` on every row; ``indicator (n_segments, B)`` is 1 on segment ``j``'s rows
-            in row ``j`` (0 elsewhere). Cached by ``counts``: a batch of 32 split between 2 skills
-            has 33 layouts, and building one takes ~10 small tensor operations.
+        ``parameter_loss="chosen"``: ``Q(s, mu(s))``. ``"each_action"``: ``Q`` of the actor's preferences with
+        its parameters held, plus ``Q(s, e_k, x_k(s))`` for every discrete action ``k`` (KICK's left out where the
+        ball is out of reach with ``kick_only_when_kickable``). With inverting gradients, a surrogate whose
+        gradient is the rescaled ``dQ/da`` pushed through the actor.
         """
-        key = (counts, like.dtype, like.device)
-        layout = self._layouts.get(key)
-        if layout is None:
-            segments: list[Segment] = []
-            batch_size = sum(counts)
-            skill_weight = th.zeros(len(counts), batch_size, dtype=like.dtype, device=like.device)
-            start = 0
-            for k, n_rows in enumerate(counts):
-                if n_rows > 0:
-                    segments.append((k, start, start + n_rows))
-                    skill_weight[k, start : start + n_rows] = -1.0 / n_rows
-                    start += n_rows
-            row_weight = -1.0 / batch_size if len(counts) == 1 else skill_weight.sum(0).unsqueeze(1)
-            mean_weight = th.full((batch_size, 1), 1.0 / batch_size, dtype=like.dtype, device=like.device)
-            indicator = (skill_weight[[k for k, _, _ in segments]] != 0).to(like.dtype)
-            if len(self._layouts) >= _MAX_CACHED_LAYOUTS:
-                self._layouts.clear()
-            layout = self._layouts[key] = (segments, row_weight, skill_weight, mean_weight, indicator)
-        return layout
+        policy, critic = self.policy, self.critic
+        actor_q = critic(obs, policy.critic_action(actions))
+        value = actor_q
+        if self.parameter_loss == "each_action":
+            n_discrete = policy.n_discrete_actions
+            held = th.cat((actions[:, :n_discrete], actions[:, n_discrete:].detach()), dim=1)
+            value = critic(obs, policy.critic_action(held))
+            no_kick = policy.kick_unavailable(obs)
+            rows, own_masks = policy.discrete_action_rows, policy.own_parameter_masks
+            assert rows is not None and own_masks is not None
+            for k in range(n_discrete):
+                value_k = critic(obs, rows[k] + actions * own_masks[k])
+                if no_kick is not None and k == policy.action_layout.ball_action:  # type: ignore[union-attr]
+                    value_k = value_k.masked_fill(no_kick.unsqueeze(1), 0.0)
+                value = value + value_k
+        if policy.inverting_gradients:
+            (dq_da,) = th.autograd.grad(value.sum(), actions, retain_graph=True)
+            inverted = self._invert_gradients(dq_da, actions.detach())
+            value = (inverted * actions).sum(dim=1, keepdim=True)
+        return value, actor_q.detach()
 
-    def _batch_ones(self, batch_size: int, like: th.Tensor) -> th.Tensor:
-        """``(1, batch_size)`` ones: the indicator of a gradient over all rows (cached)."""
-        return self._skill_layout((batch_size,), like)[4]
-
-    def _critic_target(self, batch: ReplayBufferSamples, next_skills: th.Tensor | None = None) -> th.Tensor:
-        """``y (B, 1) = r + gamma^n * (1 - done) * Q'(s', mu'(s'))`` (eq. 6; ``max_k Q'(s', e_k, x'(s'))`` with
-        ``discrete_target="max"``; ``gamma^n`` from ``batch.discounts``
-        with n-step returns; ``Q'`` the smallest of the target critics' values with ``n_critics > 1``), mixed
-        with the episode's return ``G`` as ``y + beta * (G - y)`` on rows whose return is known when
-        ``mc_mixing = beta > 0``. ``next_skills``: the routed skills of the next states
-        (``None``: routed here). Call under ``torch.no_grad()``."""
+    def _critic_target(self, batch: ReplayBufferSamples) -> th.Tensor:
+        """``y (B, 1) = r + gamma^n (1 - done) Q'(s', mu'(s'))`` (eq. 6; ``Q'`` of the best discrete action at the
+        target actor's parameters with ``discrete_target="max"``), mixed as ``y + beta (G - y)`` with the
+        episode's return ``G`` where it is known, when ``mc_mixing = beta > 0``."""
         policy = self.policy
         next_obs = batch.next_observations
-        if next_skills is None:
-            next_skills = policy.route(next_obs)
-        next_actions = self.actor_target.forward(next_obs, next_skills)
+        next_actions = self.actor_target(next_obs, policy.route(next_obs))
         if policy.inverting_gradients:
             next_actions = next_actions.clamp(-1.0, 1.0)
         if self.discrete_target == "max":
-            _, next_values = policy.discrete_values(next_obs, next_actions, self._critic_targets)
+            _, next_values = policy.discrete_values(next_obs, next_actions, self.critic_target)
             next_q = next_values.max(dim=1, keepdim=True).values
         else:
-            next_actions = policy.critic_action(next_actions)
-            next_q, _ = self.critic_target.forward_for_backward(next_obs, next_actions)
-            for target in self._critic_targets[1:]:  # clipped double Q: the smallest target value
-                next_q = th.minimum(next_q, target.forward_for_backward(next_obs, next_actions)[0])
-        if batch.discounts is None:
-            # (1 - done) is 0 or 1, so this is r + gamma * (1 - done) * Q' with the same rounding, in one kernel.
-            target_q = th.addcmul(batch.rewards, 1 - batch.dones, next_q, value=self.gamma)
-        else:
-            target_q = batch.rewards + (1 - batch.dones) * batch.discounts * next_q
+            next_q = self.critic_target(next_obs, policy.critic_action(next_actions))
+        discounts = self.gamma if batch.discounts is None else batch.discounts
+        target_q = batch.rewards + (1 - batch.dones) * discounts * next_q
         if self.mc_mixing > 0:
             mixed: MonteCarloReplayBufferSamples = batch  # type: ignore[assignment]
-            target_q += self.mc_mixing * mixed.mc_valid * (mixed.mc_returns - target_q)
+            target_q = target_q + self.mc_mixing * mixed.mc_valid * (mixed.mc_returns - target_q)
         return target_q
 
     @staticmethod
@@ -829,7 +595,9 @@ class SkillDDPG(OffPolicyAlgorithm):
             self._skill_steps += np.bincount(skills, minlength=self.policy.n_skills)
         else:
             self._skill_steps[0] += n_envs
-        action, buffer_action = super()._sample_action(learning_starts, action_noise, n_envs)
+        # The mirror choice is for evaluation: rollouts act with the plain greedy action (playing it while training measured no gain).
+        with self.policy.mirror_choice_suspended():
+            action, buffer_action = super()._sample_action(learning_starts, action_noise, n_envs)
         if self._n_discrete == 0 or self.num_timesteps < learning_starts or self.exploration_rate <= 0.0:
             return action, buffer_action
         explore = np.random.random_sample(n_envs) < self.exploration_rate
@@ -953,7 +721,6 @@ class SkillDDPG(OffPolicyAlgorithm):
         ``torch.get_num_threads()`` differs from its value when ``sb3_hfo`` was imported (``torch.set_num_threads``
         was called since): then the count is left as it is. See :func:`training_threads`.
         """
-        self._warn_if_shaping_discount_differs()
         threads = training_threads()
         previous = th.get_num_threads()
         if threads is not None and threads != previous:
@@ -972,28 +739,6 @@ class SkillDDPG(OffPolicyAlgorithm):
             if threads is not None and th.get_num_threads() == threads:
                 th.set_num_threads(previous)
 
-    def _warn_if_shaping_discount_differs(self) -> None:
-        """Warn when the hfo2d env's ``potential_gap`` reward (not HFO's) is discounted by another gamma than the agent's.
-
-        Potential-based shaping leaves the goal reward's optimal policy unchanged only at the agent's own discount.
-        """
-        if self.env is None:
-            return
-        try:
-            rewards = self.env.get_attr("reward_name")
-            shaping_gammas = self.env.get_attr("shaping_gamma")
-        except AttributeError:  # not an hfo2d env
-            return
-        for reward, shaping_gamma in zip(rewards, shaping_gammas, strict=True):
-            if reward == "potential_gap" and not math.isclose(shaping_gamma, self.gamma):
-                warnings.warn(
-                    f"the env's potential_gap reward is discounted by shaping_gamma={shaping_gamma} but the agent's "
-                    f"gamma is {self.gamma}: pass shaping_gamma={self.gamma} in the env kwargs for the shaping to "
-                    "leave the goal reward's optimal policy unchanged",
-                    stacklevel=3,
-                )
-                return
-
     def _excluded_save_params(self) -> list[str]:
         return [
             *super()._excluded_save_params(),
@@ -1004,17 +749,11 @@ class SkillDDPG(OffPolicyAlgorithm):
             "_online_params",
             "_target_params",
             "_skill_params",
-            "_critic_params",
             "_skill_optimizers",
             "_stat_sums",
             "_stat_views",
-            "_layouts",
-            "_actor_grads",
-            "_critic_grads",
-            "_critic_grad_list",
-            "_critics",
-            "_critic_targets",
-            "_mirror",
+            "_fast_update",
+            "_loading",
         ]
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:

@@ -1175,23 +1175,38 @@ def _can_reach_after_dash(
         accel = _MAX_POWER * (ef * _DASH_POWER_RATE)
         n_run = n_dash
         hit = False
-        for i in range(n_dash):
-            tvx += accel
-            tpx += tvx
-            tvx *= _PLAYER_DECAY
-            if tpx * noise_rate + 0.1 > noised_x:
-                n_run = i + 1
-                hit = True
-                break
         inc = _STAMINA_INC_MAX * rec
-        for _ in range(n_run):
-            tpy += tvy
-            tvy *= _PLAYER_DECAY
-            st -= cost
-            room = _STAMINA_MAX - st
-            st += inc if inc < room else room
-            if st > _STAMINA_MAX:
-                st = _STAMINA_MAX
+        if inc < cost and st <= _STAMINA_MAX and st.is_integer() and inc.is_integer():
+            # Whole numbers, and the recovery after each payment is inc (the room to the maximum is at least
+            # cost > inc): every step st - cost + inc is exact, so the n_run steps are st - n_run * (cost - inc)
+            for i in range(n_dash):
+                tvx += accel
+                tpx += tvx
+                tvx *= _PLAYER_DECAY
+                tpy += tvy
+                tvy *= _PLAYER_DECAY
+                if tpx * noise_rate + 0.1 > noised_x:
+                    n_run = i + 1
+                    hit = True
+                    break
+            st -= n_run * (cost - inc)
+        else:
+            # one loop for both axes and the stamina (they do not interact); it stops after the reaching dash
+            for i in range(n_dash):
+                tvx += accel
+                tpx += tvx
+                tvx *= _PLAYER_DECAY
+                tpy += tvy
+                tvy *= _PLAYER_DECAY
+                st -= cost
+                room = _STAMINA_MAX - st
+                st += inc if inc < room else room
+                if st > _STAMINA_MAX:
+                    st = _STAMINA_MAX
+                if tpx * noise_rate + 0.1 > noised_x:
+                    n_run = i + 1
+                    hit = True
+                    break
         first_power = -_MAX_POWER if back else _MAX_POWER
         if hit:
             return _reach_entry(
