@@ -26,14 +26,9 @@ Reported (per the paper's evaluation, Hausknecht & Stone's table: "scoring %" an
 * ``out_of_bounds_exits``: OUT_OF_BOUNDS episodes by the line the ball left the HFO half over (from its final
   ``info["ball"]`` position): ``goal_line`` (x > 52.5: a shot wide of the posts), ``side_line`` (|y| > 34) or
   ``halfway_line`` (x < 0);
-* ``discrete_choice``: who picked DASH / TURN / KICK (``--discrete-choice``: the actor's preferences, the paper,
-  or the critic; default the model's own ``policy.discrete_choice``);
-* ``kick_only_when_kickable``: whether KICK was left out of the greedy choice while the ball was out of reach
-  (``--kick-only-when-kickable on|off``; default the model's own setting);
-* ``mirror_choice``: whether each step played the better, by the critic, of the greedy action in the state and in
-  its mirror image (``--mirror-choice on|off``; default the model's own setting; ``HFOPolicy``'s option), and
-  ``mirror_margin``: by how much the other side had to be better for that choice to switch sides within an
-  episode (``--mirror-margin M``; 0: decided afresh every step; ``HFOPolicy``'s option).
+* ``acting``: the policy's acting strategies in their text form (:mod:`sb3_hfo.skill_ddpg.acting`, e.g.
+  ``"critic,kick_mask,mirror:0.1"``; ``""``: the actor's greedy action as it is), set with
+  ``--acting SPEC`` (default: the model's own).
 """
 
 from __future__ import annotations
@@ -46,9 +41,12 @@ from collections import Counter
 from collections.abc import Sequence
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, check_model_zip, non_negative_int
+
+if TYPE_CHECKING:
+    from sb3_hfo.skill_ddpg.acting import ActingSpec
 
 #: Player speed (m/cycle) above which a step with the ball kickable counts as dribbling. The fastest a player
 #: runs is player_speed_max = 1.05 m/cycle (rcssserver 15.2.2 default, via hfo_reference §4); 0.2 m/cycle (2 m/s)
@@ -157,10 +155,7 @@ class EvaluationResult:
     skill_fractions: list[float] | None
     out_of_bounds_exits: dict[str, int] = field(default_factory=dict)
     env_kwargs: dict[str, Any] = field(default_factory=dict)
-    discrete_choice: str = "actor"
-    kick_only_when_kickable: bool = False
-    mirror_choice: bool = False
-    mirror_margin: float = 0.0
+    acting: str = ""
     mean_shot_distance: float | None = None
     shots_by_distance: dict[str, dict[str, int]] = field(default_factory=dict)
 
@@ -197,10 +192,7 @@ def summarize(
     deterministic: bool,
     n_skills: int,
     env_kwargs: dict[str, Any] | None = None,
-    discrete_choice: str = "actor",
-    kick_only_when_kickable: bool = False,
-    mirror_choice: bool = False,
-    mirror_margin: float = 0.0,
+    acting: str = "",
 ) -> EvaluationResult:
     """Aggregate per-episode records into an :class:`EvaluationResult`."""
     n = len(records)
@@ -235,10 +227,7 @@ def summarize(
             for line in EXIT_LINES
         },
         env_kwargs=dict(env_kwargs or {}),
-        discrete_choice=discrete_choice,
-        kick_only_when_kickable=kick_only_when_kickable,
-        mirror_choice=mirror_choice,
-        mirror_margin=mirror_margin,
+        acting=acting,
         mean_shot_distance=sum(shot_distances) / len(shot_distances) if shot_distances else None,
         shots_by_distance=_shots_by_distance(records),
     )
@@ -375,7 +364,7 @@ def run_episodes(
 
     records: list[EpisodeRecord] = []
     obs, info = env.reset(seed=seed)
-    # predict's recurrent state (HFOPolicy's mirror_margin keeps a side in it), reset at each episode's first step
+    # predict's recurrent state (HFOPolicy's mirror margin keeps a side in it), reset at each episode's first step
     state: Any = None
     for _ in range(episodes):
         start_ball, start_player = _position(info.get("ball")), _position(info.get("player"))
@@ -491,6 +480,8 @@ def evaluate(
     seed: int = 0,
     deterministic: bool = True,
     env_kwargs: dict[str, Any] | None = None,
+    acting: ActingSpec | None = None,
+    *,
     discrete_choice: str | None = None,
     kick_only_when_kickable: bool | None = None,
     mirror_choice: bool | None = None,
@@ -498,20 +489,27 @@ def evaluate(
 ) -> EvaluationResult:
     """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors.
 
-    ``discrete_choice``: ``"actor"`` or ``"critic"`` overrides who picks the discrete action (``HFOPolicy``'s
-    option of that name); ``kick_only_when_kickable``, ``mirror_choice`` and ``mirror_margin`` override the policy's
-    options of those names; ``None`` keeps the model's own.
+    :param acting: the policy's acting strategies for this run (``HFOPolicy.acting``: strategy objects or their
+        text form, e.g. ``"critic,kick_mask,mirror:0.1"``; ``""``: none); ``None`` keeps the model's own.
+    :param discrete_choice: the single-option form of part of ``acting`` (as ``HFOPolicy``'s argument of that
+        name); given, it overrides that part. So do ``kick_only_when_kickable``, ``mirror_choice`` and
+        ``mirror_margin``.
     """
+    from sb3_hfo.skill_ddpg.acting import format_acting
+
     model, env, env_id, kwargs, path = load_for_evaluation(model_path, env_id, env_kwargs)
+    overrides = dict(
+        discrete_choice=discrete_choice,
+        kick_only_when_kickable=kick_only_when_kickable,
+        mirror_choice=mirror_choice,
+        mirror_margin=mirror_margin,
+    )
     try:
-        if discrete_choice is not None:
-            model.policy.discrete_choice = discrete_choice
-        if kick_only_when_kickable is not None:
-            model.policy.kick_only_when_kickable = kick_only_when_kickable
-        if mirror_choice is not None:
-            model.policy.mirror_choice = mirror_choice
-        if mirror_margin is not None:
-            model.policy.mirror_margin = mirror_margin
+        if acting is not None:
+            model.policy.acting = acting
+        for name, value in overrides.items():
+            if value is not None:
+                setattr(model.policy, name, value)
     except ValueError as error:
         env.close()
         raise EvaluationError(str(error)) from error
@@ -528,10 +526,7 @@ def evaluate(
         deterministic=deterministic,
         n_skills=n_skills,
         env_kwargs=kwargs,
-        discrete_choice=getattr(model.policy, "discrete_choice", "actor"),
-        kick_only_when_kickable=getattr(model.policy, "kick_only_when_kickable", False),
-        mirror_choice=getattr(model.policy, "mirror_choice", False),
-        mirror_margin=getattr(model.policy, "mirror_margin", 0.0),
+        acting=format_acting(getattr(model.policy, "acting", ())),  # () for algorithms without strategies
     )
 
 
@@ -575,14 +570,7 @@ def print_table(result: EvaluationResult) -> None:
         for k, fraction in enumerate(result.skill_fractions):
             table.add_row(f"steps with skill {k}", _format(fraction))
     table.add_row("deterministic", str(result.deterministic))
-    table.add_row("discrete action picked by", result.discrete_choice)
-    table.add_row("no KICK without the ball", "on" if result.kick_only_when_kickable else "off")
-    mirror = "off"
-    if result.mirror_choice:
-        mirror = (
-            f"on, switching sides at a margin of {result.mirror_margin:g}" if result.mirror_margin else "on"
-        )
-    table.add_row("better of state and mirror image", mirror)
+    table.add_row("acting strategies", result.acting or "none (the actor's greedy action)")
     Console().print(table)
 
 
@@ -638,33 +626,7 @@ def build_parser() -> argparse.ArgumentParser:
         help="predict(deterministic=True), the default (kept so that older command lines still run)",
     )
     parser.add_argument("--json", default=None, help="write the result as JSON to this file")
-    parser.add_argument(
-        "--discrete-choice",
-        choices=("actor", "critic"),
-        default=None,
-        help="who picks DASH / TURN / KICK: the actor's preferences (the paper) or the critic (default: the model's)",
-    )
-    parser.add_argument(
-        "--kick-only-when-kickable",
-        choices=("on", "off"),
-        default=None,
-        help="leave KICK out of the greedy choice while the ball is out of reach (default: the model's setting)",
-    )
-    parser.add_argument(
-        "--mirror-choice",
-        choices=("on", "off"),
-        default=None,
-        help="play the better, by the critic, of the greedy action in the state and in its mirror image "
-        "(default: the model's setting)",
-    )
-    parser.add_argument(
-        "--mirror-margin",
-        type=float,
-        default=None,
-        metavar="M",
-        help="with the mirror choice, keep the side played through an episode and switch only when the other is "
-        "better by more than M (>= 0; inf: never; 0: decide every step; default: the model's setting)",
-    )
+    add_acting_argument(parser)
     parser.add_argument(
         "--env-kwargs",
         nargs="+",
@@ -673,6 +635,56 @@ def build_parser() -> argparse.ArgumentParser:
         help="env constructor overrides, values as Python literals (e.g. noise:False keeper_skill:0.5)",
     )
     return parser
+
+
+def _acting_spec(text: str) -> str:
+    """argparse type of ``--acting``: the text form of acting strategies, checked here so that a bad token is a
+    usage error naming it."""
+    from sb3_hfo.skill_ddpg.acting import parse_acting
+
+    try:
+        parse_acting(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
+    return text
+
+
+def add_acting_argument(parser: argparse.ArgumentParser) -> None:
+    """Add ``--acting SPEC`` and, hidden, the single-option flags it replaces (``--discrete-choice``,
+    ``--kick-only-when-kickable``, ``--mirror-choice``, ``--mirror-margin``; read with :func:`acting_overrides`)."""
+    parser.add_argument(
+        "--acting",
+        type=_acting_spec,
+        default=None,
+        metavar="SPEC",
+        help="acting strategies, comma-separated: critic (the critic picks DASH / TURN / KICK), kick_mask (no KICK "
+        "while the ball is out of reach), mirror or mirror:M (play the better, by the critic, of the state and its "
+        "mirror image; with M > 0 keep the side through an episode unless the other is better by more than M; "
+        "inf: never switch); '' or actor: none (default: the model's own)",
+    )
+    # The single-option flags stay for older command lines; each overrides its part of --acting.
+    parser.add_argument(
+        "--discrete-choice", choices=("actor", "critic"), default=None, help=argparse.SUPPRESS
+    )
+    parser.add_argument(
+        "--kick-only-when-kickable", choices=("on", "off"), default=None, help=argparse.SUPPRESS
+    )
+    parser.add_argument("--mirror-choice", choices=("on", "off"), default=None, help=argparse.SUPPRESS)
+    parser.add_argument("--mirror-margin", type=float, default=None, help=argparse.SUPPRESS)
+
+
+def acting_overrides(args: argparse.Namespace) -> dict[str, Any]:
+    """The single-option flags of :func:`add_acting_argument` as ``HFOPolicy`` option values (``None``: not given)."""
+
+    def on_off(value: str | None) -> bool | None:
+        return None if value is None else value == "on"
+
+    return dict(
+        discrete_choice=args.discrete_choice,
+        kick_only_when_kickable=on_off(args.kick_only_when_kickable),
+        mirror_choice=on_off(args.mirror_choice),
+        mirror_margin=args.mirror_margin,
+    )
 
 
 def parse_env_kwargs(items: Sequence[str]) -> dict[str, Any]:
@@ -708,12 +720,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             seed=args.seed,
             deterministic=args.deterministic,
             env_kwargs=parse_env_kwargs(args.env_kwargs),
-            discrete_choice=args.discrete_choice,
-            kick_only_when_kickable=None
-            if args.kick_only_when_kickable is None
-            else args.kick_only_when_kickable == "on",
-            mirror_choice=None if args.mirror_choice is None else args.mirror_choice == "on",
-            mirror_margin=args.mirror_margin,
+            acting=args.acting,
+            **acting_overrides(args),
         )
     except EvaluationError as error:
         print(f"error: {error}", file=sys.stderr)

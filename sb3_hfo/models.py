@@ -378,7 +378,13 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     import torch
 
     from sb3_hfo.cli_errors import check_model_zip
-    from sb3_hfo.evaluate import REMOVED_ENV_KWARGS, check_env_id, evaluate, resolve_model
+    from sb3_hfo.evaluate import (
+        REMOVED_ENV_KWARGS,
+        acting_overrides,
+        check_env_id,
+        evaluate,
+        resolve_model,
+    )
 
     if not looks_like_name(args.name) or not args.name.replace("_", "").replace("-", "").isalnum():
         raise UserError(f"model name {args.name!r}: use letters, digits, '_' and '-' only")
@@ -397,10 +403,14 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
 
     torch.set_num_threads(1)
     full = load_model(resolved.path, device="cpu", buffer_size=1)
-    for option in ("discrete_choice", "kick_only_when_kickable", "mirror_choice", "mirror_margin"):
-        value = getattr(args, option)
-        if value is not None:
-            setattr(full.policy, option, value)
+    try:
+        if args.acting is not None:
+            full.policy.acting = args.acting
+        for option, value in acting_overrides(args).items():
+            if value is not None:
+                setattr(full.policy, option, value)
+    except ValueError as error:
+        raise UserError(str(error)) from error
     out = model_file({"file": f"{args.name}.zip"}, manifest_path)
     with tempfile.TemporaryDirectory() as tmp:
         full_with_options = Path(tmp) / "full.zip"
@@ -456,13 +466,9 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
 # Command line
 
 
-def _on_off(text: str) -> bool:
-    if text not in ("on", "off"):
-        raise argparse.ArgumentTypeError(f"expected on or off, got {text!r}")
-    return text == "on"
-
-
 def build_parser() -> argparse.ArgumentParser:
+    from sb3_hfo.evaluate import add_acting_argument
+
     parser = OneLineArgumentParser(prog="python -m sb3_hfo.models", description=__doc__.split("\n")[0])
     commands = parser.add_subparsers(dest="command", required=True, parser_class=OneLineArgumentParser)
     commands.add_parser("list", help="print the manifest's models")
@@ -475,10 +481,7 @@ def build_parser() -> argparse.ArgumentParser:
     add_parser.add_argument("--source-note", default=None, help="where the model came from (default: SOURCE)")
     add_parser.add_argument("--episodes", type=non_negative_int, default=EVALUATION_EPISODES)
     add_parser.add_argument("--eval-seed", type=non_negative_int, default=EVALUATION_SEED)
-    add_parser.add_argument("--discrete-choice", choices=("actor", "critic"), default=None)
-    add_parser.add_argument("--kick-only-when-kickable", type=_on_off, default=None, metavar="on|off")
-    add_parser.add_argument("--mirror-choice", type=_on_off, default=None, metavar="on|off")
-    add_parser.add_argument("--mirror-margin", type=float, default=None)
+    add_acting_argument(add_parser)
     add_parser.add_argument("--real-hfo", default=None, metavar="GOALS/EPISODES", help="a real-HFO result")
     add_parser.add_argument("--real-hfo-env", default=None, help="the real-HFO env id of --real-hfo")
     add_parser.add_argument("--note", default=None, help="a remark for the results page")

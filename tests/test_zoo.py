@@ -728,10 +728,24 @@ def test_evaluate_can_switch_on_the_mirror_choice() -> None:
     from sb3_hfo.evaluate import build_parser, evaluate
 
     model = "e6_keeper_v0"
-    result = evaluate(str(model), episodes=2, seed=0, mirror_choice=True)
-    assert result.mirror_choice is True and result.episodes == 2
-    assert evaluate(str(model), episodes=1, seed=0).mirror_choice is False  # the model's own setting
+    result = evaluate(str(model), episodes=2, seed=0, acting="critic,mirror")
+    assert result.acting == "critic,mirror" and result.episodes == 2
+    assert evaluate(str(model), episodes=1, seed=0).acting == "critic,kick_mask"  # the model's own setting
+    # the single-option form overrides its part of the model's own strategies
+    assert evaluate(str(model), episodes=1, seed=0, mirror_choice=True).acting == "critic,kick_mask,mirror"
     assert build_parser().parse_args(["m.zip", "--mirror-choice", "on"]).mirror_choice == "on"
+
+
+def test_evaluate_acting_flag_parses_and_names_a_bad_token(capsys: pytest.CaptureFixture[str]) -> None:
+    from sb3_hfo.evaluate import build_parser, main
+
+    parser = build_parser()
+    assert parser.parse_args(["m.zip", "--acting", "critic,mirror:0.1"]).acting == "critic,mirror:0.1"
+    assert parser.parse_args(["m.zip"]).acting is None  # the model's own
+    with pytest.raises(SystemExit):
+        main(["e6_keeper_v0", "--acting", "critic,mirorr"])
+    assert "'mirorr'" in capsys.readouterr().err
+    assert "--acting" in parser.format_help() and "--mirror-margin" not in parser.format_help()
 
 
 def test_evaluate_sets_the_mirror_margin_and_threads_predicts_state_through_each_episode() -> None:
@@ -740,11 +754,13 @@ def test_evaluate_sets_the_mirror_margin_and_threads_predicts_state_through_each
     from sb3_hfo.evaluate import EvaluationError, build_parser, evaluate, run_episodes
 
     model = "e6_keeper_v0"
-    result = evaluate(str(model), episodes=1, seed=0, mirror_choice=True, mirror_margin=float("inf"))
-    assert result.mirror_choice is True and result.mirror_margin == float("inf")
+    result = evaluate(str(model), episodes=1, seed=0, acting="critic,mirror:inf")
+    assert result.acting == "critic,mirror:inf"
     assert build_parser().parse_args(["m.zip", "--mirror-margin", "0.2"]).mirror_margin == 0.2
     with pytest.raises(EvaluationError, match="mirror_margin must be >= 0"):
         evaluate(str(model), episodes=1, seed=0, mirror_margin=-1.0)
+    with pytest.raises(EvaluationError, match="'mirror:-1'"):
+        evaluate(str(model), episodes=1, seed=0, acting="mirror:-1")
 
     class CountingStriker:  # returns as its state the number of steps since its last episode start
         def __init__(self) -> None:

@@ -102,6 +102,14 @@ from hfo2d.features import (
 )
 from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.common.routers import SkillRouter, check_skills, make_router, validate_skills
+from sb3_hfo.skill_ddpg.acting import (
+    ActingSpec,
+    ActingStrategy,
+    acting_from_options,
+    acting_options,
+    format_acting,
+    parse_acting,
+)
 
 __all__ = [
     "DEFAULT_NET_ARCH",
@@ -582,19 +590,19 @@ class HFOPolicy(BasePolicy):
         :func:`hfo2d.action_layout.action_layout`: the HFO envs declare theirs) or, for a plain ``Box``, the number
         of parameters of each discrete action in order, e.g. ``(2, 1, 2)``: the action is then ``[one preference
         per discrete action, their parameters in the same order]``.
-    :param discrete_choice: who picks the discrete action when acting: ``"actor"`` (the paper: its largest
-        preference) or ``"critic"`` (the best one-hot preference vector by the critic, see module doc; needs
-        an action layout: the action space's or ``mask_unused_parameters`` given as sizes).
-    :param kick_only_when_kickable: KICK is never the greedy choice while the ball is out of reach (observation
-        feature :data:`KICKABLE_FEATURE_INDEX` < 0; see module doc). Needs a layout with a ball action (HFO's
-        KICK) and HFO's low-level features. Can be switched on a trained model.
-    :param mirror_choice: play the better, by the critic, of the greedy action in the state and the greedy
-        action in its mirror image mirrored back (see module doc). Needs HFO's low-level features and flat
-        action. Can be switched on a trained model.
-    :param mirror_margin: with ``mirror_choice``, keep the side played (plain or mirrored) through an episode and
-        switch only when the other side's value (by the critic) exceeds it by more than this (>= 0, ``inf``: never
-        switch; 0, the default: decide afresh every step); the side travels in ``predict``'s ``state`` (see module
-        doc). Can be switched on a trained model.
+    :param acting: the acting strategies (:mod:`sb3_hfo.skill_ddpg.acting`): a tuple of
+        :class:`~sb3_hfo.skill_ddpg.acting.CriticChoice`, :class:`~sb3_hfo.skill_ddpg.acting.KickMask` and
+        :class:`~sb3_hfo.skill_ddpg.acting.MirrorChoice` objects or their text form (``"critic,kick_mask,mirror:0.1"``);
+        ``None`` (default, the paper): none. The critic's choice needs an action layout (the action space's or
+        ``mask_unused_parameters`` given as sizes); the kick mask and the mirror choice need HFO's low-level features
+        and flat action. A mirror margin > 0 keeps its side in ``predict``'s ``state`` (see :meth:`predict`).
+    :param discrete_choice: the single-option form of :class:`~sb3_hfo.skill_ddpg.acting.CriticChoice`
+        (``"actor"`` or ``"critic"``); given, it overrides that part of ``acting``.
+    :param kick_only_when_kickable: the single-option form of :class:`~sb3_hfo.skill_ddpg.acting.KickMask`;
+        given, it overrides that part of ``acting``.
+    :param mirror_choice: the single-option form of :class:`~sb3_hfo.skill_ddpg.acting.MirrorChoice`; given, it
+        overrides that part of ``acting``.
+    :param mirror_margin: the single-option form of ``MirrorChoice(margin)``; given, it overrides the margin.
     :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
         ``cos(k * theta)`` of the dash, turn and kick directions that the critic sees besides the action (see
         module doc); ``()`` (default, the paper): none. Needs a layout with direction parameters (HFO's).
@@ -627,10 +635,11 @@ class HFOPolicy(BasePolicy):
         skill_router: SkillRouter | str | None = None,
         inverting_gradients: bool = False,
         mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
-        discrete_choice: str = "actor",
-        kick_only_when_kickable: bool = False,
-        mirror_choice: bool = False,
-        mirror_margin: float = 0.0,
+        acting: ActingSpec = None,
+        discrete_choice: str | None = None,
+        kick_only_when_kickable: bool | None = None,
+        mirror_choice: bool | None = None,
+        mirror_margin: float | None = None,
         critic_direction_frequencies: Sequence[float] = (),
         critic_kick_relative_to: Sequence[str] = (),
         weight_init_std: float = WEIGHT_INIT_STD,
@@ -684,10 +693,18 @@ class HFOPolicy(BasePolicy):
             if self.action_layout is not None and mask_unused_parameters is not False
             else None
         )
-        self.discrete_choice = discrete_choice  # validated by the property setter
-        self.kick_only_when_kickable = kick_only_when_kickable  # validated by the property setter
-        self.mirror_choice = mirror_choice  # validated by the property setter
-        self.mirror_margin = mirror_margin  # validated by the property setter
+        self.acting = acting  # validated by the property setter
+        # The four single options override their part of ``acting`` (so that a preset's acting and a config's
+        # single option compose, and models saved with the single options load as they were saved).
+        overrides = dict(
+            discrete_choice=discrete_choice,
+            kick_only_when_kickable=kick_only_when_kickable,
+            mirror_choice=mirror_choice,
+            mirror_margin=mirror_margin,
+        )
+        for name, value in overrides.items():
+            if value is not None:
+                setattr(self, name, value)  # validated by the property setter
         # The kept sides, set by predict for _predict while a call with mirror_margin > 0 runs.
         self._side_box: list[np.ndarray | None] | None = None
         self.critic_direction_frequencies = _direction_frequencies(
@@ -826,6 +843,17 @@ class HFOPolicy(BasePolicy):
         return {name: getattr(self, name) for name in self.ACTING_OPTIONS}
 
     @property
+    def acting(self) -> tuple[ActingStrategy, ...]:
+        """The acting strategies (:mod:`sb3_hfo.skill_ddpg.acting`) in use; set it with strategies or their text
+        form, e.g. ``policy.acting = "critic,kick_mask,mirror:0.1"`` (may be changed at any time)."""
+        return acting_from_options(**self.acting_options())
+
+    @acting.setter
+    def acting(self, spec: ActingSpec) -> None:
+        for name, value in acting_options(parse_acting(spec)).items():
+            setattr(self, name, value)  # validated by the property setters
+
+    @property
     def mirror_choice(self) -> bool:
         """Whether acting also tries the mirror image of the state (see module doc; may be changed at any time)."""
         return self._mirror is not None
@@ -955,10 +983,7 @@ class HFOPolicy(BasePolicy):
                 skill_router=self.skill_router,
                 inverting_gradients=self.inverting_gradients,
                 mask_unused_parameters=self.mask_unused_parameters,
-                discrete_choice=self.discrete_choice,
-                kick_only_when_kickable=self.kick_only_when_kickable,
-                mirror_choice=self.mirror_choice,
-                mirror_margin=self.mirror_margin,
+                acting=format_acting(self.acting),
                 critic_direction_frequencies=self.critic_direction_frequencies,
                 critic_kick_relative_to=self.critic_kick_relative_to,
                 weight_init_std=self.weight_init_std,

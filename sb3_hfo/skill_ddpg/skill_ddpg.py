@@ -76,6 +76,7 @@ from torch.nn import functional as F
 
 from hfo2d.action_layout import action_layout, hfo_flat_action_space
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
+from sb3_hfo.skill_ddpg.acting import format_acting
 from sb3_hfo.skill_ddpg.fast_update import FastUpdate
 from sb3_hfo.skill_ddpg.policies import HFOPolicy
 
@@ -656,10 +657,11 @@ class SkillDDPG(OffPolicyAlgorithm):
         exclude: Iterable[str] | None = None,
         include: Iterable[str] | None = None,
     ) -> None:
-        """SB3's ``save``, with the acting options switched on the policy after construction
-        (:attr:`HFOPolicy.ACTING_OPTIONS`, e.g. ``model.policy.mirror_choice = True``) written into
-        ``policy_kwargs``, which is what ``load`` rebuilds the policy from."""
-        self.policy_kwargs = {**self.policy_kwargs, **self.policy.acting_options()}
+        """SB3's ``save``, with the policy's current acting strategies (``model.policy.acting``, which may have
+        been switched after construction) written into ``policy_kwargs`` as their text form, which is what
+        ``load`` rebuilds the policy from."""
+        kept = {k: v for k, v in self.policy_kwargs.items() if k not in HFOPolicy.ACTING_OPTIONS}
+        self.policy_kwargs = {**kept, "acting": format_acting(self.policy.acting)}
         super().save(path, exclude=exclude, include=include)
 
     def load_replay_buffer(

@@ -6,10 +6,10 @@ switched on the same options by hand, all borrowed from P-DQN / MP-DQN (Xiong et
 from Hausknecht & Stone (2016); ``SkillPDQN`` has them on by default:
 
 * the critic sees only the chosen discrete action's parameters (``mask_unused_parameters``);
-* the critic picks the discrete action when acting (``discrete_choice="critic"``) and its TD target takes the best
+* the critic picks the discrete action when acting (:class:`~sb3_hfo.skill_ddpg.acting.CriticChoice`) and its TD target takes the best
   discrete action (``discrete_target="max"``);
 * the actor trains every discrete action's parameters by that action's value (``parameter_loss="each_action"``);
-* no KICK while the ball is out of reach (``kick_only_when_kickable``);
+* no KICK while the ball is out of reach (:class:`~sb3_hfo.skill_ddpg.acting.KickMask`);
 * a penalty on the actor's pre-``tanh`` outputs (``preactivation_penalty=1e-3``);
 * Monte-Carlo mixing of the critic target (``mc_mixing=0.2``);
 * epsilon-greedy exploration that keeps the actor's parameters (``exploration_keep_parameters``).
@@ -24,6 +24,7 @@ from typing import Any, ClassVar, TypeVar
 
 from stable_baselines3.common.type_aliases import GymEnv, MaybeCallback
 
+from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask
 from sb3_hfo.skill_ddpg.policies import HFOPolicy
 from sb3_hfo.skill_ddpg.skill_ddpg import SkillDDPG
 
@@ -43,8 +44,7 @@ PRESET_ALGORITHM_DEFAULTS: dict[str, Any] = {
 #: ``policy_kwargs`` given override them key by key.
 PRESET_POLICY_DEFAULTS: dict[str, Any] = {
     "mask_unused_parameters": True,
-    "discrete_choice": "critic",
-    "kick_only_when_kickable": True,
+    "acting": (CriticChoice(), KickMask()),
 }
 
 
@@ -58,7 +58,7 @@ class SkillPDQN(SkillDDPG):
     :param discrete_target: default ``"max"``.
     :param parameter_loss: default ``"each_action"``.
     :param policy_kwargs: merged over :data:`PRESET_POLICY_DEFAULTS` (``mask_unused_parameters=True``,
-        ``discrete_choice="critic"``, ``kick_only_when_kickable=True``).
+        ``acting=(CriticChoice(), KickMask())``).
     :param kwargs: any other :class:`~sb3_hfo.skill_ddpg.SkillDDPG` argument.
     """
 
