@@ -177,8 +177,8 @@ def test_every_experiment_has_a_paper_and_a_fast_config() -> None:
 
 
 def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
-    """zoo_configs/ holds the paper's experiments and the configs of the committed models (models/manifest.json),
-    plus the HFO/Keeper-v1 attempts until one of them makes a model; the rest is in research/zoo_configs/."""
+    """zoo_configs/ holds the paper's experiments and the configs of the committed models (models/manifest.json);
+    the rest is in research/zoo_configs/."""
     from sb3_hfo.models import read_manifest
 
     manifest_configs = {entry["config"] for entry in read_manifest().values()}
@@ -187,8 +187,7 @@ def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
     for config in CONFIGS:
         if config.stem.startswith(EXPERIMENTS):
             continue
-        env_id, _ = _load_config(config)
-        assert f"zoo_configs/{config.name}" in manifest_configs or env_id == "HFO/Keeper-v1", config.name
+        assert f"zoo_configs/{config.name}" in manifest_configs, config.name
     assert RESEARCH_CONFIGS, "research/zoo_configs/ is empty"
     assert not {c.name for c in CONFIGS} & {c.name for c in RESEARCH_CONFIGS}
 
