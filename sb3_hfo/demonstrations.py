@@ -22,6 +22,7 @@ from stable_baselines3.common.vec_env import VecEnv
 from tqdm.auto import tqdm
 
 from hfo2d.strikers import STRIKERS, make_striker
+from sb3_hfo.skill_ddpg.acting import CriticChoice, format_acting
 from sb3_hfo.skill_ddpg.policies import HFO_ACTION_PARAMETER_SIZES, HFO_KICK_ACTION, HFO_N_DISCRETE_ACTIONS
 
 
@@ -231,7 +232,8 @@ def clone_striker(
 
     Args:
         model: a :class:`~sb3_hfo.SkillDDPG` with an :class:`~sb3_hfo.HFOPolicy` whose actor picks the discrete
-            action (``discrete_choice="actor"``: the critic is not trained here, so it cannot choose).
+            action (no :class:`~sb3_hfo.skill_ddpg.acting.CriticChoice` in its ``acting``: the critic is not trained
+            here, so it cannot choose).
         striker: a name of :data:`hfo2d.strikers.STRIKERS`.
         rounds: rounds after round 0 (fits of the actor), at least 1.
         episodes_per_round: episodes played per round, at least 1.
@@ -251,12 +253,12 @@ def clone_striker(
         one :class:`CloningRound` per round, round 0 first; the last one's ``goal_rate`` is the returned actor's.
     """
     policy = getattr(model, "policy", None)
-    if not hasattr(policy, "route") or not hasattr(policy, "discrete_choice"):
+    if not hasattr(policy, "route") or not hasattr(policy, "acting"):
         raise TypeError(f"model must be a SkillDDPG with an HFOPolicy, got {type(model).__name__}")
-    if policy.discrete_choice != "actor":
+    if any(isinstance(strategy, CriticChoice) for strategy in policy.acting):
         raise ValueError(
-            f"clone_striker needs discrete_choice='actor' (the critic is not trained by cloning), "
-            f"got {policy.discrete_choice!r}"
+            "clone_striker needs an actor that picks the discrete action: acting without 'critic' (the critic is "
+            f"not trained by cloning), got acting {format_acting(policy.acting)!r}"
         )
     if striker not in STRIKERS:
         raise ValueError(f"striker must be one of {tuple(STRIKERS)}, got {striker!r}")

@@ -481,35 +481,18 @@ def evaluate(
     deterministic: bool = True,
     env_kwargs: dict[str, Any] | None = None,
     acting: ActingSpec | None = None,
-    *,
-    discrete_choice: str | None = None,
-    kick_only_when_kickable: bool | None = None,
-    mirror_choice: bool | None = None,
-    mirror_margin: float | None = None,
 ) -> EvaluationResult:
     """Load a SkillDDPG model and evaluate it; see the module docstring. Raises EvaluationError on user errors.
 
     :param acting: the policy's acting strategies for this run (``HFOPolicy.acting``: strategy objects or their
         text form, e.g. ``"critic,kick_mask,mirror:0.1"``; ``""``: none); ``None`` keeps the model's own.
-    :param discrete_choice: the single-option form of part of ``acting`` (as ``HFOPolicy``'s argument of that
-        name); given, it overrides that part. So do ``kick_only_when_kickable``, ``mirror_choice`` and
-        ``mirror_margin``.
     """
     from sb3_hfo.skill_ddpg.acting import format_acting
 
     model, env, env_id, kwargs, path = load_for_evaluation(model_path, env_id, env_kwargs)
-    overrides = dict(
-        discrete_choice=discrete_choice,
-        kick_only_when_kickable=kick_only_when_kickable,
-        mirror_choice=mirror_choice,
-        mirror_margin=mirror_margin,
-    )
     try:
         if acting is not None:
             model.policy.acting = acting
-        for name, value in overrides.items():
-            if value is not None:
-                setattr(model.policy, name, value)
     except ValueError as error:
         env.close()
         raise EvaluationError(str(error)) from error
@@ -650,8 +633,7 @@ def _acting_spec(text: str) -> str:
 
 
 def add_acting_argument(parser: argparse.ArgumentParser) -> None:
-    """Add ``--acting SPEC`` and, hidden, the single-option flags it replaces (``--discrete-choice``,
-    ``--kick-only-when-kickable``, ``--mirror-choice``, ``--mirror-margin``; read with :func:`acting_overrides`)."""
+    """Add ``--acting SPEC``, the policy's acting strategies for the run."""
     parser.add_argument(
         "--acting",
         type=_acting_spec,
@@ -661,29 +643,6 @@ def add_acting_argument(parser: argparse.ArgumentParser) -> None:
         "while the ball is out of reach), mirror or mirror:M (play the better, by the critic, of the state and its "
         "mirror image; with M > 0 keep the side through an episode unless the other is better by more than M; "
         "inf: never switch); '' or actor: none (default: the model's own)",
-    )
-    # The single-option flags stay for older command lines; each overrides its part of --acting.
-    parser.add_argument(
-        "--discrete-choice", choices=("actor", "critic"), default=None, help=argparse.SUPPRESS
-    )
-    parser.add_argument(
-        "--kick-only-when-kickable", choices=("on", "off"), default=None, help=argparse.SUPPRESS
-    )
-    parser.add_argument("--mirror-choice", choices=("on", "off"), default=None, help=argparse.SUPPRESS)
-    parser.add_argument("--mirror-margin", type=float, default=None, help=argparse.SUPPRESS)
-
-
-def acting_overrides(args: argparse.Namespace) -> dict[str, Any]:
-    """The single-option flags of :func:`add_acting_argument` as ``HFOPolicy`` option values (``None``: not given)."""
-
-    def on_off(value: str | None) -> bool | None:
-        return None if value is None else value == "on"
-
-    return dict(
-        discrete_choice=args.discrete_choice,
-        kick_only_when_kickable=on_off(args.kick_only_when_kickable),
-        mirror_choice=on_off(args.mirror_choice),
-        mirror_margin=args.mirror_margin,
     )
 
 
@@ -721,7 +680,6 @@ def main(argv: Sequence[str] | None = None) -> int:
             deterministic=args.deterministic,
             env_kwargs=parse_env_kwargs(args.env_kwargs),
             acting=args.acting,
-            **acting_overrides(args),
         )
     except EvaluationError as error:
         print(f"error: {error}", file=sys.stderr)

@@ -8,7 +8,7 @@ ones and the optimizers start afresh, so the loaded model acts exactly as the fu
 model it writes) and can be trained further like a freshly warm-started one.
 
 The manifest names each model (``e1``, ``e6``, ...) and records its config, training seed, env id, the acting
-options it was saved with, the JSON of its 1,000-episode evaluation (:mod:`sb3_hfo.evaluate`) and, where
+strategies it was saved with (their text form), the JSON of its 1,000-episode evaluation (:mod:`sb3_hfo.evaluate`) and, where
 measured, its real-HFO figure. ``evaluate``, ``enjoy`` and ``record_video`` accept a manifest name wherever they
 accept a model. One command adds (or replaces) a model::
 
@@ -378,9 +378,9 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     import torch
 
     from sb3_hfo.cli_errors import check_model_zip
+    from sb3_hfo.skill_ddpg.acting import format_acting
     from sb3_hfo.evaluate import (
         REMOVED_ENV_KWARGS,
-        acting_overrides,
         check_env_id,
         evaluate,
         resolve_model,
@@ -406,9 +406,6 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     try:
         if args.acting is not None:
             full.policy.acting = args.acting
-        for option, value in acting_overrides(args).items():
-            if value is not None:
-                setattr(full.policy, option, value)
     except ValueError as error:
         raise UserError(str(error)) from error
     out = model_file({"file": f"{args.name}.zip"}, manifest_path)
@@ -445,7 +442,7 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
         "config": args.config,
         "seed": args.seed,
         "source": args.source_note or str(args.source),
-        "acting_options": stripped.policy.acting_options(),
+        "acting": format_acting(stripped.policy.acting),
         "evaluation_command": f"python -m sb3_hfo.evaluate {args.name} --episodes {args.episodes} "
         f"--seed {args.eval_seed} --json {args.name}.json",
         "evaluation": evaluation,

@@ -146,14 +146,14 @@ def _details(models: dict[str, dict[str, Any]]) -> str:
             continue
         evaluation = entry["evaluation"]
         counts = ", ".join(f"{status} {count}" for status, count in evaluation["status_counts"].items())
-        options = ", ".join(f"{key} {value}" for key, value in entry["acting_options"].items())
+        acting = f"`{entry['acting']}`" if entry["acting"] else "none (the actor's greedy action)"
         env_kwargs = ", ".join(f"{key}={value!r}" for key, value in entry["env_kwargs"].items()) or "none"
         lines += [
             f"### `{task.name}`: {task.task}",
             "",
             f"* file: `models/{entry['file']}`, {entry['bytes']:,} bytes",
             f"* trained with: `{entry['config']}`, `--seed {entry['seed']}`; {entry['source']}",
-            f"* env: `{entry['env_id']}`, env kwargs: {env_kwargs}; acting options: {options}",
+            f"* env: `{entry['env_id']}`, env kwargs: {env_kwargs}; acting: {acting}",
             f"* hfo2d: **{rate_text(evaluation)}**, {evaluation['goals']} goals in {evaluation['episodes']:,} "
             f"episodes (evaluation seed {evaluation['seed']}; {counts}), on {entry['evaluation_machine']}: "
             f"`{entry['evaluation_command']}`",

@@ -14,7 +14,8 @@ from hfo2d.action_layout import hfo_flat_action_space
 from sb3_hfo import HFOPolicy, SkillDDPG
 from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg import CriticChoice, KickMask, MirrorChoice, parse_acting
-from sb3_hfo.skill_ddpg.acting import acting_from_options, acting_options, format_acting
+from sb3_hfo.skill_ddpg.acting import format_acting
+from sb3_hfo.skill_ddpg.legacy import LEGACY_POLICY_OPTIONS, translate_legacy_options
 
 OBS_SPACE = spaces.Box(-1.0, 1.0, (66,), np.float32)  # HFO's features with a goalie
 ACTION_SPACE = hfo_flat_action_space()
@@ -64,47 +65,68 @@ def test_strategies_validate_themselves() -> None:
         MirrorChoice(0.1).margin = 0.2  # type: ignore[misc]
 
 
-def test_the_four_options_and_the_strategies_are_the_same_thing() -> None:
-    options = dict(
-        discrete_choice="critic", kick_only_when_kickable=True, mirror_choice=True, mirror_margin=0.25
+def test_the_legacy_single_options_fold_into_acting_and_override_their_part() -> None:
+    def folded(**kwargs: object) -> object:
+        return translate_legacy_options(dict(net_arch=[8], **kwargs), warn=False)
+
+    assert folded(discrete_choice="critic", kick_only_when_kickable=True, mirror_choice=True, mirror_margin=0.25) == {
+        "net_arch": [8],
+        "acting": "critic,kick_mask,mirror:0.25",
+    }
+    # A preset's strategies and a config's single option compose, as they did side by side.
+    assert folded(acting="critic,kick_mask", discrete_choice="actor", mirror_choice=True)["acting"] == (
+        "kick_mask,mirror"
     )
-    assert acting_from_options(**options) == (CriticChoice(), KickMask(), MirrorChoice(0.25))
-    assert acting_options(acting_from_options(**options)) == options
-    assert acting_from_options() == ()
+    assert folded(acting="mirror:0.5", mirror_margin=0.1)["acting"] == "mirror:0.1"
+    assert folded(acting="critic", mirror_margin=0.1)["acting"] == "critic"  # a margin alone switches nothing on
+    assert folded(acting="critic,mirror", mirror_choice=False, mirror_margin=0.0)["acting"] == "critic"
+    plain = dict(net_arch=[8], acting="critic")
+    assert translate_legacy_options(plain, warn=False) is plain  # nothing to translate: unchanged
+    for bad, named in (
+        (dict(discrete_choice="crtic"), "discrete_choice"),
+        (dict(kick_only_when_kickable="yes"), "kick_only_when_kickable"),
+        (dict(mirror_choice=1), "mirror_choice"),
+        (dict(mirror_choice=True, mirror_margin=-1.0), "margin"),
+    ):
+        with pytest.raises(ValueError, match=named):
+            folded(**bad)
 
 
-def test_policy_takes_one_acting_argument_and_the_single_options_override_their_part() -> None:
+def test_the_policy_has_one_acting_argument_and_one_property() -> None:
     policy = make_policy(mask_unused_parameters=True, acting="critic,kick_mask")
     assert policy.acting == (CriticChoice(), KickMask())
-    assert policy.discrete_choice == "critic" and policy.kick_only_when_kickable and not policy.mirror_choice
-    assert make_policy(acting=(CriticChoice(), MirrorChoice(0.5))).mirror_margin == 0.5
-    # A preset's strategies and a config's single option compose.
-    policy = make_policy(acting="critic,kick_mask", discrete_choice="actor", mirror_choice=True)
-    assert policy.acting == (KickMask(), MirrorChoice())
     policy.acting = "mirror:inf"
     assert policy.acting == (MirrorChoice(float("inf")),)
-    assert policy.acting_options() == dict(
-        discrete_choice="actor", kick_only_when_kickable=False, mirror_choice=True, mirror_margin=float("inf")
-    )
     assert make_policy().acting == ()
     with pytest.raises(ValueError, match="'mirorr'"):
         make_policy(acting="mirorr")
+    for legacy in ("discrete_choice", "kick_only_when_kickable", "mirror_choice", "mirror_margin"):
+        assert not hasattr(policy, legacy)
+        with pytest.raises(TypeError, match=legacy):
+            make_policy(**{legacy: None})
 
 
-def test_single_options_and_acting_give_the_same_actions() -> None:
-    obs = np.random.default_rng(1).uniform(-1, 1, (32, 66)).astype(np.float32)
-    old = make_policy(
-        mask_unused_parameters=True,
-        discrete_choice="critic",
-        kick_only_when_kickable=True,
-        mirror_choice=True,
-        mirror_margin=0.1,
+def test_a_refused_acting_value_changes_nothing() -> None:
+    policy = make_policy(acting="kick_mask,mirror:0.5")  # no layout mask: the critic's choice still works
+    box = HFOPolicy(
+        spaces.Box(-1.0, 1.0, (4,), np.float32), spaces.Box(-1.0, 1.0, (2,), np.float32), lambda _: 1e-3
     )
-    new = make_policy(mask_unused_parameters=True, acting="critic,kick_mask,mirror:0.1")
-    old_actions, old_state = old.predict(obs)
-    new_actions, new_state = new.predict(obs)
-    np.testing.assert_array_equal(old_actions, new_actions)
-    np.testing.assert_array_equal(old_state[0], new_state[0])
+    for target, spec, named in ((box, "critic", "CriticChoice"), (box, "kick_mask", "KickMask")):
+        with pytest.raises(ValueError, match=named):
+            target.acting = spec
+        assert target.acting == ()
+    assert policy.acting == (KickMask(), MirrorChoice(0.5))
+
+
+def test_single_options_given_to_skill_ddpg_warn_and_act_as_acting() -> None:
+    env = HybridTargetEnv()
+    with pytest.warns(DeprecationWarning, match="discrete_choice"):
+        old = SkillDDPG("HFOPolicy", env, seed=0, policy_kwargs=dict(net_arch=[16], discrete_choice="critic"))
+    new = SkillDDPG("HFOPolicy", env, seed=0, policy_kwargs=dict(net_arch=[16], acting="critic"))
+    assert old.policy.acting == new.policy.acting == (CriticChoice(),)
+    assert not set(old.policy_kwargs) & set(LEGACY_POLICY_OPTIONS)
+    obs = np.random.default_rng(1).uniform(-1, 1, (32, *env.observation_space.shape)).astype(np.float32)
+    np.testing.assert_array_equal(old.predict(obs)[0], new.predict(obs)[0])
 
 
 def mirror_policy() -> tuple[HFOPolicy, np.ndarray, np.ndarray]:
@@ -153,16 +175,14 @@ def test_two_parallel_envs_keep_separate_sides() -> None:
 
 
 def test_save_load_keeps_the_acting_strategies(tmp_path: Path) -> None:
-    model = SkillDDPG(
-        "HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], discrete_choice="critic")
-    )
+    model = SkillDDPG("HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="critic"))
     model.policy.acting = "critic,mirror:0.25"  # switched after construction
     model.save(tmp_path / "m.zip")
     loaded = SkillDDPG.load(tmp_path / "m.zip")
     assert loaded.policy.acting == (CriticChoice(), MirrorChoice(0.25))
     # Saved as the one argument, in its text form, without the single options.
     assert loaded.policy_kwargs["acting"] == "critic,mirror:0.25"
-    assert not set(loaded.policy_kwargs) & set(HFOPolicy.ACTING_OPTIONS)
+    assert not set(loaded.policy_kwargs) & set(LEGACY_POLICY_OPTIONS)
     obs = np.random.default_rng(0).uniform(-1, 1, (8, *model.observation_space.shape)).astype(np.float32)
     np.testing.assert_array_equal(model.predict(obs)[0], loaded.predict(obs)[0])
 
@@ -170,10 +190,17 @@ def test_save_load_keeps_the_acting_strategies(tmp_path: Path) -> None:
 def test_a_committed_model_saved_with_the_single_options_loads_with_the_same_strategies(
     tmp_path: Path,
 ) -> None:
+    import warnings
+
     from sb3_hfo.models import load_model
 
-    model = load_model(Path(__file__).parents[1] / "models" / "e6_keeper_v0.zip", device="cpu", buffer_size=1)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", DeprecationWarning)  # a saved model's options are translated silently
+        model = load_model(
+            Path(__file__).parents[1] / "models" / "e6_keeper_v0.zip", device="cpu", buffer_size=1
+        )
     assert model.policy.acting == (CriticChoice(), KickMask())
+    assert not set(model.policy_kwargs) & set(LEGACY_POLICY_OPTIONS)
     model.save(tmp_path / "again.zip")
     again = load_model(tmp_path / "again.zip", device="cpu", buffer_size=1)
     obs = np.random.default_rng(0).uniform(-1, 1, (16, *model.observation_space.shape)).astype(np.float32)

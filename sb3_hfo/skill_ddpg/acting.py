@@ -5,12 +5,24 @@ Each strategy is a small frozen dataclass, and a policy takes any combination of
 ``acting``: a tuple of strategies or its text form, the strategies' tokens joined by commas (the form the
 command lines take, ``evaluate --acting critic,kick_mask,mirror:0.1``):
 
-* :class:`CriticChoice` (``critic``): the critic picks the discrete action at the actor's parameters, as P-DQN does;
-  without it the actor's largest preference does.
-* :class:`KickMask` (``kick_mask``): KICK is never the greedy choice while the ball is out of reach.
-* :class:`MirrorChoice` (``mirror`` or ``mirror:M``): play the better, by the critic, of the greedy action in the
-  state and in its mirror image; with a margin ``M > 0`` the side played is kept through an episode, in
-  ``predict``'s ``state``, and switched only when the other is better by more than ``M``.
+* :class:`CriticChoice` (``critic``): the critic picks the discrete action, trying each one as its one-hot
+  preference vector (+1 / -1, the form epsilon-greedy exploration with ``exploration_keep_parameters`` stores) at
+  the actor's parameters, as P-DQN / MP-DQN choose (Xiong et al. 2018; Bester et al. 2019); without it the actor's
+  largest preference does. Why: with ``mask_unused_parameters`` the critic values each discrete action by its own
+  parameters, which the actor's preferences do not.
+* :class:`KickMask` (``kick_mask``): KICK is never the greedy choice while the observation's "able to kick" feature
+  is -1; the critic's choice and SkillDDPG's ``discrete_target="max"`` leave it out of their maximum, and the
+  actor's choice falls to its best other preference (invalid-action masking, as in sb3-contrib's MaskablePPO;
+  exploration may still try such kicks). Why: rcssserver ignores a kick out of reach, so a deterministic policy
+  that picks KICK there repeats it until HFO's time limit.
+* :class:`MirrorChoice` (``mirror`` or ``mirror:M``): HFO is symmetric about the pitch's long axis
+  (:mod:`hfo2d.symmetry`), so the policy played in the state's mirror image, its action mirrored back, is another
+  policy for the real state; acting (``predict``, not SkillDDPG's training rollouts) plays the better, by the
+  critic, of the two greedy actions (ties: the unmirrored one). Why: a one-step policy improvement over two
+  policies, for agents that score by one route only. With a margin ``M > 0`` the side played is kept through an
+  episode, in ``predict``'s ``state``, and switched only when the other is better by more than ``M``, so that the
+  choice does not alternate between two routes. HFO's start distribution is not mirror-symmetric, and on the empty
+  goal the choice can cost points (research/RESULTS.md, sessions 16-17).
 
 The empty tuple (text ``""`` or ``"actor"``) is the paper's policy: the actor's greedy action as it is.
 """
@@ -126,34 +138,3 @@ def parse_acting(spec: ActingSpec) -> tuple[ActingStrategy, ...]:
 def format_acting(acting: Sequence[ActingStrategy]) -> str:
     """The text form of ``acting``, which :func:`parse_acting` reads back (``""``: no strategy)."""
     return ",".join(str(strategy) for strategy in parse_acting(acting))
-
-
-def acting_from_options(
-    discrete_choice: str = "actor",
-    kick_only_when_kickable: bool = False,
-    mirror_choice: bool = False,
-    mirror_margin: float = 0.0,
-) -> tuple[ActingStrategy, ...]:
-    """The strategies equal to the policy's four acting options (``HFOPolicy.acting_options()``)."""
-    if discrete_choice not in ("actor", "critic"):
-        raise ValueError(f"discrete_choice must be 'actor' or 'critic', got {discrete_choice!r}")
-    strategies: list[ActingStrategy] = []
-    if discrete_choice == "critic":
-        strategies.append(CriticChoice())
-    if kick_only_when_kickable:
-        strategies.append(KickMask())
-    if mirror_choice:
-        strategies.append(MirrorChoice(mirror_margin))
-    return tuple(strategies)
-
-
-def acting_options(acting: Sequence[ActingStrategy]) -> dict[str, Any]:
-    """The four acting options equal to ``acting`` (the inverse of :func:`acting_from_options`)."""
-    strategies = parse_acting(acting)
-    mirror = next((s for s in strategies if isinstance(s, MirrorChoice)), None)
-    return {
-        "discrete_choice": "critic" if any(isinstance(s, CriticChoice) for s in strategies) else "actor",
-        "kick_only_when_kickable": any(isinstance(s, KickMask) for s in strategies),
-        "mirror_choice": mirror is not None,
-        "mirror_margin": 0.0 if mirror is None else mirror.margin,
-    }

@@ -250,19 +250,6 @@ def actor_output_gradients(
     return grad_zs[::-1]
 
 
-def _encoded_gradient_to_action(critic: HFOCritic, grad_seen: th.Tensor, seen: th.Tensor) -> th.Tensor:
-    """Chain rule through :meth:`HFOCritic.encode_action`: ``grad_seen``, d/d(its output) ``(B, action_dim + 2 * n)``,
-    and that output ``seen`` -> d/d(action) ``(B, action_dim)``."""
-    if critic.n_encoded == 0:
-        return grad_seen
-    dim, n = critic.action_dim, critic.n_encoded
-    sines, cosines = seen[:, dim : dim + n], seen[:, dim + n :]
-    grad_angles = (
-        grad_seen[:, dim : dim + n] * cosines - grad_seen[:, dim + n :] * sines
-    ) * critic.encoded_scale
-    return grad_seen[:, :dim].index_add(1, critic.encoded_index, grad_angles)
-
-
 def critic_forward_for_backward(
     critic: HFOCritic, obs: th.Tensor, action: th.Tensor
 ) -> tuple[th.Tensor, list[th.Tensor]]:
@@ -270,7 +257,7 @@ def critic_forward_for_backward(
     :func:`critic_action_gradient`.
 
     :return: ``(Q (B, 1), layer_inputs)``: ``obs``, ``[obs features, encoded action]
-        (B, qf[0] + action_dim + 2 * n_encoded)``, then each later hidden activation ``(B, qf[i])``.
+        (B, qf[0] + action_encoder.out_dim)``, then each later hidden activation ``(B, qf[i])``.
     """
     layers = critic.layers
     weight, bias = layers[0]
@@ -321,7 +308,7 @@ def critic_action_gradient(critic: HFOCritic, inputs: list[th.Tensor]) -> th.Ten
             grad_input = grad_z.mm(weight if index > 1 else weight[:, n_features:])
     else:
         grad_input = grad_input[:, n_features:]
-    return _encoded_gradient_to_action(critic, grad_input, inputs[1][:, n_features:])
+    return critic.action_encoder.action_gradient(grad_input, inputs[1][:, n_features:])
 
 
 class FastUpdate:

@@ -40,36 +40,13 @@ research/RESULTS.md (the results page, docs/results.md, gives the committed mode
   multi-pass Q-network (MP-DQN) zeroes them. Why: only the chosen action's parameters reach the environment, and
   without the mask dQ/da drives the others into ``tanh``'s saturation, from where they pass back no gradient when
   they are finally used.
-* ``discrete_choice="critic"``: acting keeps the actor's parameters but tries each discrete action ``j`` as the
-  one-hot preference vector (+1 for ``j``, -1 for the others, the form epsilon-greedy exploration with
-  ``exploration_keep_parameters`` stores) and plays the one the critic values most, as P-DQN / MP-DQN choose
-  (Xiong et al. 2018; Bester et al. 2019). Why: with ``mask_unused_parameters`` the critic values each discrete
-  action by its own parameters, which the actor's preferences do not. Can be switched on a trained model.
-* ``kick_only_when_kickable``: KICK is never the greedy choice while the observation's "able to kick" feature
-  (:data:`KICKABLE_FEATURE_INDEX`) is -1; the critic's choice and SkillDDPG's ``discrete_target="max"`` leave it
-  out of their maximum, and the actor's choice falls to its best other preference (invalid-action masking, as in
-  sb3-contrib's MaskablePPO; exploration may still try such kicks). Why: rcssserver ignores a kick out of reach, so
-  a deterministic policy that picks KICK there repeats it until HFO's time limit.
-* ``critic_direction_frequencies=(k1, k2, ...)``: the critic also sees ``sin(k * theta)`` and ``cos(k * theta)``
-  of each direction parameter (``theta`` in radians), the Fourier features that let a network fit sharp functions
-  of its input (Tancik et al. 2020); the actor is unchanged and dQ/da goes through the features by the chain rule.
-  Why: on the [-1, 1] scale a 5-degree change of the kick direction moves the critic's input by 0.028, too little
-  for it to tell a shot past a keeper from one at him.
-* ``critic_kick_relative_to=("goalie", ...)`` (needs the frequencies above): the critic also sees the kick
-  direction relative to each named landmark's bearing (read from the observation's (sin, cos) pair; both angles are
-  relative to the body), at the same frequencies. Why: "kick minus keeper bearing" is otherwise a difference of two
-  inputs the network has to form itself.
-* ``mirror_choice``: HFO is symmetric about the pitch's long axis (:mod:`hfo2d.symmetry`), so the policy played in
-  the mirror image of the state, its action mirrored back, is another policy for the real state; acting
-  (``predict``; not SkillDDPG's training rollouts) computes the greedy action in the state and in its mirror image
-  and plays the one the critic values more (ties: the unmirrored one). Why: a one-step policy improvement over two
-  policies, for agents that score by one route only. Needs HFO's features and flat action; can be switched on a
-  trained model. HFO's start distribution is not mirror-symmetric, and on the empty goal the choice can cost points.
-* ``mirror_margin=m > 0``: the mirror choice keeps a side (plain or mirrored) through an episode and switches only
-  when the other side's value exceeds the kept side's by more than ``m`` (``inf``: never). Why: a choice made
-  afresh every step may alternate between two routes. The side travels in ``predict``'s recurrent ``state``
-  (``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate`` pass
-  it; a call without ``state`` starts every row afresh.
+* ``critic_action_encoding``: the critic also sees Fourier features of the action's directions, absolute and
+  relative to landmarks (:mod:`sb3_hfo.skill_ddpg.encoding`, which says why).
+
+How a trained policy acts is one argument too, ``acting``: the critic's choice of the discrete action, the kick
+mask and the mirror choice (:mod:`sb3_hfo.skill_ddpg.acting`, which says why). They change no network, so they can
+be switched on a trained model; the mirror choice's kept side travels in ``predict``'s recurrent ``state``
+(``episode_start`` resets it), as SB3's ``evaluate_policy``, rl-zoo3's ``enjoy`` and ``sb3_hfo.evaluate`` pass it.
 """
 
 from __future__ import annotations
@@ -89,27 +66,19 @@ from torch import nn
 from torch.nn import functional as F
 
 from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT, HybridActionLayout, action_layout
-from hfo2d.features import (
-    GOAL_CENTER_COS,
-    GOAL_CENTER_SIN,
-    GOAL_POST_BOTTOM_COS,
-    GOAL_POST_BOTTOM_SIN,
-    GOAL_POST_TOP_COS,
-    GOAL_POST_TOP_SIN,
-    GOALIE_ANGLE_COS,
-    GOALIE_ANGLE_SIN,
-    KICKABLE,
-)
+from hfo2d.features import KICKABLE
 from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.common.routers import SkillRouter, check_skills, make_router, validate_skills
 from sb3_hfo.skill_ddpg.acting import (
     ActingSpec,
     ActingStrategy,
-    acting_from_options,
-    acting_options,
+    CriticChoice,
+    KickMask,
+    MirrorChoice,
     format_acting,
     parse_acting,
 )
+from sb3_hfo.skill_ddpg.encoding import ActionEncoder, ActionEncodingSpec, parse_encoding
 
 __all__ = [
     "DEFAULT_NET_ARCH",
@@ -140,8 +109,6 @@ HFO_KICK_ACTION = HFO_FLAT_ACTION_LAYOUT.ball_action
 #: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise); hfo2d
 #: owns the layout (HFO's LowLevelFeatureExtractor).
 KICKABLE_FEATURE_INDEX = KICKABLE
-#: Who picks the discrete action when acting: the actor's largest preference (the paper) or the critic.
-DISCRETE_CHOICES: tuple[str, ...] = ("actor", "critic")
 
 
 def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[list[int], list[int]]:
@@ -173,73 +140,6 @@ def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[l
         ):
             raise ValueError(f"net_arch[{name!r}] must be a non-empty list of positive ints, got {arch!r}")
     return [int(n) for n in actor_arch], [int(n) for n in critic_arch]
-
-
-def _direction_frequencies(
-    frequencies: Sequence[float], layout: HybridActionLayout | None
-) -> tuple[float, ...]:
-    """Validated ``critic_direction_frequencies`` as a tuple of floats (YAML gives a list)."""
-    if isinstance(frequencies, (str, bytes)) or not isinstance(frequencies, Iterable):
-        raise ValueError(f"critic_direction_frequencies must be a sequence of numbers, got {frequencies!r}")
-    values = tuple(frequencies)
-    if not all(
-        isinstance(k, (int, float, np.integer, np.floating))
-        and not isinstance(k, bool)
-        and np.isfinite(k)
-        and k > 0
-        for k in values
-    ):
-        raise ValueError(f"critic_direction_frequencies must be finite numbers > 0, got {frequencies!r}")
-    if values and (layout is None or not layout.direction_indices):
-        raise ValueError(
-            "critic_direction_frequencies needs an action layout with direction parameters (HFO's flat action), "
-            f"got layout {layout}"
-        )
-    return tuple(float(k) for k in values)
-
-
-#: Landmarks whose bearing ``critic_kick_relative_to`` accepts: name -> (sin, cos) columns of HFO's features.
-KICK_REFERENCE_BEARINGS: dict[str, tuple[int, int]] = {
-    "goalie": (GOALIE_ANGLE_SIN, GOALIE_ANGLE_COS),
-    "goal_center": (GOAL_CENTER_SIN, GOAL_CENTER_COS),
-    "goal_post_top": (GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS),
-    "goal_post_bottom": (GOAL_POST_BOTTOM_SIN, GOAL_POST_BOTTOM_COS),
-}
-
-
-def _kick_references(
-    names: Sequence[str], frequencies: tuple[float, ...], obs_dim: int, layout: HybridActionLayout | None
-) -> tuple[tuple[int, int, int], ...]:
-    """Validated ``critic_kick_relative_to`` as (kick action index, bearing sin column, bearing cos column) triples."""
-    if isinstance(names, (str, bytes)) or not isinstance(names, Iterable):
-        raise ValueError(f"critic_kick_relative_to must be a sequence of landmark names, got {names!r}")
-    names = tuple(names)
-    unknown = [name for name in names if name not in KICK_REFERENCE_BEARINGS]
-    if unknown:
-        raise ValueError(
-            f"critic_kick_relative_to: unknown landmark(s) {unknown}; choose from {tuple(KICK_REFERENCE_BEARINGS)}"
-        )
-    if names and not frequencies:
-        raise ValueError(
-            "critic_kick_relative_to needs critic_direction_frequencies (it uses the same frequencies)"
-        )
-    kick_direction = None
-    if names and layout is not None and layout.ball_action is not None:
-        kick_direction = layout.action_direction(layout.ball_action)
-    if names and kick_direction is None:
-        raise ValueError(
-            f"critic_kick_relative_to needs an action layout with a kick direction, got layout {layout}"
-        )
-    triples = []
-    for name in names:
-        sin_column, cos_column = KICK_REFERENCE_BEARINGS[name]
-        if max(sin_column, cos_column) >= obs_dim:
-            raise ValueError(
-                f"critic_kick_relative_to: {name!r} needs observation column {max(sin_column, cos_column)}, but the "
-                f"observation has {obs_dim} features (the goalie's bearing exists only on goalie tasks)"
-            )
-        triples.append((kick_direction, sin_column, cos_column))
-    return tuple(triples)
 
 
 def _resolve_layout(
@@ -462,11 +362,8 @@ class HFOCritic(nn.Module):
     :param net_arch: hidden layer sizes, e.g. ``[400, 300, 200]``.
     :param activation_fn: activation class after each hidden layer.
     :param weight_init_std: standard deviation of the truncated-normal weight initialisation.
-    :param direction_indices: action dimensions that are directions ([-1, 1] for [-180, 180] degrees) ...
-    :param direction_frequencies: ... and the frequencies ``k`` whose ``sin(k * theta)``, ``cos(k * theta)`` are
-        appended to the action the critic sees (:meth:`encode_action`; none by default).
-    :param relative_directions: ``(action index, obs sin column, obs cos column)`` triples: that direction is also
-        encoded, at the same frequencies, relative to the bearing ``atan2(obs[sin column], obs[cos column])``.
+    :param action_encoder: how the critic sees the action (:class:`~sb3_hfo.skill_ddpg.encoding.ActionEncoder`);
+        default: as it is.
     """
 
     def __init__(
@@ -476,52 +373,14 @@ class HFOCritic(nn.Module):
         net_arch: list[int],
         activation_fn: type[nn.Module] = nn.LeakyReLU,
         weight_init_std: float = WEIGHT_INIT_STD,
-        direction_indices: Sequence[int] = (),
-        direction_frequencies: Sequence[float] = (),
-        relative_directions: Sequence[tuple[int, int, int]] = (),
+        action_encoder: ActionEncoder | None = None,
     ) -> None:
         super().__init__()
         self.action_dim = action_dim
-        frequencies = (
-            list(direction_frequencies) if len(direction_indices) + len(relative_directions) > 0 else []
-        )
-        n_absolute = len(direction_indices) * len(frequencies)
-        self.n_relative = len(relative_directions) * len(frequencies)
-        self.n_encoded = n_absolute + self.n_relative
-        # Column c of the sin (and of the cos) block: first the absolute directions, direction_indices[c % n] at
-        # frequency c // n; then the relative ones in the same order, relative_directions[...][0] minus a bearing.
-        relative_indices = [triple[0] for triple in relative_directions]
-        self.encoded_index: th.Tensor
-        self.encoded_scale: th.Tensor
-        self.bearing_sin_column: th.Tensor
-        self.bearing_cos_column: th.Tensor
-        self.bearing_frequency: th.Tensor
-        self.register_buffer(
-            "encoded_index",
-            th.tensor(
-                list(direction_indices) * len(frequencies) + relative_indices * len(frequencies),
-                dtype=th.long,
-            ),
-            persistent=False,
-        )
-        self.register_buffer(
-            "encoded_scale",
-            th.tensor(
-                [np.pi * k for k in frequencies for _ in direction_indices]
-                + [np.pi * k for k in frequencies for _ in relative_directions],
-                dtype=th.float32,
-            ),
-            persistent=False,
-        )
-        for name, values, dtype in (
-            ("bearing_sin_column", [t[1] for t in relative_directions] * len(frequencies), th.long),
-            ("bearing_cos_column", [t[2] for t in relative_directions] * len(frequencies), th.long),
-            ("bearing_frequency", [k for k in frequencies for _ in relative_directions], th.float32),
-        ):
-            self.register_buffer(name, th.tensor(values, dtype=dtype), persistent=False)
+        self.action_encoder = ActionEncoder(action_dim) if action_encoder is None else action_encoder
         self.obs_net = nn.Sequential(nn.Linear(obs_dim, net_arch[0]), _make_activation(activation_fn))
         layers: list[nn.Module] = []
-        in_features = net_arch[0] + action_dim + 2 * self.n_encoded
+        in_features = net_arch[0] + self.action_encoder.out_dim
         for width in net_arch[1:]:
             layers += [nn.Linear(in_features, width), _make_activation(activation_fn)]
             in_features = width
@@ -542,29 +401,9 @@ class HFOCritic(nn.Module):
         return first
 
     def encode_action(self, action: th.Tensor, obs: th.Tensor | None = None) -> th.Tensor:
-        """``action (B, action_dim)`` -> what the critic's second layer sees: ``(B, action_dim + 2 * n_encoded)``,
-        the action followed by the sines, then the cosines, of its directions at each frequency (no copy when
-        there are none). ``obs (B, obs_dim)`` supplies the bearings of ``relative_directions`` (needed then)."""
-        if self.n_encoded == 0:
-            return action
-        angles = action.index_select(1, self.encoded_index) * self.encoded_scale.to(action.dtype)
-        if self.n_relative:
-            if obs is None:
-                raise ValueError(
-                    "this critic encodes directions relative to bearings in the observation: pass obs"
-                )
-            bearings = th.atan2(
-                obs.index_select(1, self.bearing_sin_column), obs.index_select(1, self.bearing_cos_column)
-            )
-            n_absolute = self.n_encoded - self.n_relative
-            angles = th.cat(
-                (
-                    angles[:, :n_absolute],
-                    angles[:, n_absolute:] - bearings * self.bearing_frequency.to(action.dtype),
-                ),
-                dim=1,
-            )
-        return th.cat((action, th.sin(angles), th.cos(angles)), dim=1)
+        """``action (B, action_dim)`` -> what the critic's second layer sees (:class:`ActionEncoder`); ``obs``
+        gives the landmarks' bearings when the encoding is relative to them."""
+        return self.action_encoder.forward(action, obs)  # not (...): no module hooks on the hot path
 
     def forward(self, obs: th.Tensor, action: th.Tensor) -> th.Tensor:
         """``obs (B, obs_dim)``, ``action (B, action_dim)`` in the buffer scale -> ``Q (B, 1)``."""
@@ -596,19 +435,10 @@ class HFOPolicy(BasePolicy):
         ``None`` (default, the paper): none. The critic's choice needs an action layout (the action space's or
         ``mask_unused_parameters`` given as sizes); the kick mask and the mirror choice need HFO's low-level features
         and flat action. A mirror margin > 0 keeps its side in ``predict``'s ``state`` (see :meth:`predict`).
-    :param discrete_choice: the single-option form of :class:`~sb3_hfo.skill_ddpg.acting.CriticChoice`
-        (``"actor"`` or ``"critic"``); given, it overrides that part of ``acting``.
-    :param kick_only_when_kickable: the single-option form of :class:`~sb3_hfo.skill_ddpg.acting.KickMask`;
-        given, it overrides that part of ``acting``.
-    :param mirror_choice: the single-option form of :class:`~sb3_hfo.skill_ddpg.acting.MirrorChoice`; given, it
-        overrides that part of ``acting``.
-    :param mirror_margin: the single-option form of ``MirrorChoice(margin)``; given, it overrides the margin.
-    :param critic_direction_frequencies: frequencies ``k`` (> 0) of the Fourier features ``sin(k * theta)``,
-        ``cos(k * theta)`` of the dash, turn and kick directions that the critic sees besides the action (see
-        module doc); ``()`` (default, the paper): none. Needs a layout with direction parameters (HFO's).
-    :param critic_kick_relative_to: landmark names (:data:`KICK_REFERENCE_BEARINGS`: ``"goalie"``,
-        ``"goal_center"``, ``"goal_post_top"``, ``"goal_post_bottom"``) whose bearing the kick direction is also
-        encoded relative to, at ``critic_direction_frequencies`` (see module doc); ``()`` (default): none.
+    :param critic_action_encoding: how the critic sees the action (:mod:`sb3_hfo.skill_ddpg.encoding`): a
+        :class:`~sb3_hfo.skill_ddpg.encoding.DirectionFeatures`, its dict form (``{"frequencies": [1, 2, 4],
+        "relative_to": ["goalie"]}``) or ``None`` (default, the paper): the action as it is. Needs a layout with
+        direction parameters (HFO's).
     :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
     :param optimizer_class: optimiser class for the critic and each skill (default Adam).
     :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
@@ -636,12 +466,7 @@ class HFOPolicy(BasePolicy):
         inverting_gradients: bool = False,
         mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
         acting: ActingSpec = None,
-        discrete_choice: str | None = None,
-        kick_only_when_kickable: bool | None = None,
-        mirror_choice: bool | None = None,
-        mirror_margin: float | None = None,
-        critic_direction_frequencies: Sequence[float] = (),
-        critic_kick_relative_to: Sequence[str] = (),
+        critic_action_encoding: ActionEncodingSpec = None,
         weight_init_std: float = WEIGHT_INIT_STD,
         optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
         optimizer_kwargs: dict[str, Any] | None = None,
@@ -693,27 +518,12 @@ class HFOPolicy(BasePolicy):
             if self.action_layout is not None and mask_unused_parameters is not False
             else None
         )
+        self._mirror: Mirror | None = None
         self.acting = acting  # validated by the property setter
-        # The four single options override their part of ``acting`` (so that a preset's acting and a config's
-        # single option compose, and models saved with the single options load as they were saved).
-        overrides = dict(
-            discrete_choice=discrete_choice,
-            kick_only_when_kickable=kick_only_when_kickable,
-            mirror_choice=mirror_choice,
-            mirror_margin=mirror_margin,
-        )
-        for name, value in overrides.items():
-            if value is not None:
-                setattr(self, name, value)  # validated by the property setter
-        # The kept sides, set by predict for _predict while a call with mirror_margin > 0 runs.
+        # The kept sides, set by predict for _predict while a call with a mirror margin > 0 runs.
         self._side_box: list[np.ndarray | None] | None = None
-        self.critic_direction_frequencies = _direction_frequencies(
-            critic_direction_frequencies, self.action_layout
-        )
-        self.kick_references = _kick_references(
-            critic_kick_relative_to, self.critic_direction_frequencies, self.obs_dim, self.action_layout
-        )
-        self.critic_kick_relative_to = tuple(critic_kick_relative_to)
+        self.critic_action_encoding = parse_encoding(critic_action_encoding)
+        ActionEncoder(self.action_dim, self.critic_action_encoding, self.action_layout, self.obs_dim)  # validates
         self._build(lr_schedule)
 
     def _optimizer_kwargs(self) -> dict[str, Any]:
@@ -738,17 +548,12 @@ class HFOPolicy(BasePolicy):
             net_arch=self.critic_arch,
             activation_fn=self.activation_fn,
             weight_init_std=self.weight_init_std,
-            direction_indices=self.action_layout.direction_indices  # type: ignore[union-attr]
-            if self.critic_direction_frequencies
-            else (),
-            direction_frequencies=self.critic_direction_frequencies,
-            relative_directions=self.kick_references,
         )
         self.actor = HFOActor(**actor_kwargs)  # type: ignore[arg-type]
         self.actor_target = HFOActor(**actor_kwargs)  # type: ignore[arg-type]
         self.actor_target.load_state_dict(self.actor.state_dict())
-        self.critic = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
-        self.critic_target = HFOCritic(**critic_kwargs)  # type: ignore[arg-type]
+        self.critic = HFOCritic(**critic_kwargs, action_encoder=self._make_action_encoder())  # type: ignore[arg-type]
+        self.critic_target = HFOCritic(**critic_kwargs, action_encoder=self._make_action_encoder())  # type: ignore[arg-type]
         self.critic_target.load_state_dict(self.critic.state_dict())
         for target in (self.actor_target, self.critic_target):
             target.requires_grad_(False)
@@ -763,6 +568,9 @@ class HFOPolicy(BasePolicy):
             optimizer = self.optimizer_class(trunk + list(head.parameters()), lr=lr, **kwargs)  # type: ignore[call-arg]
             # One named attribute per skill so that SkillDDPG.save / load can address each state dict.
             setattr(self, f"actor_skill_{k}_optimizer", optimizer)
+
+    def _make_action_encoder(self) -> ActionEncoder:
+        return ActionEncoder(self.action_dim, self.critic_action_encoding, self.action_layout, self.obs_dim)
 
     def _build_parameter_masks(self) -> None:
         """``parameter_masks (n_discrete, action_dim)``: row ``j`` is 1 on every preference and on discrete action
@@ -797,74 +605,35 @@ class HFOPolicy(BasePolicy):
         return masks.index_select(0, actions[:, : masks.shape[0]].argmax(dim=1))
 
     @property
-    def discrete_choice(self) -> str:
-        """``"actor"`` or ``"critic"``: who picks the discrete action when acting (may be changed at any time)."""
-        return self._discrete_choice
-
-    @discrete_choice.setter
-    def discrete_choice(self, choice: str) -> None:
-        if choice not in DISCRETE_CHOICES:
-            raise ValueError(f"discrete_choice must be one of {DISCRETE_CHOICES}, got {choice!r}")
-        if choice == "critic" and self.n_discrete_actions == 0:
-            raise ValueError(
-                "discrete_choice='critic' needs the discrete actions: an action space with a hybrid layout (the HFO "
-                "envs'), or mask_unused_parameters given as per-action parameter counts"
-            )
-        self._discrete_choice = choice
-
-    @property
-    def kick_only_when_kickable(self) -> bool:
-        """Whether KICK is left out of the greedy choice while the ball is out of reach (see module doc)."""
-        return self._kick_only_when_kickable
-
-    @kick_only_when_kickable.setter
-    def kick_only_when_kickable(self, value: bool) -> None:
-        if not isinstance(value, (bool, np.bool_)):
-            raise ValueError(f"kick_only_when_kickable must be a bool, got {value!r}")
-        layout = self.action_layout
-        if value and (layout is None or layout.ball_action is None or self.obs_dim <= KICKABLE_FEATURE_INDEX):
-            raise ValueError(
-                "kick_only_when_kickable needs an action layout with a kick (HFO's flat action) and HFO's "
-                f"low-level features (at least {KICKABLE_FEATURE_INDEX + 1}), got layout {layout} and "
-                f"{self.obs_dim} features"
-            )
-        self._kick_only_when_kickable = bool(value)
-
-    #: Options that change only how the policy acts, not its networks: settable on a trained model, and saved.
-    ACTING_OPTIONS: ClassVar[tuple[str, ...]] = (
-        "discrete_choice",
-        "kick_only_when_kickable",
-        "mirror_choice",
-        "mirror_margin",
-    )
-
-    def acting_options(self) -> dict[str, Any]:
-        """The current value of each of :attr:`ACTING_OPTIONS`."""
-        return {name: getattr(self, name) for name in self.ACTING_OPTIONS}
-
-    @property
     def acting(self) -> tuple[ActingStrategy, ...]:
         """The acting strategies (:mod:`sb3_hfo.skill_ddpg.acting`) in use; set it with strategies or their text
         form, e.g. ``policy.acting = "critic,kick_mask,mirror:0.1"`` (may be changed at any time)."""
-        return acting_from_options(**self.acting_options())
+        return self._acting
 
     @acting.setter
     def acting(self, spec: ActingSpec) -> None:
-        for name, value in acting_options(parse_acting(spec)).items():
-            setattr(self, name, value)  # validated by the property setters
-
-    @property
-    def mirror_choice(self) -> bool:
-        """Whether acting also tries the mirror image of the state (see module doc; may be changed at any time)."""
-        return self._mirror is not None
-
-    @mirror_choice.setter
-    def mirror_choice(self, value: bool) -> None:
-        if not isinstance(value, (bool, np.bool_)):
-            raise ValueError(f"mirror_choice must be a bool, got {value!r}")
-        self._mirror: Mirror | None = (
-            make_mirror((self.obs_dim,), self.action_layout, "mirror_choice") if value else None
-        )
+        strategies = parse_acting(spec)
+        critic_picks = any(isinstance(s, CriticChoice) for s in strategies)
+        kick_mask = any(isinstance(s, KickMask) for s in strategies)
+        mirror_choice = next((s for s in strategies if isinstance(s, MirrorChoice)), None)
+        if critic_picks and self.n_discrete_actions == 0:
+            raise ValueError(
+                "acting CriticChoice needs the discrete actions: an action space with a hybrid layout (the HFO "
+                "envs'), or mask_unused_parameters given as per-action parameter counts"
+            )
+        layout = self.action_layout
+        if kick_mask and (layout is None or layout.ball_action is None or self.obs_dim <= KICKABLE_FEATURE_INDEX):
+            raise ValueError(
+                "acting KickMask needs an action layout with a kick (HFO's flat action) and HFO's low-level "
+                f"features (at least {KICKABLE_FEATURE_INDEX + 1}), got layout {layout} and {self.obs_dim} features"
+            )
+        # validated before anything is set, so that a refused value changes nothing
+        mirror = None if mirror_choice is None else make_mirror((self.obs_dim,), layout, "acting MirrorChoice")
+        self._acting = strategies
+        self._critic_picks = critic_picks
+        self._kick_mask = kick_mask
+        self._mirror = mirror
+        self._mirror_margin = 0.0 if mirror_choice is None else mirror_choice.margin
 
     @contextlib.contextmanager
     def mirror_choice_suspended(self) -> Iterator[None]:
@@ -875,25 +644,9 @@ class HFOPolicy(BasePolicy):
         finally:
             self._mirror = mirror
 
-    @property
-    def mirror_margin(self) -> float:
-        """How much better the other side must be for ``mirror_choice`` to switch sides within an episode (see
-        module doc; 0: decide afresh every step; may be changed at any time)."""
-        return self._mirror_margin
-
-    @mirror_margin.setter
-    def mirror_margin(self, value: float) -> None:
-        if isinstance(value, (bool, np.bool_)) or not isinstance(
-            value, (int, float, np.integer, np.floating)
-        ):
-            raise ValueError(f"mirror_margin must be a number >= 0 (or inf), got {value!r}")
-        if not value >= 0.0:  # also rejects NaN
-            raise ValueError(f"mirror_margin must be >= 0 (or inf), got {value!r}")
-        self._mirror_margin = float(value)
-
     def kick_unavailable(self, obs: th.Tensor) -> th.Tensor | None:
-        """``(B,)`` bool, True where KICK is left out (ball out of reach); ``None`` when the option is off."""
-        if not self._kick_only_when_kickable:
+        """``(B,)`` bool, True where KICK is left out (ball out of reach); ``None`` without the kick mask."""
+        if not self._kick_mask:
             return None
         return obs[:, KICKABLE_FEATURE_INDEX] < 0
 
@@ -984,8 +737,9 @@ class HFOPolicy(BasePolicy):
                 inverting_gradients=self.inverting_gradients,
                 mask_unused_parameters=self.mask_unused_parameters,
                 acting=format_acting(self.acting),
-                critic_direction_frequencies=self.critic_direction_frequencies,
-                critic_kick_relative_to=self.critic_kick_relative_to,
+                critic_action_encoding=None
+                if self.critic_action_encoding is None
+                else self.critic_action_encoding.as_dict(),
                 weight_init_std=self.weight_init_std,
                 lr_schedule=self._dummy_schedule,
                 optimizer_class=self.optimizer_class,
@@ -1017,7 +771,7 @@ class HFOPolicy(BasePolicy):
         episode_start: np.ndarray | None = None,
         deterministic: bool = False,
     ) -> tuple[np.ndarray, tuple[np.ndarray, ...] | None]:
-        """SB3's ``predict``; with ``mirror_choice`` and a ``mirror_margin`` > 0, ``state`` is ``(sides,)``, one
+        """SB3's ``predict``; with the acting ``MirrorChoice(margin > 0)``, ``state`` is ``(sides,)``, one
         float per row (1.0: mirrored side kept, 0.0: plain, NaN: none yet), and the sides after this step are
         returned in its place. ``state=None`` and rows with ``episode_start`` true start afresh."""
         if self._mirror is None or self._mirror_margin == 0.0:
@@ -1041,7 +795,7 @@ class HFOPolicy(BasePolicy):
             return None
         if not isinstance(state, tuple) or len(state) != 1:
             raise ValueError(
-                "with mirror_margin > 0, state must be the (sides,) tuple returned by the previous predict, got "
+                "with a mirror margin > 0, state must be the (sides,) tuple returned by the previous predict, got "
                 f"{type(state).__name__} of length {len(state) if isinstance(state, tuple) else '-'}"
             )
         sides = np.array(state[0], dtype=np.float32).reshape(-1)
@@ -1083,11 +837,12 @@ class HFOPolicy(BasePolicy):
         return th.where(mirrored.unsqueeze(1), mirror.actions(actions[batch:]), actions[:batch])
 
     def _greedy_action(self, obs: th.Tensor) -> th.Tensor:
-        """The greedy action in [-1, 1] for ``obs (B, obs_dim)`` by ``discrete_choice``, without ``mirror_choice``."""
+        """The greedy action in [-1, 1] for ``obs (B, obs_dim)`` by the acting strategies, without the mirror
+        choice."""
         action = self.actor.forward(obs, self.route(obs))  # not actor(...): no hooks to run, ~10 us per step
         if self.inverting_gradients:
             action = action.clamp(-1.0, 1.0)
-        if self._discrete_choice == "critic":
+        if self._critic_picks:
             return self.critic_choice(obs, action)
         no_kick = self.kick_unavailable(obs)
         if no_kick is not None:

@@ -78,6 +78,7 @@ from hfo2d.action_layout import action_layout, hfo_flat_action_space
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
 from sb3_hfo.skill_ddpg.acting import format_acting
 from sb3_hfo.skill_ddpg.fast_update import FastUpdate
+from sb3_hfo.skill_ddpg.legacy import translate_legacy_options
 from sb3_hfo.skill_ddpg.policies import HFOPolicy
 
 __all__ = [
@@ -265,7 +266,7 @@ class SkillDDPG(OffPolicyAlgorithm):
             replay_buffer_kwargs=replay_buffer_kwargs,
             optimize_memory_usage=optimize_memory_usage,
             n_steps=n_steps,
-            policy_kwargs=policy_kwargs,
+            policy_kwargs=None if policy_kwargs is None else translate_legacy_options(policy_kwargs, warn=True),
             stats_window_size=stats_window_size,
             tensorboard_log=tensorboard_log,
             verbose=verbose,
@@ -381,6 +382,8 @@ class SkillDDPG(OffPolicyAlgorithm):
     def _setup_model(self) -> None:
         self._adopt_hfo_layout_of_a_legacy_model()
         self._drop_removed_options()
+        # a saved model's single acting / encoding options (a user's were translated, with a warning, in __init__)
+        self.policy_kwargs = translate_legacy_options(self.policy_kwargs, warn=False)
         self._check_arguments()
         self._select_replay_buffer()
         super()._setup_model()
@@ -660,8 +663,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         """SB3's ``save``, with the policy's current acting strategies (``model.policy.acting``, which may have
         been switched after construction) written into ``policy_kwargs`` as their text form, which is what
         ``load`` rebuilds the policy from."""
-        kept = {k: v for k, v in self.policy_kwargs.items() if k not in HFOPolicy.ACTING_OPTIONS}
-        self.policy_kwargs = {**kept, "acting": format_acting(self.policy.acting)}
+        self.policy_kwargs = {**self.policy_kwargs, "acting": format_acting(self.policy.acting)}
         super().save(path, exclude=exclude, include=include)
 
     def load_replay_buffer(
