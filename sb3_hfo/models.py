@@ -378,13 +378,13 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     import torch
 
     from sb3_hfo.cli_errors import check_model_zip
-    from sb3_hfo.skill_ddpg.acting import format_acting
     from sb3_hfo.evaluate import (
         REMOVED_ENV_KWARGS,
         check_env_id,
         evaluate,
         resolve_model,
     )
+    from sb3_hfo.skill_ddpg.acting import format_acting
 
     if not looks_like_name(args.name) or not args.name.replace("_", "").replace("-", "").isalnum():
         raise UserError(f"model name {args.name!r}: use letters, digits, '_' and '-' only")

@@ -13,7 +13,7 @@ the network has to form itself. The measurements are in research/RESULTS.md (ses
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -33,7 +33,13 @@ from hfo2d.features import (
     GOALIE_ANGLE_SIN,
 )
 
-__all__ = ["KICK_REFERENCE_BEARINGS", "ActionEncoder", "ActionEncodingSpec", "DirectionFeatures", "parse_encoding"]
+__all__ = [
+    "KICK_REFERENCE_BEARINGS",
+    "ActionEncoder",
+    "ActionEncodingSpec",
+    "DirectionFeatures",
+    "parse_encoding",
+]
 
 #: Landmarks the kick direction can be encoded relative to: name -> (sin, cos) columns of the landmark's bearing in
 #: HFO's low-level features (hfo2d owns the layout).
@@ -50,7 +56,10 @@ def _positive_frequencies(frequencies: object) -> tuple[float, ...]:
         raise ValueError(f"DirectionFeatures frequencies must be a sequence of numbers, got {frequencies!r}")
     values = tuple(frequencies)
     if not values or not all(
-        isinstance(k, (int, float, np.integer, np.floating)) and not isinstance(k, bool) and np.isfinite(k) and k > 0
+        isinstance(k, (int, float, np.integer, np.floating))
+        and not isinstance(k, bool)
+        and np.isfinite(k)
+        and k > 0
         for k in values
     ):
         raise ValueError(
@@ -158,7 +167,9 @@ class ActionEncoder(nn.Module):
                     f"got layout {layout}"
                 )
             directions = tuple(layout.direction_indices)
-            kick_direction = None if layout.ball_action is None else layout.action_direction(layout.ball_action)
+            kick_direction = (
+                None if layout.ball_action is None else layout.action_direction(layout.ball_action)
+            )
             if encoding.relative_to and kick_direction is None:
                 raise ValueError(
                     f"critic_action_encoding relative_to needs an action layout with a kick direction, got {layout}"
@@ -182,7 +193,11 @@ class ActionEncoder(nn.Module):
         self.bearing_cos_column: th.Tensor
         self.bearing_frequency: th.Tensor
         buffers = (
-            ("index", list(directions) * len(frequencies) + [r[0] for r in references] * len(frequencies), th.long),
+            (
+                "index",
+                list(directions) * len(frequencies) + [r[0] for r in references] * len(frequencies),
+                th.long,
+            ),
             (
                 "scale",
                 [np.pi * k for k in frequencies for _ in directions]
@@ -210,7 +225,9 @@ class ActionEncoder(nn.Module):
         angles = action.index_select(1, self.index) * self.scale.to(action.dtype)
         if self.n_relative:
             if obs is None:
-                raise ValueError("this critic encodes directions relative to bearings in the observation: pass obs")
+                raise ValueError(
+                    "this critic encodes directions relative to bearings in the observation: pass obs"
+                )
             bearings = th.atan2(
                 obs.index_select(1, self.bearing_sin_column), obs.index_select(1, self.bearing_cos_column)
             )
@@ -236,4 +253,3 @@ class ActionEncoder(nn.Module):
 
     def extra_repr(self) -> str:
         return f"action_dim={self.action_dim}, encoding={self.encoding}"
-

@@ -61,7 +61,9 @@ def _legacy_encoding(encoding: Any, options: dict[str, Any]) -> dict[str, list[A
             "critic_action_encoding cannot be combined with critic_direction_frequencies / critic_kick_relative_to"
         )
     if not frequencies:
-        raise ValueError("critic_kick_relative_to needs critic_direction_frequencies (it uses the same frequencies)")
+        raise ValueError(
+            "critic_kick_relative_to needs critic_direction_frequencies (it uses the same frequencies)"
+        )
     return DirectionFeatures(tuple(frequencies), tuple(landmarks)).as_dict()
 
 

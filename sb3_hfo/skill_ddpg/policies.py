@@ -52,8 +52,8 @@ be switched on a trained model; the mirror choice's kept side travels in ``predi
 from __future__ import annotations
 
 import contextlib
-from collections.abc import Iterable, Iterator, Sequence
-from typing import Any, ClassVar
+from collections.abc import Iterable, Iterator
+from typing import Any
 
 import numpy as np
 import torch as th
@@ -523,7 +523,9 @@ class HFOPolicy(BasePolicy):
         # The kept sides, set by predict for _predict while a call with a mirror margin > 0 runs.
         self._side_box: list[np.ndarray | None] | None = None
         self.critic_action_encoding = parse_encoding(critic_action_encoding)
-        ActionEncoder(self.action_dim, self.critic_action_encoding, self.action_layout, self.obs_dim)  # validates
+        ActionEncoder(
+            self.action_dim, self.critic_action_encoding, self.action_layout, self.obs_dim
+        )  # validates
         self._build(lr_schedule)
 
     def _optimizer_kwargs(self) -> dict[str, Any]:
@@ -622,13 +624,17 @@ class HFOPolicy(BasePolicy):
                 "envs'), or mask_unused_parameters given as per-action parameter counts"
             )
         layout = self.action_layout
-        if kick_mask and (layout is None or layout.ball_action is None or self.obs_dim <= KICKABLE_FEATURE_INDEX):
+        if kick_mask and (
+            layout is None or layout.ball_action is None or self.obs_dim <= KICKABLE_FEATURE_INDEX
+        ):
             raise ValueError(
                 "acting KickMask needs an action layout with a kick (HFO's flat action) and HFO's low-level "
                 f"features (at least {KICKABLE_FEATURE_INDEX + 1}), got layout {layout} and {self.obs_dim} features"
             )
         # validated before anything is set, so that a refused value changes nothing
-        mirror = None if mirror_choice is None else make_mirror((self.obs_dim,), layout, "acting MirrorChoice")
+        mirror = (
+            None if mirror_choice is None else make_mirror((self.obs_dim,), layout, "acting MirrorChoice")
+        )
         self._acting = strategies
         self._critic_picks = critic_picks
         self._kick_mask = kick_mask

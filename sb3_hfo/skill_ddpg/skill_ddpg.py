@@ -5,7 +5,7 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
 1. Critic: ``y = r + gamma * (1 - done) * Q'(s', mu'_{skill(s')}(s'))`` with the target networks (paper eq. 6),
    ``L = mean((Q(s, a) - y)^2)`` (eq. 5), one Adam step (``policy.critic_optimizer``).
    With ``discrete_target="max"`` (P-DQN, beyond the paper) ``Q'(s', ...)`` is the best of the discrete actions
-   at the target actor's parameters, the value of the policy that ``discrete_choice="critic"`` acts with.
+   at the target actor's parameters, the value of the policy that the critic's choice (acting ``CriticChoice``) acts with.
 2. Actor (eq. 7), with the critic just updated: every row's action comes from the head its skill router picks;
    ``g = dQ/da`` at ``a = mu_{skill(s)}(s)`` for the whole minibatch in one critic pass. Skill ``k``'s loss is
    ``-mean over the rows routed to k of Q(s, a)``; its gradient over (trunk + head k) is the back-propagation of
@@ -22,7 +22,7 @@ One update (``train`` does ``gradient_steps`` of them, each on a minibatch of ``
    loss is ``-Q(s, mu(s))`` for the preferences only plus ``-sum_k Q(s, e_k, x_k(s))`` for the parameters: each
    discrete action ``k``'s parameters ``x_k`` are trained by the value of ``k`` played with them (``e_k``: its
    one-hot preferences), in every state, whichever action the preferences favour (KICK's not where
-   ``kick_only_when_kickable`` leaves it out); one extra critic pass over ``n_discrete * B`` rows.
+   the kick mask leaves it out); one extra critic pass over ``n_discrete * B`` rows.
 3. Target networks: ``theta' <- theta' + tau * (theta - theta')`` (one ``torch._foreach_lerp_`` call).
 
 The update above is :meth:`SkillDDPG._autograd_update`, written with autograd in the style of SB3's
@@ -190,11 +190,11 @@ class SkillDDPG(OffPolicyAlgorithm):
         target actor's action as it is, ``Q'(s', mu'(s'))``; ``"max"`` (P-DQN's target, beyond the paper) the best
         discrete action at the target actor's parameters, ``max_k Q'(s', e_k, x'(s'))`` with ``e_k`` discrete
         action ``k``'s one-hot preferences. ``"max"``
-        is the target of the policy ``discrete_choice="critic"`` acts with; it needs a known discrete layout.
+        is the target of the policy the critic's choice (acting ``CriticChoice``) acts with; it needs a known discrete layout.
     :param parameter_loss: which continuous parameters the actor trains in a state: ``"chosen"`` (the paper, DDPG
         with the policy's ``mask_unused_parameters``) those of the discrete action its own preferences pick;
         ``"each_action"`` (P-DQN's loss, beyond the paper) every discrete action's, each by the critic's value of
-        that action played with them. Why: with the policy's ``discrete_choice="critic"`` the preferences do not
+        that action played with them. Why: with the critic's choice (acting ``CriticChoice``) the preferences do not
         pick what is played, so under ``"chosen"`` the parameters played are often ones the actor never trained in
         that state. Needs ``mask_unused_parameters``.
     :param fast_update: train with the hand-derived update (:mod:`sb3_hfo.skill_ddpg.fast_update`, the same
@@ -266,7 +266,9 @@ class SkillDDPG(OffPolicyAlgorithm):
             replay_buffer_kwargs=replay_buffer_kwargs,
             optimize_memory_usage=optimize_memory_usage,
             n_steps=n_steps,
-            policy_kwargs=None if policy_kwargs is None else translate_legacy_options(policy_kwargs, warn=True),
+            policy_kwargs=None
+            if policy_kwargs is None
+            else translate_legacy_options(policy_kwargs, warn=True),
             stats_window_size=stats_window_size,
             tensorboard_log=tensorboard_log,
             verbose=verbose,
@@ -526,7 +528,7 @@ class SkillDDPG(OffPolicyAlgorithm):
 
         ``parameter_loss="chosen"``: ``Q(s, mu(s))``. ``"each_action"``: ``Q`` of the actor's preferences with
         its parameters held, plus ``Q(s, e_k, x_k(s))`` for every discrete action ``k`` (KICK's left out where the
-        ball is out of reach with ``kick_only_when_kickable``). With inverting gradients, a surrogate whose
+        ball is out of reach with the acting ``KickMask``). With inverting gradients, a surrogate whose
         gradient is the rescaled ``dQ/da`` pushed through the actor.
         """
         policy, critic = self.policy, self.critic
