@@ -61,6 +61,10 @@ def test_strategies_validate_themselves() -> None:
             MirrorChoice(bad)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="got 'critic'"):
         parse_acting(["critic"])  # type: ignore[list-item]
+    assert parse_acting(CriticChoice()) == (CriticChoice(),)  # one strategy on its own
+    for bad in (True, 1, {"critic": True}):
+        with pytest.raises(ValueError, match=f"got {bad!r}"):
+            parse_acting(bad)  # type: ignore[arg-type]
     with pytest.raises(AttributeError):
         MirrorChoice(0.1).margin = 0.2  # type: ignore[misc]
 
@@ -69,7 +73,9 @@ def test_the_legacy_single_options_fold_into_acting_and_override_their_part() ->
     def folded(**kwargs: object) -> object:
         return translate_legacy_options(dict(net_arch=[8], **kwargs), warn=False)
 
-    assert folded(discrete_choice="critic", kick_only_when_kickable=True, mirror_choice=True, mirror_margin=0.25) == {
+    assert folded(
+        discrete_choice="critic", kick_only_when_kickable=True, mirror_choice=True, mirror_margin=0.25
+    ) == {
         "net_arch": [8],
         "acting": "critic,kick_mask,mirror:0.25",
     }
@@ -78,7 +84,9 @@ def test_the_legacy_single_options_fold_into_acting_and_override_their_part() ->
         "kick_mask,mirror"
     )
     assert folded(acting="mirror:0.5", mirror_margin=0.1)["acting"] == "mirror:0.1"
-    assert folded(acting="critic", mirror_margin=0.1)["acting"] == "critic"  # a margin alone switches nothing on
+    assert (
+        folded(acting="critic", mirror_margin=0.1)["acting"] == "critic"
+    )  # a margin alone switches nothing on
     assert folded(acting="critic,mirror", mirror_choice=False, mirror_margin=0.0)["acting"] == "critic"
     plain = dict(net_arch=[8], acting="critic")
     assert translate_legacy_options(plain, warn=False) is plain  # nothing to translate: unchanged
@@ -104,6 +112,18 @@ def test_the_policy_has_one_acting_argument_and_one_property() -> None:
         assert not hasattr(policy, legacy)
         with pytest.raises(TypeError, match=legacy):
             make_policy(**{legacy: None})
+
+
+def test_acting_changed_while_the_mirror_is_suspended_is_what_the_policy_acts_with() -> None:
+    policy = make_policy(acting="mirror")
+    with policy.mirror_choice_suspended():
+        assert not policy.mirror_active
+        policy.acting = "kick_mask"
+    assert policy.acting == (KickMask(),) and not policy.mirror_active
+    with policy.mirror_choice_suspended():
+        policy.acting = "mirror:0.5"
+        assert not policy.mirror_active
+    assert policy.mirror_active
 
 
 def test_a_refused_acting_value_changes_nothing() -> None:

@@ -16,6 +16,7 @@ from sb3_hfo.demonstrations import (
     _play_round,
     clone_striker,
 )
+from sb3_hfo.skill_ddpg.acting import CriticChoice
 
 
 def test_prefill_stores_the_strikers_episodes_as_sb3_would() -> None:
@@ -149,8 +150,8 @@ def test_cloning_refuses_bad_arguments_and_leaves_the_actor_alone() -> None:
     for kwargs, message in bad:
         with pytest.raises(ValueError, match=message):
             clone_striker(model, **kwargs)  # type: ignore[arg-type]
-    model.policy.discrete_choice = "critic"
-    with pytest.raises(ValueError, match="discrete_choice='actor'"):
+    model.policy.acting = (*model.policy.acting, CriticChoice())
+    with pytest.raises(ValueError, match="acting without 'critic'.*got acting 'critic'"):
         clone_striker(model)
     for key, value in before.items():
         th.testing.assert_close(value, model.policy.actor.state_dict()[key])

@@ -33,6 +33,7 @@ from sb3_hfo.models import (
     read_manifest,
     strip_model,
 )
+from sb3_hfo.skill_ddpg.acting import CriticChoice, MirrorChoice, format_acting, parse_acting
 
 REPO = Path(__file__).resolve().parents[1]
 
@@ -50,7 +51,7 @@ def _trained_model(tmp_path: Path, **policy_kwargs: object) -> Path:
         policy_kwargs=dict(net_arch=[16, 8], n_skills=2, mask_unused_parameters=True, **policy_kwargs),
     )
     model.learn(150)
-    model.policy.discrete_choice = "critic"  # an acting option switched after construction travels too
+    model.policy.acting = (CriticChoice(),)  # acting strategies switched after construction travel too
     path = tmp_path / "full.zip"
     model.save(path)
     return path
@@ -73,7 +74,7 @@ def test_a_stripped_model_acts_exactly_as_the_full_one(tmp_path: Path) -> None:
     full_actions, _ = full.predict(observations, deterministic=True)
     stripped_actions, _ = stripped.predict(observations, deterministic=True)
     np.testing.assert_array_equal(full_actions, stripped_actions)
-    assert stripped.policy.discrete_choice == "critic" and stripped.policy.n_skills == 2
+    assert stripped.policy.acting == (CriticChoice(),) and stripped.policy.n_skills == 2
     # what was dropped: the target networks (rebuilt as the online ones) and the optimizers' moments
     for online, target in (
         (stripped.policy.actor, stripped.policy.actor_target),
@@ -118,7 +119,7 @@ def test_add_strips_checks_evaluates_and_writes_the_manifest_entry(tmp_path: Pat
     manifest = tmp_path / "models" / "manifest.json"
     args = build_parser().parse_args(
         ["add", "tiny", str(full_path), "--config", "zoo_configs/e1_empty_goal_fast.yml", "--seed", "3"]
-        + ["--env", "HFO/EmptyGoal-v0", "--episodes", "3", "--mirror-choice", "on"]
+        + ["--env", "HFO/EmptyGoal-v0", "--episodes", "3", "--acting", "critic,mirror"]
         + ["--real-hfo", "2/4", "--real-hfo-env", "HFO/RealEmptyGoal-v0", "--real-hfo-source", "a test"]
     )
     entry = add(args, manifest_path=manifest)
@@ -126,13 +127,12 @@ def test_add_strips_checks_evaluates_and_writes_the_manifest_entry(tmp_path: Pat
     model = manifest.parent / "tiny.zip"
     assert entry["file"] == "tiny.zip" and entry["bytes"] == model.stat().st_size and is_stripped(model)
     assert entry["env_id"] == "HFO/EmptyGoal-v0" and entry["seed"] == 3
-    assert (
-        entry["acting_options"]["mirror_choice"] is True
-        and entry["acting_options"]["discrete_choice"] == "critic"
-    )
-    assert load_model(model).policy.mirror_choice is True  # the option is saved in the committed file
+    assert entry["acting"] == "critic,mirror" and "acting_options" not in entry
+    # the strategies are saved in the committed file
+    assert load_model(model).policy.acting == (CriticChoice(), MirrorChoice())
     evaluation = entry["evaluation"]
     assert evaluation["episodes"] == 3 and evaluation["model"] == "models/tiny.zip"
+    assert evaluation["acting"] == "critic,mirror"  # evaluated as it is committed
     again = evaluate(str(model), env_id="HFO/EmptyGoal-v0", episodes=3, seed=0)
     assert evaluation["goals"] == again.goals and evaluation["status_counts"] == again.status_counts
     real = entry["real_hfo"]
@@ -220,7 +220,8 @@ def test_a_committed_model_is_small_stripped_and_matches_its_manifest_entry(name
     env = gym.make(entry["env_id"], **entry["env_kwargs"])
     assert model.observation_space.shape == env.observation_space.shape
     env.close()
-    assert model.policy.acting_options() == entry["acting_options"]
+    assert model.policy.acting == parse_acting(entry["acting"])
+    assert format_acting(model.policy.acting) == entry["acting"] == evaluation["acting"]  # the text form
     real = entry["real_hfo"]
     if real:
         assert real["env_id"].startswith("HFO/Real") and real["source"]

@@ -21,7 +21,8 @@ from sb3_hfo import (
 )
 from sb3_hfo.common.routers import validate_skills
 from sb3_hfo.common.toy_env import HybridTargetEnv
-from sb3_hfo.skill_ddpg.fast_update import critic_action_gradient, critic_forward_for_backward
+from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask, MirrorChoice
+from sb3_hfo.skill_ddpg.encoding import DirectionFeatures
 from sb3_hfo.skill_ddpg.policies import KICKABLE_FEATURE_INDEX
 
 OBS_SPACE = spaces.Box(-1.0, 1.0, (58,), np.float32)
@@ -433,7 +434,7 @@ def test_mask_unused_parameters_errors_name_the_problem() -> None:
 def test_critic_choice_plays_the_best_one_hot_action_at_the_actors_parameters(mask: bool) -> None:
     # Large initial weights: a critic far from linear, so that rows differ in their best action.
     policy = make_policy(
-        mask_unused_parameters=mask, discrete_choice="critic", net_arch=[32, 16], weight_init_std=1.0
+        mask_unused_parameters=mask, acting=(CriticChoice(),), net_arch=[32, 16], weight_init_std=1.0
     )
     obs = batch_obs(64)
     with th.no_grad():
@@ -449,36 +450,38 @@ def test_critic_choice_plays_the_best_one_hot_action_at_the_actors_parameters(ma
     assert len(set(best.tolist())) > 1  # the batch exercises more than one choice
     assert th.equal(chosen[:, :3], 2.0 * nn.functional.one_hot(best, 3).float() - 1.0)
     assert th.equal(chosen[:, 3:], actor_actions[:, 3:])  # the parameters stay the actor's
-    policy.discrete_choice = "actor"  # switchable on a built policy
+    policy.acting = ()  # switchable on a built policy: the actor picks again
     with th.no_grad():
         assert th.equal(policy._predict(obs), actor_actions)
 
 
-def test_discrete_choice_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="discrete_choice must be one of"):
-        make_policy(discrete_choice="router")
-    with pytest.raises(ValueError, match="needs the discrete actions: an action space with a hybrid layout"):
-        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, discrete_choice="critic")
+def test_critic_choice_errors_and_round_trip(tmp_path) -> None:
+    with pytest.raises(ValueError, match="unknown acting token 'router'"):
+        make_policy(acting="router")
+    with pytest.raises(
+        ValueError, match="CriticChoice needs the discrete actions: an action space with a hybrid layout"
+    ):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(CriticChoice(),))
     policy = HFOPolicy(
         OBS_SPACE,
         spaces.Box(0.0, 1.0, (5,)),
         lambda _: 1e-3,
         mask_unused_parameters=(0, 3),
-        discrete_choice="critic",
+        acting=(CriticChoice(),),
     )
     assert policy.n_discrete_actions == 2
     env = HybridTargetEnv()
     model = SkillDDPG(
         "HFOPolicy",
         env,
-        policy_kwargs=dict(net_arch=[16], mask_unused_parameters=True, discrete_choice="critic"),
+        policy_kwargs=dict(net_arch=[16], mask_unused_parameters=True, acting="critic"),
         n_discrete_actions=3,
         seed=0,
     )
     obs = np.random.default_rng(0).uniform(-1, 1, (5, *env.observation_space.shape)).astype(np.float32)
     model.save(tmp_path / "m.zip")
     loaded = SkillDDPG.load(tmp_path / "m.zip")
-    assert loaded.policy.discrete_choice == "critic"
+    assert loaded.policy.acting == (CriticChoice(),)
     assert np.array_equal(
         loaded.predict(obs, deterministic=True)[0], model.predict(obs, deterministic=True)[0]
     )
@@ -491,16 +494,19 @@ def test_kickable_feature_index_is_hfo2ds() -> None:
 
 
 @pytest.mark.parametrize("choice", ["actor", "critic"])
-def test_kick_only_when_kickable_never_kicks_at_a_ball_out_of_reach(choice: str) -> None:
+def test_kick_mask_never_kicks_at_a_ball_out_of_reach(choice: str) -> None:
     policy = make_policy(
-        mask_unused_parameters=True, discrete_choice=choice, net_arch=[32, 16], weight_init_std=1.0
+        mask_unused_parameters=True,
+        acting=(CriticChoice(),) if choice == "critic" else (),
+        net_arch=[32, 16],
+        weight_init_std=1.0,
     )
     obs = batch_obs(256)
     obs[:, KICKABLE_FEATURE_INDEX] = th.where(obs[:, KICKABLE_FEATURE_INDEX] > 0, 1.0, -1.0)
     out_of_reach = obs[:, KICKABLE_FEATURE_INDEX] < 0
     with th.no_grad():
         free = policy._predict(obs)
-        policy.kick_only_when_kickable = True
+        policy.acting = (*policy.acting, KickMask())
         masked = policy._predict(obs)
     free_kicks = free[:, :3].argmax(dim=1) == 2
     assert (free_kicks & out_of_reach).any()  # the batch exercises the rule
@@ -520,51 +526,19 @@ def test_kick_only_when_kickable_never_kicks_at_a_ball_out_of_reach(choice: str)
     assert th.equal(masked[changed][:, :3], 2.0 * nn.functional.one_hot(best, 3).float() - 1.0)
 
 
-def test_kick_only_when_kickable_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="needs an action layout with a kick"):
-        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, kick_only_when_kickable=True)
-    with pytest.raises(ValueError, match="kick_only_when_kickable must be a bool"):
-        make_policy(kick_only_when_kickable="yes")
+def test_kick_mask_errors_and_round_trip(tmp_path) -> None:
+    with pytest.raises(ValueError, match="KickMask needs an action layout with a kick"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(KickMask(),))
+    with pytest.raises(ValueError, match="acting takes CriticChoice, KickMask and MirrorChoice objects"):
+        make_policy(acting=["kick_mask"])  # the token, not the strategy
     model = SkillDDPG(
         "HFOPolicy",
         HybridTargetEnv(),
-        policy_kwargs=dict(net_arch=[16], kick_only_when_kickable=True, discrete_choice="critic"),
+        policy_kwargs=dict(net_arch=[16], acting="kick_mask,critic"),
         seed=0,
     )
     model.save(tmp_path / "m.zip")
-    assert SkillDDPG.load(tmp_path / "m.zip").policy.kick_only_when_kickable is True
-
-
-# ----------------------------------------------------------------------------------------------------------
-# Fourier features of the directions for the critic (beyond the paper)
-
-
-def test_critic_direction_features_are_off_by_default_and_encode_each_direction() -> None:
-    assert make_policy(net_arch=[16, 8]).critic.action_layer.in_features == 16 + 8
-    policy = make_policy(net_arch=[16, 8], critic_direction_frequencies=[1, 4])
-    critic = policy.critic
-    assert policy.critic_direction_frequencies == (1.0, 4.0)
-    assert critic.action_layer.in_features == 16 + 8 + 2 * 3 * 2  # sin and cos, 3 directions, 2 frequencies
-    action = th.zeros(1, 8)
-    action[0, 4], action[0, 5], action[0, 7] = 0.5, -0.25, 1.0  # dash 90, turn -45, kick 180 degrees
-    seen = critic.encode_action(action)
-    th.testing.assert_close(seen[:, :8], action)
-    degrees = th.tensor([90.0, -45.0, 180.0, 4 * 90.0, 4 * -45.0, 4 * 180.0])
-    th.testing.assert_close(seen[0, 8:14], th.sin(th.deg2rad(degrees)), atol=1e-6, rtol=0)
-    th.testing.assert_close(seen[0, 14:], th.cos(th.deg2rad(degrees)), atol=1e-6, rtol=0)
-
-
-@pytest.mark.parametrize("critic_arch", [[16], [16, 8], [16, 8, 4]])
-def test_critic_action_gradient_through_direction_features_equals_autograd(critic_arch: list[int]) -> None:
-    policy = make_policy(net_arch=dict(pi=[8], qf=critic_arch), critic_direction_frequencies=[1, 2, 8, 32])
-    critic = policy.critic
-    obs = batch_obs(16)
-    action = th.empty(16, 8).uniform_(-1, 1, generator=th.Generator().manual_seed(1)).requires_grad_(True)
-    critic(obs, action).sum().backward()
-    q, inputs = critic_forward_for_backward(critic, obs, action.detach())
-    th.testing.assert_close(q, critic(obs, action).detach())
-    th.testing.assert_close(critic_action_gradient(critic, inputs), action.grad, atol=1e-6, rtol=1e-5)
-    assert action.grad is not None and action.grad[:, [4, 5, 7]].abs().min() > 0
+    assert SkillDDPG.load(tmp_path / "m.zip").policy.acting == (CriticChoice(), KickMask())
 
 
 GOALIE_OBS_SPACE = spaces.Box(-1.0, 1.0, (66,), np.float32)
@@ -573,100 +547,6 @@ GOALIE_OBS_SPACE = spaces.Box(-1.0, 1.0, (66,), np.float32)
 def make_goalie_policy(**kwargs: object) -> HFOPolicy:
     th.manual_seed(0)
     return HFOPolicy(GOALIE_OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **kwargs)  # type: ignore[arg-type]
-
-
-def test_critic_sees_the_kick_direction_relative_to_the_goalie_bearing() -> None:
-    policy = make_goalie_policy(
-        net_arch=[16, 8], critic_direction_frequencies=[1, 4], critic_kick_relative_to=["goalie"]
-    )
-    critic = policy.critic
-    assert policy.critic_kick_relative_to == ("goalie",)
-    assert (
-        critic.action_layer.in_features == 16 + 8 + 2 * (3 + 1) * 2
-    )  # 3 absolute + 1 relative, 2 frequencies
-    obs = th.zeros(2, 66)
-    obs[:, 58], obs[:, 59] = (
-        np.sin(np.radians(30.0)),
-        np.cos(np.radians(30.0)),
-    )  # goalie 30 degrees to the right
-    action = th.zeros(2, 8)
-    action[0, 7], action[1, 7] = 30.0 / 180.0, 40.0 / 180.0  # kick at him, and 10 degrees past him
-    seen = critic.encode_action(action, obs)
-    n = 8
-    # sines: the 6 absolute columns (3 directions x 2 frequencies), then the relative one at each frequency
-    relative_sin = seen[:, [n + 6, n + 7]]
-    relative_cos = seen[:, [n + 8 + 6, n + 8 + 7]]
-    expected = th.deg2rad(th.tensor([[0.0, 0.0], [10.0, 40.0]]))  # (kick - bearing) at frequencies 1 and 4
-    th.testing.assert_close(relative_sin, th.sin(expected), atol=1e-6, rtol=0)
-    th.testing.assert_close(relative_cos, th.cos(expected), atol=1e-6, rtol=0)
-    with pytest.raises(ValueError, match="pass obs"):
-        critic.encode_action(action)
-
-
-@pytest.mark.parametrize("critic_arch", [[16], [16, 8, 4]])
-def test_critic_action_gradient_through_relative_kick_features_equals_autograd(
-    critic_arch: list[int],
-) -> None:
-    policy = make_goalie_policy(
-        net_arch=dict(pi=[8], qf=critic_arch),
-        critic_direction_frequencies=[1, 8, 32],
-        critic_kick_relative_to=["goalie", "goal_post_top", "goal_post_bottom"],
-    )
-    critic = policy.critic
-    obs = th.as_tensor(np.random.default_rng(0).uniform(-1, 1, (16, 66)), dtype=th.float32)
-    action = th.empty(16, 8).uniform_(-1, 1, generator=th.Generator().manual_seed(1)).requires_grad_(True)
-    critic(obs, action).sum().backward()
-    q, inputs = critic_forward_for_backward(critic, obs, action.detach())
-    th.testing.assert_close(q, critic(obs, action).detach())
-    th.testing.assert_close(critic_action_gradient(critic, inputs), action.grad, atol=1e-5, rtol=1e-5)
-
-
-def test_critic_kick_relative_to_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="unknown landmark"):
-        make_goalie_policy(critic_direction_frequencies=[1], critic_kick_relative_to=["keeper"])
-    with pytest.raises(ValueError, match="needs critic_direction_frequencies"):
-        make_goalie_policy(critic_kick_relative_to=["goalie"])
-    with pytest.raises(ValueError, match="goalie tasks"):
-        make_policy(critic_direction_frequencies=[1], critic_kick_relative_to=["goalie"])  # 58 features
-    with pytest.raises(ValueError, match="sequence of landmark names"):
-        make_goalie_policy(critic_direction_frequencies=[1], critic_kick_relative_to="goalie")
-    model = SkillDDPG(
-        "HFOPolicy",
-        gym.make("HFO/StaticKeeper-v0"),
-        policy_kwargs=dict(
-            net_arch=[16], critic_direction_frequencies=[1, 16], critic_kick_relative_to=["goalie"]
-        ),
-        seed=0,
-    )
-    obs = th.as_tensor(np.random.default_rng(2).uniform(-1, 1, (4, 66)), dtype=th.float32)
-    action = th.rand(4, 8) * 2 - 1
-    model.save(tmp_path / "m.zip")
-    loaded = SkillDDPG.load(tmp_path / "m.zip")
-    assert loaded.policy.critic_kick_relative_to == ("goalie",)
-    with th.no_grad():
-        th.testing.assert_close(loaded.policy.critic(obs, action), model.policy.critic(obs, action))
-    model.learn(300)  # the update path (explicit backward, target critic) runs with the relative features
-
-
-def test_critic_direction_frequencies_errors_and_round_trip(tmp_path) -> None:
-    for bad in ([0], [-1.0], [float("nan")], "1, 2", [True], 4):
-        with pytest.raises(ValueError, match="critic_direction_frequencies must be"):
-            make_policy(critic_direction_frequencies=bad)
-    with pytest.raises(ValueError, match="needs an action layout with direction parameters"):
-        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, critic_direction_frequencies=[1])
-    model = SkillDDPG(
-        "HFOPolicy",
-        HybridTargetEnv(),
-        policy_kwargs=dict(net_arch=[16], critic_direction_frequencies=[1, 16]),
-        seed=0,
-    )
-    obs = batch_obs(4)
-    action = th.rand(4, 8) * 2 - 1
-    model.save(tmp_path / "m.zip")
-    loaded = SkillDDPG.load(tmp_path / "m.zip")
-    assert loaded.policy.critic_direction_frequencies == (1.0, 16.0)
-    with th.no_grad():
-        th.testing.assert_close(loaded.policy.critic(obs, action), model.policy.critic(obs, action))
 
 
 # ----------------------------------------------------------------------------------------------------------
@@ -681,8 +561,7 @@ def test_mirror_choice_plays_the_better_of_the_state_and_its_mirror_image(choice
         net_arch=[32, 16],
         n_skills=2,
         mask_unused_parameters=True,
-        discrete_choice=choice,
-        kick_only_when_kickable=True,
+        acting=(CriticChoice(), KickMask()) if choice == "critic" else (KickMask(),),
     )
     obs = th.as_tensor(np.random.default_rng(3).uniform(-1, 1, (64, 66)), dtype=th.float32)
     mirrored_obs = th.as_tensor(mirror_features(obs.numpy()))
@@ -691,7 +570,7 @@ def test_mirror_choice_plays_the_better_of_the_state_and_its_mirror_image(choice
         in_mirror = policy._predict(mirrored_obs)
         plain_q = policy.critic(obs, policy.critic_action(plain))
         mirror_q = policy.critic(mirrored_obs, policy.critic_action(in_mirror))
-        policy.mirror_choice = True
+        policy.acting = (*policy.acting, MirrorChoice())
         chosen = policy._predict(obs)
     signs = th.tensor([1, 1, 1, 1, -1, -1, 1, -1], dtype=th.float32)
     expected = th.where(mirror_q > plain_q, in_mirror * signs, plain)
@@ -700,45 +579,40 @@ def test_mirror_choice_plays_the_better_of_the_state_and_its_mirror_image(choice
 
 
 def test_mirror_choice_keeps_a_state_that_is_its_own_mirror_image() -> None:
-    policy = make_policy(net_arch=[16], discrete_choice="critic", mirror_choice=True)
+    policy = make_policy(net_arch=[16], acting=(CriticChoice(), MirrorChoice()))
     obs = th.zeros(4, 58)  # every sine 0: symmetric
     obs[:, 14] = 1.0
     with th.no_grad():
         chosen = policy._predict(obs)
-        policy.mirror_choice = False
+        policy.acting = (CriticChoice(),)
         th.testing.assert_close(chosen, policy._predict(obs))
 
 
 def test_mirror_choice_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="mirror_choice needs HFO's flat action"):
-        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, mirror_choice=True)
+    with pytest.raises(ValueError, match="acting MirrorChoice needs HFO's flat action"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(MirrorChoice(),))
     with pytest.raises(
-        ValueError, match=r"mirror_choice: an HFO feature vector has 58 \+ 8 \* players entries"
+        ValueError, match=r"acting MirrorChoice: an HFO feature vector has 58 \+ 8 \* players entries"
     ):
-        HFOPolicy(spaces.Box(-1.0, 1.0, (60,)), ACTION_SPACE, lambda _: 1e-3, mirror_choice=True)
-    with pytest.raises(ValueError, match="mirror_choice must be a bool"):
-        make_policy(mirror_choice="yes")
+        HFOPolicy(spaces.Box(-1.0, 1.0, (60,)), ACTION_SPACE, lambda _: 1e-3, acting=(MirrorChoice(),))
+    with pytest.raises(ValueError, match="acting names mirror more than once"):
+        make_policy(acting=(MirrorChoice(), MirrorChoice(0.5)))
     model = SkillDDPG("HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16]), seed=0)
-    model.policy.mirror_choice = True  # acting options switched on a built model are saved with it
-    model.policy.discrete_choice, model.policy.kick_only_when_kickable = "critic", True
+    model.policy.acting = (MirrorChoice(),)  # acting strategies switched on a built model are saved with it
+    model.policy.acting = (CriticChoice(), KickMask(), *model.policy.acting)
     model.save(tmp_path / "m.zip")
     loaded = SkillDDPG.load(tmp_path / "m.zip")
-    assert loaded.policy.acting_options() == {
-        "discrete_choice": "critic",
-        "kick_only_when_kickable": True,
-        "mirror_choice": True,
-        "mirror_margin": 0.0,
-    }
+    assert loaded.policy.acting == (CriticChoice(), KickMask(), MirrorChoice(0.0))
     obs = batch_obs(8).numpy()
     np.testing.assert_array_equal(model.predict(obs)[0], loaded.predict(obs)[0])
 
 
 def mirror_margin_setup() -> tuple[HFOPolicy, np.ndarray, th.Tensor, th.Tensor, th.Tensor]:
-    """A goalie-layout policy with mirror_choice, 64 random states, the plain and the mirrored greedy actions (in
+    """A goalie-layout policy with the mirror choice, 64 random states, the plain and the mirrored greedy actions (in
     [-1, 1], the mirrored one mapped back) and the gain of the mirrored side, mirror Q - plain Q, per row."""
     from hfo2d.symmetry import mirror_features
 
-    policy = make_goalie_policy(net_arch=[32, 16], mask_unused_parameters=True, discrete_choice="critic")
+    policy = make_goalie_policy(net_arch=[32, 16], mask_unused_parameters=True, acting=(CriticChoice(),))
     obs = np.random.default_rng(5).uniform(-1, 1, (64, 66)).astype(np.float32)
     mirrored_obs = th.as_tensor(mirror_features(obs))
     with th.no_grad():
@@ -747,7 +621,7 @@ def mirror_margin_setup() -> tuple[HFOPolicy, np.ndarray, th.Tensor, th.Tensor, 
         gain = policy.critic(mirrored_obs, policy.critic_action(in_mirror)) - policy.critic(
             th.as_tensor(obs), policy.critic_action(plain)
         )
-    policy.mirror_choice = True
+    policy.acting = (*policy.acting, MirrorChoice())
     signs = th.tensor([1, 1, 1, 1, -1, -1, 1, -1], dtype=th.float32)
     return policy, obs, plain, in_mirror * signs, gain.squeeze(1)
 
@@ -755,7 +629,7 @@ def mirror_margin_setup() -> tuple[HFOPolicy, np.ndarray, th.Tensor, th.Tensor, 
 def test_mirror_margin_keeps_the_side_unless_the_other_is_better_by_the_margin() -> None:
     policy, obs, plain, mirrored, gain = mirror_margin_setup()
     margin = float(gain.abs().median())
-    policy.mirror_margin = margin
+    policy.acting = (CriticChoice(), MirrorChoice(margin))
 
     def played(sides: th.Tensor) -> np.ndarray:
         return policy.unscale_action(th.where(sides.unsqueeze(1), mirrored, plain).numpy())
@@ -775,7 +649,7 @@ def test_mirror_margin_keeps_the_side_unless_the_other_is_better_by_the_margin()
         np.testing.assert_array_equal(sides, expected.numpy().astype(np.float32))
         np.testing.assert_allclose(actions, played(expected), atol=1e-6)
     # inf: the side of the episode's first step is kept whatever the values; a one-row state for one observation.
-    policy.mirror_margin = float("inf")
+    policy.acting = (CriticChoice(), MirrorChoice(float("inf")))
     action, (side,) = policy.predict(obs[0], state=(np.ones(1),), episode_start=np.zeros(1, dtype=bool))
     assert action.shape == (8,) and side.tolist() == [1.0]
     np.testing.assert_allclose(action, played(th.ones(64, dtype=th.bool))[0], atol=1e-6)
@@ -791,11 +665,14 @@ def test_mirror_margin_zero_decides_every_step_and_passes_the_state_through() ->
 
 
 def test_mirror_margin_errors_and_round_trip(tmp_path) -> None:
-    for bad in (-0.1, float("nan"), "0.1", True):
-        with pytest.raises(ValueError, match="mirror_margin must be"):
-            make_policy(mirror_margin=bad)
+    for bad in (-0.1, float("nan")):
+        with pytest.raises(ValueError, match="MirrorChoice margin must be"):
+            make_policy(acting=f"mirror:{bad}")
+    for bad in ("0.1", True):
+        with pytest.raises(ValueError, match="MirrorChoice margin must be"):
+            MirrorChoice(bad)  # type: ignore[arg-type]
     policy, obs, _, _, _ = mirror_margin_setup()
-    policy.mirror_margin = 0.5
+    policy.acting = (CriticChoice(), MirrorChoice(0.5))
     with pytest.raises(ValueError, match="state has 3 sides but the observation batch has 64 rows"):
         policy.predict(obs, state=(np.zeros(3),))
     with pytest.raises(ValueError, match="episode_start has 2 entries but state has 64 sides"):
@@ -805,11 +682,11 @@ def test_mirror_margin_errors_and_round_trip(tmp_path) -> None:
     ):
         policy.predict(obs, state=np.zeros(64))  # type: ignore[arg-type]
     model = SkillDDPG(
-        "HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], mirror_choice=True), seed=0
+        "HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="mirror"), seed=0
     )
-    model.policy.mirror_margin = 0.25
+    model.policy.acting = (MirrorChoice(0.25),)
     model.save(tmp_path / "m.zip")
-    assert SkillDDPG.load(tmp_path / "m.zip").policy.mirror_margin == 0.25
+    assert SkillDDPG.load(tmp_path / "m.zip").policy.acting == (MirrorChoice(0.25),)
 
 
 def test_a_plain_box_without_a_layout_gets_plain_ddpg_semantics() -> None:
@@ -822,9 +699,9 @@ def test_a_plain_box_without_a_layout_gets_plain_ddpg_semantics() -> None:
     th.testing.assert_close(policy._predict(obs), policy.actor(obs))
     for option in (
         {"mask_unused_parameters": True},
-        {"discrete_choice": "critic"},
-        {"kick_only_when_kickable": True},
-        {"critic_direction_frequencies": [1]},
+        {"acting": (CriticChoice(),)},
+        {"acting": (KickMask(),)},
+        {"critic_action_encoding": DirectionFeatures(frequencies=(1,))},
     ):
         with pytest.raises(ValueError):
             HFOPolicy(OBS_SPACE, plain, lambda _: 1e-3, **option)

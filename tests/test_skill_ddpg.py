@@ -19,6 +19,8 @@ from torch.nn import functional as F
 from sb3_hfo import FieldHalfRouter, HFOPolicy, SkillDDPG, SkillRouter
 from sb3_hfo.common.buffers import MonteCarloReplayBufferSamples
 from sb3_hfo.common.toy_env import HybridTargetEnv
+from sb3_hfo.skill_ddpg.acting import KickMask, MirrorChoice
+from sb3_hfo.skill_ddpg.encoding import DirectionFeatures
 
 TINY = dict(net_arch=[16, 16])
 
@@ -87,7 +89,7 @@ def masked(policy: HFOPolicy, actions: th.Tensor) -> th.Tensor:
     return actions * keep
 
 
-#: ``discrete_target`` column of the update test: "max" with the policy's ``kick_only_when_kickable``.
+#: ``discrete_target`` column of the update test: "max" with the policy's acting ``KickMask``.
 MAX_NO_KICK = "max, no kick without the ball"
 
 
@@ -108,17 +110,18 @@ def reference_update(
     ``mask_unused_parameters``: the critic sees every action through :func:`masked`.
     ``discrete_target="max"``: the next value is the largest, over the three discrete actions, of the target
     critic's value of the target actor's action with its preferences set to that action's one-hot;
-    with the policy's ``kick_only_when_kickable`` KICK only counts where next-state feature 12 is >= 0.
+    with the policy's acting ``KickMask`` KICK only counts where next-state feature 12 is >= 0.
     ``preactivation_penalty``: skill ``k``'s loss gains ``lambda * mean over its rows of ||z||^2`` (``z``: its head's
     output before tanh).
     ``parameter_loss="each_action"``: the actor's value is ``Q`` of its own action with only the preferences
     differentiable, plus, for each discrete action ``k``, ``Q`` of its parameters played with ``k``'s one-hot
-    preferences (KICK left out where feature 12 is < 0 with ``kick_only_when_kickable``).
+    preferences (KICK left out where feature 12 is < 0 with ``KickMask``).
 
     With ``inverting_gradients``: target actions clamped to [-1, 1], and skill ``k``'s gradient is the actor's
     vector-Jacobian product with ``-invert(dQ/da) / n_k`` on its rows (Hausknecht & Stone's rescaled dQ/da).
     """
     critic_opt, skill_opts = optimizers
+    kick_mask = KickMask() in policy.acting
     discounts = batch.discounts if batch.discounts is not None else gamma
     with th.no_grad():
         next_actions = policy.actor_target(batch.next_observations, policy.route(batch.next_observations))
@@ -133,7 +136,7 @@ def reference_update(
                 candidate[:, k] = 1.0
                 candidates.append(candidate)
         values = [policy.critic_target(batch.next_observations, masked(policy, c)) for c in candidates]
-        if discrete_target == "max" and policy.kick_only_when_kickable:
+        if discrete_target == "max" and kick_mask:
             out_of_reach = batch.next_observations[:, 12:13] < 0
             values[2] = th.where(out_of_reach, -th.inf, values[2])
         next_q = th.stack(values).amax(dim=0)
@@ -160,7 +163,7 @@ def reference_update(
             q_k = policy.critic(
                 batch.observations, masked(policy, th.cat((preferences, actions[:, 3:]), dim=1))
             )
-            if k == 2 and policy.kick_only_when_kickable:
+            if k == 2 and kick_mask:
                 q_k = th.where(batch.observations[:, 12:13] < 0, 0.0, q_k)
             q = q + q_k
     features = policy.actor.trunk(batch.observations)
@@ -256,8 +259,10 @@ def test_update_equals_straightforward_reference(
         inverting_gradients=inverting_gradients,
         activation_fn=activation_fn,
         mask_unused_parameters=mask,
-        kick_only_when_kickable=discrete_target.endswith("no kick without the ball"),
-        critic_direction_frequencies=direction_frequencies,
+        acting=(KickMask(),) if discrete_target.endswith("no kick without the ball") else (),
+        critic_action_encoding=DirectionFeatures(frequencies=direction_frequencies)
+        if direction_frequencies
+        else None,
     )
     discrete_target = discrete_target.split(",")[0]
     if n_skills == 3:
@@ -862,19 +867,19 @@ def test_training_rollouts_act_without_the_mirror_choice() -> None:
         "HFO/EmptyGoal-v0",
         seed=0,
         learning_starts=0,
-        policy_kwargs=dict(net_arch=[16], mirror_choice=True),
+        policy_kwargs=dict(net_arch=[16], acting=(MirrorChoice(),)),
     )
     mirror_on_while_acting: list[bool] = []
     plain_predict = model.policy._predict
 
     def recording_predict(observation: th.Tensor, deterministic: bool = False) -> th.Tensor:
-        mirror_on_while_acting.append(model.policy.mirror_choice)
+        mirror_on_while_acting.append(model.policy.mirror_active)
         return plain_predict(observation, deterministic)
 
     model.policy._predict = recording_predict  # type: ignore[method-assign]
     model.learn(5)
     assert mirror_on_while_acting and not any(mirror_on_while_acting)
-    assert model.policy.mirror_choice
+    assert model.policy.mirror_active and model.policy.acting == (MirrorChoice(),)
 
 
 @pytest.mark.parametrize(

@@ -12,6 +12,7 @@ import yaml
 
 from sb3_hfo import SkillDDPG, SkillPDQN
 from sb3_hfo.common.toy_env import HybridTargetEnv
+from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask
 from sb3_hfo.skill_ddpg.skill_pdqn import PRESET_ALGORITHM_DEFAULTS, PRESET_POLICY_DEFAULTS
 from sb3_hfo.zoo import SCHEDULE_KEYS, parse_schedule
 
@@ -57,12 +58,8 @@ def test_the_preset_is_skill_ddpg_with_the_best_recipe_switched_on() -> None:
     )
     assert_same_model(preset, explicit)
     paper = SkillDDPG("HFOPolicy", HybridTargetEnv(), seed=0)
-    assert (
-        paper.discrete_target == "actor"
-        and paper.mc_mixing == 0.0
-        and paper.policy.discrete_choice == "actor"
-    )
-    assert preset.policy.parameter_masks is not None and preset.policy.kick_only_when_kickable
+    assert paper.discrete_target == "actor" and paper.mc_mixing == 0.0 and paper.policy.acting == ()
+    assert preset.policy.parameter_masks is not None and preset.policy.acting == (CriticChoice(), KickMask())
 
 
 def test_the_preset_defaults_are_its_signature_defaults() -> None:
@@ -71,8 +68,9 @@ def test_the_preset_defaults_are_its_signature_defaults() -> None:
 
 
 def test_policy_kwargs_override_the_preset_key_by_key() -> None:
-    model = SkillPDQN("HFOPolicy", HybridTargetEnv(), seed=0, policy_kwargs=dict(discrete_choice="actor"))
-    assert model.policy.discrete_choice == "actor" and model.policy.kick_only_when_kickable
+    model = SkillPDQN("HFOPolicy", HybridTargetEnv(), seed=0, policy_kwargs=dict(acting="kick_mask"))
+    assert model.policy.acting == (KickMask(),)  # the actor picks the discrete action again ...
+    assert model.policy.parameter_masks is not None  # ... and the preset's other policy keys stay
     model = SkillPDQN("HFOPolicy", HybridTargetEnv(), seed=0, parameter_loss="chosen", mc_mixing=0.0)
     assert model.parameter_loss == "chosen" and model.mc_mixing == 0.0
 
@@ -85,7 +83,7 @@ def test_the_preset_saves_and_loads_with_either_class(tmp_path: Path) -> None:
     expected = model.predict(obs, deterministic=True)[0]
     for algo_class in (SkillPDQN, SkillDDPG):
         loaded = algo_class.load(tmp_path / "model.zip", env=HybridTargetEnv())
-        assert loaded.parameter_loss == "each_action" and loaded.policy.discrete_choice == "critic"
+        assert loaded.parameter_loss == "each_action" and CriticChoice() in loaded.policy.acting
         assert (loaded.predict(obs, deterministic=True)[0] == expected).all()
 
 

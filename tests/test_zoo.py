@@ -730,9 +730,20 @@ def test_evaluate_can_switch_on_the_mirror_choice() -> None:
     result = evaluate(str(model), episodes=2, seed=0, acting="critic,mirror")
     assert result.acting == "critic,mirror" and result.episodes == 2
     assert evaluate(str(model), episodes=1, seed=0).acting == "critic,kick_mask"  # the model's own setting
-    # the single-option form overrides its part of the model's own strategies
-    assert evaluate(str(model), episodes=1, seed=0, mirror_choice=True).acting == "critic,kick_mask,mirror"
-    assert build_parser().parse_args(["m.zip", "--mirror-choice", "on"]).mirror_choice == "on"
+    # acting replaces the whole set: the model's own strategies plus the mirror choice are written out
+    assert (
+        evaluate(str(model), episodes=1, seed=0, acting="critic,kick_mask,mirror").acting
+        == "critic,kick_mask,mirror"
+    )
+    assert (
+        build_parser().parse_args(["m.zip", "--acting", "critic,kick_mask,mirror"]).acting
+        == "critic,kick_mask,mirror"
+    )
+    # the single-option forms are gone, from the function and from the command line
+    with pytest.raises(TypeError, match="mirror_choice"):
+        evaluate(str(model), episodes=1, seed=0, mirror_choice=True)  # type: ignore[call-arg]
+    with pytest.raises(SystemExit):
+        build_parser().parse_args(["m.zip", "--mirror-choice", "on"])
 
 
 def test_evaluate_acting_flag_parses_and_names_a_bad_token(capsys: pytest.CaptureFixture[str]) -> None:
@@ -755,9 +766,11 @@ def test_evaluate_sets_the_mirror_margin_and_threads_predicts_state_through_each
     model = "e6_keeper_v0"
     result = evaluate(str(model), episodes=1, seed=0, acting="critic,mirror:inf")
     assert result.acting == "critic,mirror:inf"
-    assert build_parser().parse_args(["m.zip", "--mirror-margin", "0.2"]).mirror_margin == 0.2
-    with pytest.raises(EvaluationError, match="mirror_margin must be >= 0"):
-        evaluate(str(model), episodes=1, seed=0, mirror_margin=-1.0)
+    assert build_parser().parse_args(["m.zip", "--acting", "critic,kick_mask,mirror:0.2"]).acting == (
+        "critic,kick_mask,mirror:0.2"
+    )
+    with pytest.raises(EvaluationError, match="MirrorChoice margin must be a number >= 0"):
+        evaluate(str(model), episodes=1, seed=0, acting="critic,kick_mask,mirror:-1.0")
     with pytest.raises(EvaluationError, match="'mirror:-1'"):
         evaluate(str(model), episodes=1, seed=0, acting="mirror:-1")
 

@@ -24,18 +24,18 @@ import numpy as np
 import torch as th
 
 import hfo2d  # noqa: F401  (registers the HFO/* environments)
+from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT
 from hfo2d.features import feature_names
 from hfo2d.hfo_env import KICK
 from sb3_hfo import SkillDDPG
 from sb3_hfo.models import load_model
-from sb3_hfo.skill_ddpg.policies import HFO_DIRECTION_PARAMETER_INDICES
 
 _FEATURES = feature_names(num_opponents=1)
 GOALIE_BEARING_SIN, GOALIE_BEARING_COS = (
     _FEATURES.index("goalie_angle_sin"),
     _FEATURES.index("goalie_angle_cos"),
 )
-KICK_DIRECTION_INDEX = HFO_DIRECTION_PARAMETER_INDICES[KICK]  # dash, turn, kick directions in the flat action
+KICK_DIRECTION_INDEX = HFO_FLAT_ACTION_LAYOUT.action_direction(KICK)  # the kick direction in the flat action
 OFFSETS_DEG = np.arange(-30, 31, 1)
 OUTCOMES = ("GOAL", "CAPTURED_BY_DEFENSE")
 

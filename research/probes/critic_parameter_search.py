@@ -1,6 +1,6 @@
 """Would the critic's choice score more if it could also nudge the actor's parameters?
 
-With ``discrete_choice="critic"`` the agent plays the discrete action its critic values most *at the actor's
+With the acting ``CriticChoice`` the agent plays the discrete action its critic values most *at the actor's
 parameters*. The session-12 time-outs showed states where the critic valued other parameters (a turn towards the
 ball) above the actor's. This benchmark plays the same greedy episodes twice: once as the model acts, once with the
 critic choosing among every discrete action at the actor's parameters *and* at the actor's parameters moved by each
@@ -20,6 +20,7 @@ from typing import Any
 import torch as th
 
 from sb3_hfo.evaluate import episodes_parser, load_for_evaluation, model_n_skills, run_episodes, summarize
+from sb3_hfo.skill_ddpg.acting import CriticChoice, format_acting
 from sb3_hfo.skill_ddpg.policies import HFO_KICK_ACTION
 
 
@@ -52,7 +53,7 @@ def searched_candidates(
 
 def searched_choice(policy: Any, obs: th.Tensor, actions: th.Tensor, offsets: Sequence[float]) -> th.Tensor:
     """``(B, action_dim)``: the candidate of :func:`searched_candidates` the first critic values most (KICK left out
-    where the policy's ``kick_only_when_kickable`` rules it out)."""
+    where the policy's acting ``KickMask`` rules it out)."""
     candidates, owners = searched_candidates(policy, actions, offsets)
     batch, n_candidates, action_dim = candidates.shape
     values = policy.critic.forward(
@@ -78,7 +79,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         parser.error(
             "the model's policy needs mask_unused_parameters (the critic must see one action's parameters)"
         )
-    policy.discrete_choice = "critic"
+    policy.acting = (CriticChoice(), *(s for s in policy.acting if not isinstance(s, CriticChoice)))
     n_skills = model_n_skills(model)
     modes = {
         "actor's parameters": policy.critic_choice,
@@ -88,12 +89,11 @@ def main(argv: Sequence[str] | None = None) -> None:
     }
     try:
         for mode, choice in modes.items():
-            policy.critic_choice = choice  # what predict calls with discrete_choice="critic"
+            policy.critic_choice = choice  # what predict calls with the acting CriticChoice
             records = run_episodes(model, env, args.episodes, args.seed, True, n_skills)
             result = summarize(
                 records, model=str(path), env_id=env_id, seed=args.seed, deterministic=True, n_skills=n_skills,
-                env_kwargs=env_kwargs, discrete_choice="critic",
-                kick_only_when_kickable=policy.kick_only_when_kickable,
+                env_kwargs=env_kwargs, acting=format_acting(policy.acting),
             )  # fmt: skip
             low, high = result.scoring_rate_ci95
             counts = " / ".join(f"{status} {count}" for status, count in sorted(result.status_counts.items()))

@@ -1,9 +1,9 @@
 """Greedy scoring rate of a trained SkillDDPG model when the critic, not the actor, picks the discrete action.
 
 ``actor`` mode plays the actor's own argmax (the paper; what ``evaluate`` does by default); ``critic`` mode plays
-``HFOPolicy(discrete_choice="critic")``: each of DASH / TURN / KICK is tried at the actor's own parameters with
+``HFOPolicy(acting=(CriticChoice(), ...))``: each of DASH / TURN / KICK is tried at the actor's own parameters with
 its preference +1 and the others -1, and the one the critic values most is played. Both modes run the same
-episodes (same seed, one torch thread). Used for the session-5 and session-6 probes in research/RESULTS.md:
+episodes (same seed, one torch thread), each with the model's other acting strategies. Used for the session-5 and session-6 probes in research/RESULTS.md:
 
     python research/probes/discrete_choice.py models/e1_empty_goal_fast_seed0 --episodes 200 --seed 0
 
@@ -31,15 +31,22 @@ from sb3_hfo.evaluate import (
     run_episodes,
     wilson_interval,
 )
-from sb3_hfo.skill_ddpg.policies import DISCRETE_CHOICES
+from sb3_hfo.skill_ddpg.acting import ActingStrategy, CriticChoice
 
 ACTION_NAMES = ("DASH", "TURN", "KICK")
+MODES = ("actor", "critic")
+
+
+def acting_with(acting: Sequence[ActingStrategy], mode: str) -> tuple[ActingStrategy, ...]:
+    """``acting`` with the critic's choice on (``mode="critic"``) or off (``"actor"``), its other strategies kept."""
+    others = tuple(strategy for strategy in acting if not isinstance(strategy, CriticChoice))
+    return (CriticChoice(), *others) if mode == "critic" else others
 
 
 def preference_agreement(model: Any, env: Any, episodes: int, seed: int) -> Counter[tuple[int, int]]:
     """Steps of greedy critic's-choice episodes counted by (the actor's preferred action, the action played)."""
     policy = model.policy
-    policy.discrete_choice = "critic"
+    policy.acting = acting_with(policy.acting, "critic")
     pairs: Counter[tuple[int, int]] = Counter()
     obs, _ = env.reset(seed=seed)
     for _ in range(episodes):
@@ -67,8 +74,8 @@ def main(argv: Sequence[str] | None = None) -> None:
 
     model, env, _, _, _ = load_for_evaluation(args.model, args.env)
     try:
-        for mode in DISCRETE_CHOICES:
-            model.policy.discrete_choice = mode
+        for mode in MODES:
+            model.policy.acting = acting_with(model.policy.acting, mode)
             records = run_episodes(model, env, args.episodes, args.seed, True, model_n_skills(model))
             counts = dict(Counter(record.status for record in records))
             goals = counts.get("GOAL", 0)

@@ -25,13 +25,14 @@ from hfo2d.physics import GOAL_HALF_WIDTH
 from sb3_hfo.evaluate import (
     GOAL_CENTRE,
     EpisodeRecord,
+    add_acting_argument,
     episodes_parser,
     load_for_evaluation,
     model_n_skills,
     run_episodes,
     wilson_interval,
 )
-from sb3_hfo.skill_ddpg.policies import DISCRETE_CHOICES
+from sb3_hfo.skill_ddpg.acting import CriticChoice, MirrorChoice
 
 #: Start classes by the agent's x minus the ball's x (m): the agent behind, level with, or ahead of the ball.
 AHEAD_LIMITS = (-5.0, 5.0, 15.0)
@@ -171,42 +172,22 @@ def plot(records: Sequence[EpisodeRecord], title: str, out: Path) -> None:
 def main(argv: Sequence[str] | None = None) -> None:
     parser = episodes_parser(__doc__.splitlines()[0], default_episodes=1000)
     parser.add_argument("--out", type=Path, default=None, help="PNG to write (default: none)")
-    parser.add_argument(
-        "--discrete-choice",
-        choices=DISCRETE_CHOICES,
-        default=None,
-        help="actor or critic (default: the model's)",
-    )
-    parser.add_argument(
-        "--mirror-choice",
-        choices=("on", "off"),
-        default=None,
-        help="play the better of the state and its mirror image (default: the model's setting)",
-    )
-    parser.add_argument(
-        "--mirror-margin",
-        type=float,
-        default=None,
-        metavar="M",
-        help="with the mirror choice, switch sides within an episode only for a gain above M (default: the model's)",
-    )
+    add_acting_argument(parser)  # --acting SPEC, e.g. critic,kick_mask,mirror:0.1 (default: the model's own)
     args = parser.parse_args(argv)
 
     model, env, env_id, _, path = load_for_evaluation(args.model, args.env or None)
-    if args.discrete_choice is not None:
-        model.policy.discrete_choice = args.discrete_choice
-    if args.mirror_choice is not None:
-        model.policy.mirror_choice = args.mirror_choice == "on"
-    if args.mirror_margin is not None:
-        model.policy.mirror_margin = args.mirror_margin
     try:
+        if args.acting is not None:
+            model.policy.acting = args.acting
         records = run_episodes(model, env, args.episodes, args.seed, True, model_n_skills(model))
     finally:
         env.close()
-    choice = model.policy.discrete_choice
-    if model.policy.mirror_choice:
+    acting = model.policy.acting
+    choice = "critic" if any(isinstance(strategy, CriticChoice) for strategy in acting) else "actor"
+    mirror = next((strategy for strategy in acting if isinstance(strategy, MirrorChoice)), None)
+    if mirror is not None:
         choice += " (better of state and mirror image"
-        choice += f", margin {model.policy.mirror_margin:g})" if model.policy.mirror_margin else ")"
+        choice += f", margin {mirror.margin:g})" if mirror.margin else ")"
     print(
         f"{path} on {env_id}: {args.episodes} greedy episodes, seed {args.seed}, {choice} picks the discrete action"
     )

@@ -4,9 +4,9 @@ The twin plays the policy in the mirror image of the state (y -> -y) and mirrors
 (:mod:`hfo2d.symmetry`). HFO's dynamics are symmetric, its start distribution is not: for half of its starts the
 agent's y offset from the ball has a mirror image HFO never draws (``hfo2d.symmetry.start_offset_is_drawn``), so
 on those the twin starts from states the policy never trained on. This script plays greedy episodes with the
-policy held on each side for whole episodes (``HFOPolicy``'s ``mirror_choice`` with ``mirror_margin=inf`` and the
-side set in ``predict``'s state) and tables the goal rate by that start class. Used in research/RESULTS.md,
-session 17, to find why ``--mirror-choice on`` costs some empty-goal models points:
+policy held on each side for whole episodes (``HFOPolicy``'s acting ``MirrorChoice(inf)`` and the side set in
+``predict``'s state) and tables the goal rate by that start class. Used in research/RESULTS.md, session 17, to find
+why the mirror choice (``--acting ...,mirror``) costs some empty-goal models points:
 
     python research/probes/mirror_twin.py models/x21_empty_goal_each_action_parameters_fast_seed0 --episodes 1000
 
@@ -32,13 +32,14 @@ from sb3_hfo.evaluate import (
     run_episodes,
     wilson_interval,
 )
+from sb3_hfo.skill_ddpg.acting import MirrorChoice
 
 START_CLASSES = (
     "mirror image of the start drawn by HFO",
     "mirror image never drawn",
     "agent on the start's side-line clamp",
 )
-SIDES = {"plain": 0.0, "twin": 1.0}  # predict-state values of HFOPolicy's mirror_margin: 1.0 = mirrored side
+SIDES = {"plain": 0.0, "twin": 1.0}  # predict-state values of HFOPolicy's mirror side: 1.0 = mirrored side
 
 
 def mirror_start_class(record: EpisodeRecord) -> str:
@@ -81,8 +82,9 @@ def main(argv: Sequence[str] | None = None) -> None:
     args = parser.parse_args(argv)
 
     model, env, env_id, _, path = load_for_evaluation(args.model, args.env or None)
-    model.policy.mirror_choice = True
-    model.policy.mirror_margin = float("inf")
+    # the model's own strategies, with the mirror choice that never switches sides within an episode
+    own = tuple(strategy for strategy in model.policy.acting if not isinstance(strategy, MirrorChoice))
+    model.policy.acting = (*own, MirrorChoice(float("inf")))
     try:
         tables = {
             side: by_class(

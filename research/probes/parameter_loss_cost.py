@@ -20,16 +20,18 @@ import torch as th
 
 import sb3_hfo  # noqa: F401  (registers the HFO/* environments)
 from sb3_hfo import SkillDDPG
+from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask
+from sb3_hfo.skill_ddpg.encoding import DirectionFeatures
 from sb3_hfo.skill_ddpg.skill_ddpg import PARAMETER_LOSSES
 
 POLICY_KWARGS = dict(
     net_arch=[256, 128, 64],
     weight_init_std=0.08,
     mask_unused_parameters=True,
-    discrete_choice="critic",
-    kick_only_when_kickable=True,
-    critic_direction_frequencies=[1, 2, 4, 8, 16, 32],
-    critic_kick_relative_to=["goalie", "goal_post_top", "goal_post_bottom"],
+    acting=(CriticChoice(), KickMask()),
+    critic_action_encoding=DirectionFeatures(
+        frequencies=(1, 2, 4, 8, 16, 32), relative_to=("goalie", "goal_post_top", "goal_post_bottom")
+    ),
 )
 BATCH_SIZE = 128
 

@@ -19,13 +19,14 @@ from typing import Any
 import numpy as np
 import torch as th
 
+from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT
 from hfo2d.features import BALL_ANGLE_COS, BALL_ANGLE_SIN
 from hfo2d.hfo_env import TURN
 from sb3_hfo.evaluate import episodes_parser, load_for_evaluation
-from sb3_hfo.skill_ddpg.policies import HFO_DIRECTION_PARAMETER_INDICES
+from sb3_hfo.skill_ddpg.acting import CriticChoice
 
 #: The turn direction's index in HFO's flat action ([-1, 1] for [-180, 180] degrees).
-TURN_DIRECTION_INDEX = HFO_DIRECTION_PARAMETER_INDICES[TURN]
+TURN_DIRECTION_INDEX = HFO_FLAT_ACTION_LAYOUT.action_direction(TURN)
 
 
 def step_values(model: Any, obs: np.ndarray) -> tuple[np.ndarray, float, float]:
@@ -48,7 +49,11 @@ def main(argv: Sequence[str] | None = None) -> None:
     args = parser.parse_args(argv)
 
     model, env, _, _, _ = load_for_evaluation(args.model, args.env)
-    model.policy.discrete_choice = "critic"
+    # the critic picks the discrete action; the model's other acting strategies are kept
+    model.policy.acting = (
+        CriticChoice(),
+        *(s for s in model.policy.acting if not isinstance(s, CriticChoice)),
+    )
     time_outs = 0
     try:
         for episode in range(args.episodes):

@@ -58,7 +58,11 @@ def test_failure_map_groups_episodes_by_start_and_writes_a_png(tmp_path: Path) -
     command = [sys.executable, str(PROBES / "failure_map.py")]
     command += [committed("e1"), "--episodes", "6", "--out", str(out)]
     completed = subprocess.run(
-        [*command, "--mirror-choice", "on"], capture_output=True, text=True, timeout=300, cwd=tmp_path
+        [*command, "--acting", "critic,kick_mask,mirror"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=tmp_path,
     )
     assert completed.returncode == 0, completed.stderr[-2000:]
     assert "(better of state and mirror image) picks" in completed.stdout.splitlines()[0]

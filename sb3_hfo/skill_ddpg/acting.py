@@ -109,7 +109,7 @@ def _parse_token(token: str) -> ActingStrategy:
 def parse_acting(spec: ActingSpec) -> tuple[ActingStrategy, ...]:
     """The strategies of ``spec`` in :data:`STRATEGIES` order.
 
-    :param spec: ``None``, a tuple or list of strategies, or text such as ``"critic,kick_mask,mirror:0.1"``
+    :param spec: ``None``, a strategy, a tuple or list of strategies, or text such as ``"critic,kick_mask,mirror:0.1"``
         (``""`` or ``"actor"``: none).
     :raises ValueError: for an unknown token or object (the message names it), or a strategy given twice.
     """
@@ -120,6 +120,13 @@ def parse_acting(spec: ActingSpec) -> tuple[ActingStrategy, ...]:
         if tokens == ["actor"]:
             tokens = []
         strategies = [_parse_token(token) for token in tokens]
+    elif isinstance(spec, STRATEGIES):
+        strategies = [spec]
+    elif not isinstance(spec, (tuple, list)):
+        raise ValueError(
+            f"acting takes CriticChoice, KickMask and MirrorChoice objects (one, or a tuple of them), their text "
+            f"form or None, got {spec!r}"
+        )
     else:
         strategies = list(spec)
         for strategy in strategies:

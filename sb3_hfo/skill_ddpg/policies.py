@@ -519,6 +519,7 @@ class HFOPolicy(BasePolicy):
             else None
         )
         self._mirror: Mirror | None = None
+        self._mirror_suspended = 0  # > 0 inside mirror_choice_suspended()
         self.acting = acting  # validated by the property setter
         # The kept sides, set by predict for _predict while a call with a mirror margin > 0 runs.
         self._side_box: list[np.ndarray | None] | None = None
@@ -643,12 +644,18 @@ class HFOPolicy(BasePolicy):
 
     @contextlib.contextmanager
     def mirror_choice_suspended(self) -> Iterator[None]:
-        """Act without the mirror choice inside the ``with`` block (SkillDDPG's training rollouts)."""
-        mirror, self._mirror = self._mirror, None
+        """Act without the mirror choice inside the ``with`` block (SkillDDPG's training rollouts); ``acting`` may
+        still be changed inside it, and what it is on leaving the block is what the policy acts with."""
+        self._mirror_suspended += 1
         try:
             yield
         finally:
-            self._mirror = mirror
+            self._mirror_suspended -= 1
+
+    @property
+    def mirror_active(self) -> bool:
+        """Whether acting now plays the mirror choice: ``MirrorChoice`` is in :attr:`acting` and not suspended."""
+        return self._mirror is not None and not self._mirror_suspended
 
     def kick_unavailable(self, obs: th.Tensor) -> th.Tensor | None:
         """``(B,)`` bool, True where KICK is left out (ball out of reach); ``None`` without the kick mask."""
@@ -780,7 +787,7 @@ class HFOPolicy(BasePolicy):
         """SB3's ``predict``; with the acting ``MirrorChoice(margin > 0)``, ``state`` is ``(sides,)``, one
         float per row (1.0: mirrored side kept, 0.0: plain, NaN: none yet), and the sides after this step are
         returned in its place. ``state=None`` and rows with ``episode_start`` true start afresh."""
-        if self._mirror is None or self._mirror_margin == 0.0:
+        if not self.mirror_active or self._mirror_margin == 0.0:
             return super().predict(observation, state, episode_start, deterministic)
         # SB3's predict hands state to the caller only, not to _predict: the sides go through a one-item box that
         # _predict reads and overwrites.
@@ -817,9 +824,10 @@ class HFOPolicy(BasePolicy):
     def _predict(self, observation: PyTorchObs, deterministic: bool = False) -> th.Tensor:
         """Greedy action in [-1, 1] for ``observation (B, obs_dim)`` (DDPG's actor is deterministic)."""
         obs = self._flatten_obs(observation)
-        if self._mirror is None:
+        if not self.mirror_active:
             return self._greedy_action(obs)
         mirror, batch = self._mirror, obs.shape[0]
+        assert mirror is not None
         if mirror.sign.device != obs.device:  # the tensors are not module buffers: .to(device) leaves them
             mirror = self._mirror = mirror.to(obs.device)
         both = th.cat((obs, mirror.observations(obs)))
