@@ -21,6 +21,7 @@ import numpy as np
 import torch as th
 from stable_baselines3.common.callbacks import EvalCallback
 from stable_baselines3.common.env_util import make_vec_env
+from stable_baselines3.common.monitor import Monitor
 from stable_baselines3.common.noise import NormalActionNoise
 
 import hfo2d  # noqa: F401  (registers the envs)
@@ -40,7 +41,9 @@ def delayed_rate(rate: float, warmup: float):  # noqa: ANN201  (an SB3 schedule)
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--model", default="models/e6.zip")
+    parser.add_argument(
+        "--model", type=Path, default=Path(__file__).resolve().parents[2] / "models" / "e6.zip"
+    )
     parser.add_argument("--steps", type=int, default=200_000)
     parser.add_argument(
         "--critic-warmup", type=float, default=0.25, help="fraction of the run with actor lr 0"
@@ -86,7 +89,8 @@ def main() -> None:
     # SB3 plays uniformly random actions before learning_starts: let the cloned actor play from the first step
     # (the actor is frozen during the critic's warm-up anyway)
     model.learning_starts = 0
-    eval_env = gym.make("HFO/Keeper-v1")
+    eval_env = Monitor(gym.make("HFO/Keeper-v1"))
+    eval_env.reset(seed=args.seed + 10_000)  # seeds the evaluation episodes' random stream
     evaluation = EvalCallback(
         eval_env,
         n_eval_episodes=args.eval_episodes,
@@ -103,7 +107,7 @@ def main() -> None:
     summary = {
         "timesteps": data["timesteps"].tolist(),
         "success_rate": successes,
-        "args": {**vars(args), "out": str(args.out)},
+        "args": {key: str(value) if isinstance(value, Path) else value for key, value in vars(args).items()},
     }
     (args.out / "summary.json").write_text(json.dumps(summary, indent=2))
     print(json.dumps(summary))

@@ -349,3 +349,15 @@ def test_episode_benchmarks_refuse_a_bad_episode_count(tmp_path: Path, episodes:
     )
     assert completed.returncode == 2 and "--episodes" in completed.stderr
     assert ("at least 1" if episodes == "0" else "must be an integer") in completed.stderr
+
+
+def test_rl_from_clone_starts_from_the_cloned_actor_and_reports_each_evaluation(tmp_path: Path) -> None:
+    committed("e6")
+    command = [sys.executable, str(PROBES / "rl_from_clone.py"), "--steps", "800", "--eval-freq", "100"]
+    command += ["--eval-episodes", "2", "--out", str(tmp_path / "run"), "--seed", "0"]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=600, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    summary = json.loads((tmp_path / "run" / "summary.json").read_text())
+    assert summary["timesteps"] == [400, 800]  # 4 envs: an evaluation every 100 steps of each
+    assert len(summary["success_rate"]) == 2 and all(0.0 <= rate <= 1.0 for rate in summary["success_rate"])
+    assert (tmp_path / "run" / "final_model.zip").is_file()
