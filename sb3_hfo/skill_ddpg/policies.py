@@ -524,9 +524,7 @@ class HFOPolicy(BasePolicy):
         # The kept sides, set by predict for _predict while a call with a mirror margin > 0 runs.
         self._side_box: list[np.ndarray | None] | None = None
         self.critic_action_encoding = parse_encoding(critic_action_encoding)
-        ActionEncoder(
-            self.action_dim, self.critic_action_encoding, self.action_layout, self.obs_dim
-        )  # validates
+        self._make_action_encoder()  # refuses an encoding the layout or the observation cannot give, before building
         self._build(lr_schedule)
 
     def _optimizer_kwargs(self) -> dict[str, Any]:
