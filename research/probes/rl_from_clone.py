@@ -30,6 +30,27 @@ from sb3_hfo.models import load_model
 from sb3_hfo.zoo import HFOEpisodeStatsCallback
 
 
+class AnchoredSkillDDPG(SkillDDPG):
+    """SkillDDPG whose actor ascends ``lambda * Q(s, mu(s)) - ||mu(s) - mu_clone(s)||^2``, with ``lambda = alpha /
+    mean |Q|`` over the minibatch: TD3+BC's regulariser (Fujimoto & Gu 2021) with the frozen cloned actor's action in
+    place of the dataset's, so that the critic's gradient can move the actor only where it outweighs the distance
+    from the clone. Uses the autograd update (the fast update knows no such term)."""
+
+    def __init__(self, *args, anchor_alpha: float, **kwargs) -> None:  # noqa: ANN002, ANN003
+        super().__init__(*args, fast_update=False, **kwargs)
+        self.anchor_alpha = anchor_alpha
+        self.anchor_actor: th.nn.Module | None = None
+
+    def _actor_value(self, obs: th.Tensor, actions: th.Tensor) -> tuple[th.Tensor, th.Tensor]:
+        value, actor_q = super()._actor_value(obs, actions)
+        assert self.anchor_actor is not None
+        with th.no_grad():
+            anchor = self.anchor_actor.forward(obs, self.policy.route(obs))
+            scale = self.anchor_alpha / value.abs().mean().clamp_min(1e-6)
+        distance = (actions - anchor).square().sum(dim=1, keepdim=True)
+        return scale * value - distance, actor_q
+
+
 def delayed_rate(rate: float, warmup: float):  # noqa: ANN201  (an SB3 schedule)
     """An SB3 schedule (progress_remaining 1 -> 0): 0 for the first ``warmup`` of the run, ``rate`` after."""
 
@@ -55,6 +76,12 @@ def main() -> None:
     parser.add_argument("--gamma", type=float, default=0.99)
     parser.add_argument("--eval-freq", type=int, default=10_000, help="steps per env between evaluations")
     parser.add_argument("--eval-episodes", type=int, default=100)
+    parser.add_argument(
+        "--anchor-alpha",
+        type=float,
+        default=0.0,
+        help="> 0: keep the actor near the clone (TD3+BC's alpha; 2.5 there); 0: plain SkillDDPG",
+    )
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--out", type=Path, default=Path("runs/rl_from_clone"))
     args = parser.parse_args()
@@ -63,7 +90,8 @@ def main() -> None:
 
     cloned = load_model(args.model, device="cpu", buffer_size=1)
     env = make_vec_env("HFO/Keeper-v1", n_envs=4, seed=args.seed)
-    model = SkillDDPG(
+    extra = {"anchor_alpha": args.anchor_alpha} if args.anchor_alpha > 0 else {}
+    model = (AnchoredSkillDDPG if args.anchor_alpha > 0 else SkillDDPG)(
         "HFOPolicy",
         env,
         learning_rate_actor=delayed_rate(args.actor_lr, args.critic_warmup),
@@ -82,10 +110,13 @@ def main() -> None:
         tensorboard_log=str(args.out / "tb"),
         seed=args.seed,
         verbose=0,
+        **extra,
     )
     # the cloned actor, online and target
     model.policy.actor.load_state_dict(cloned.policy.actor.state_dict())
     model.policy.actor_target.load_state_dict(cloned.policy.actor.state_dict())
+    if isinstance(model, AnchoredSkillDDPG):
+        model.anchor_actor = cloned.policy.actor.requires_grad_(False)
     # SB3 plays uniformly random actions before learning_starts: let the cloned actor play from the first step
     # (the actor is frozen during the critic's warm-up anyway)
     model.learning_starts = 0
