@@ -518,6 +518,8 @@ class World:
         return math.hypot(self.ball.x - p.x, self.ball.y - p.y)
 
     # --- server-side commands (rcssserver Player::dash / turn / kick, hfo_reference §4.2-4.4) ------
+    # The clamps of the commands are min(hi, max(lo, v)) written out as the builtins decide them (max keeps lo
+    # unless v > lo, min keeps hi unless the value < hi; NaN gives lo): a builtin call costs more than the rest.
     def _dash_dir_rate(self, dir_deg: float) -> float:
         p = self.params
         a = abs(dir_deg)
@@ -525,11 +527,14 @@ class World:
             rate = p.back_dash_rate - (p.back_dash_rate - p.side_dash_rate) * (1.0 - (a - 90.0) / 90.0)
         else:
             rate = p.side_dash_rate + (1.0 - p.side_dash_rate) * (1.0 - a / 90.0)
-        return min(1.0, max(0.0, rate))
+        rate = rate if rate > 0.0 else 0.0
+        return rate if rate < 1.0 else 1.0
 
     def _discretize_dash_dir(self, direction_deg: float) -> float:
         p = self.params
-        d = min(p.max_dash_angle, max(p.min_dash_angle, float(direction_deg)))
+        d = float(direction_deg)
+        d = d if d > p.min_dash_angle else p.min_dash_angle
+        d = d if d < p.max_dash_angle else p.max_dash_angle
         if p.dash_angle_step > 1.0e-10:
             # round() is round-half-to-even like C's rint() in the default rounding mode
             d = p.dash_angle_step * round(d / p.dash_angle_step)
@@ -543,7 +548,9 @@ class World:
         player's acceleration.
         """
         sp = self.params
-        power = min(sp.maxpower, max(sp.minpower, float(power)))
+        power = float(power)
+        power = power if power > sp.minpower else sp.minpower
+        power = power if power < sp.maxpower else sp.maxpower
         d = self._discretize_dash_dir(direction_deg)
         self._push_dash(p, power, d, self._dash_dir_rate(d))
 
@@ -554,8 +561,10 @@ class World:
         sp = self.params
         back = power < 0.0
         need = -2.0 * power if back else power
-        need = min(need, p.stamina + sp.extra_stamina)
-        p.stamina = max(0.0, p.stamina - need)
+        available = p.stamina + sp.extra_stamina
+        need = available if available < need else need  # min(need, available)
+        left = p.stamina - need
+        p.stamina = left if left > 0.0 else 0.0  # max(0.0, left)
         power = -0.5 * need if back else need
         edp = abs(p.effort * power * dir_rate * sp.dash_power_rate)
         if back:
@@ -572,7 +581,9 @@ class World:
         if p.tackle_cycles > 0:
             return
         sp = self.params
-        moment = min(sp.max_moment, max(sp.min_moment, float(moment_deg)))
+        moment = float(moment_deg)
+        moment = moment if moment > sp.min_moment else sp.min_moment
+        moment = moment if moment < sp.max_moment else sp.max_moment
         factor = 1.0
         if self.noise and sp.player_rand > 0.0:
             factor += sp.player_rand * (2.0 * self._uniform() - 1.0)
@@ -623,7 +634,8 @@ class World:
         sp = self.params
         speed = math.hypot(p.vx, p.vy)
         moment = float(desired_turn_deg) * (1.0 + sp.inertia_moment * speed)
-        self.turn(p, min(sp.max_moment, max(sp.min_moment, moment)))
+        moment = moment if moment > sp.min_moment else sp.min_moment
+        self.turn(p, moment if moment < sp.max_moment else sp.max_moment)
 
     def client_dash(
         self, p: PlayerState, power: float, direction_deg: float = 0.0, limit_speed: bool = True
@@ -635,11 +647,17 @@ class World:
         acceleration is shrunk so that |v + a| <= player_speed_max.
         """
         sp = self.params
-        power = min(sp.maxpower, max(sp.minpower, float(power)))
+        power = float(power)
+        power = power if power > sp.minpower else sp.minpower
+        power = power if power < sp.maxpower else sp.maxpower
         d = self._discretize_dash_dir(direction_deg)
         available = p.stamina + sp.extra_stamina
         # librcsc conserveDashPower: a backward dash costs twice its power
-        power = min(power, available) if power >= 0.0 else max(power, -0.5 * available)
+        if power >= 0.0:
+            power = available if available < power else power  # min(power, available)
+        else:
+            half = -0.5 * available
+            power = half if half > power else power  # max(power, half)
         dir_rate = self._dash_dir_rate(d)
         if limit_speed and power != 0.0:
             rate = dir_rate * p.effort * sp.dash_power_rate
