@@ -342,7 +342,7 @@ class Agent2dGoalie:
         view = self._view(world, keeper)
         self.last_view = view
         command: Command | None = None
-        if getattr(keeper, "tackle_cycles", 0) > 0:
+        if keeper.tackle_cycles > 0:
             command = None  # frozen by its own tackle: SamplePlayer sends no body command
         elif self.skill < 1.0 and self.rng.random() >= self.skill:
             command = None  # the weakening: hesitate this cycle
@@ -407,7 +407,7 @@ class Agent2dGoalie:
             # kickable test needs its position unless the raw position is surely too far from the ball
             ox = oy = ux = uy = obody = None
             opp_raw = (attacker.x, attacker.y, attacker.vx, attacker.vy, attacker.body_deg)
-            frozen = getattr(attacker, "tackle_cycles", 0)
+            frozen = attacker.tackle_cycles
             if frozen <= 0:
                 rox = -opp_raw[0]
                 roy = -opp_raw[1]
