@@ -895,10 +895,40 @@ class World:
                     obj.collided_ball = obj.collided_ball or with_ball
                     obj.collided_player = obj.collided_player or with_player
             self._catch_contacts = []
-        self._collisions()
-        update_stamina = self._update_stamina
+        # (_collisions' own first test, made here: most cycles nothing overlaps and the call is saved)
+        if _any_overlap(self.players, ball, *derived[3]):
+            self._collisions()
+        # Player::updateStamina for every player (hfo_reference §4.5), its parameters read once for all
+        sp = self.params
+        recover_dec_thr, effort_dec_thr, effort_inc_thr = derived[4]  # each thr * stamina_max
+        smax = sp.stamina_max
+        recover_min = sp.recover_min
+        effort_min = sp.effort_min
+        effort_init = sp.effort_init
+        stamina_inc_max = sp.stamina_inc_max
+        limited_capacity = sp.stamina_capacity >= 0.0
         for player in self.players:
-            update_stamina(player)
+            # thresholds on the current stamina, then recover
+            stamina = player.stamina
+            if stamina <= recover_dec_thr and player.recovery > recover_min:
+                player.recovery = max(recover_min, player.recovery - sp.recover_dec)
+            if stamina <= effort_dec_thr and player.effort > effort_min:
+                player.effort = max(effort_min, player.effort - sp.effort_dec)
+            if stamina >= effort_inc_thr and player.effort < effort_init:
+                player.effort = min(effort_init, player.effort + sp.effort_inc)
+            # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
+            inc = stamina_inc_max * player.recovery
+            room = smax - stamina
+            if room < inc:
+                inc = room
+            if limited_capacity:
+                if player.capacity >= inc:
+                    player.capacity -= inc
+                else:
+                    inc = player.capacity
+                    player.capacity = 0.0
+            stamina += inc if inc > 0.0 else 0.0
+            player.stamina = stamina if stamina < smax else smax
             if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
                 player.catch_ban -= 1
         self.cycle += 1
@@ -1136,35 +1166,6 @@ class World:
                 t[1] += ty
                 t[2] += 1.0
 
-    def _update_stamina(self, p: PlayerState) -> None:
-        """``Player::updateStamina`` (hfo_reference §4.5): thresholds on the current stamina, then recover."""
-        sp = self.params
-        derived = self._derived
-        if derived[0] is not sp:
-            derived = self._derive()
-        recover_dec_thr, effort_dec_thr, effort_inc_thr = derived[4]  # each thr * stamina_max
-        stamina = p.stamina
-        smax = sp.stamina_max
-        if stamina <= recover_dec_thr and p.recovery > sp.recover_min:
-            p.recovery = max(sp.recover_min, p.recovery - sp.recover_dec)
-        if stamina <= effort_dec_thr and p.effort > sp.effort_min:
-            p.effort = max(sp.effort_min, p.effort - sp.effort_dec)
-        if stamina >= effort_inc_thr and p.effort < sp.effort_init:
-            p.effort = min(sp.effort_init, p.effort + sp.effort_inc)
-        # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
-        inc = sp.stamina_inc_max * p.recovery
-        room = smax - stamina
-        if room < inc:
-            inc = room
-        if sp.stamina_capacity >= 0.0:
-            if p.capacity >= inc:
-                p.capacity -= inc
-            else:
-                inc = p.capacity
-                p.capacity = 0.0
-        stamina += inc if inc > 0.0 else 0.0
-        p.stamina = stamina if stamina < smax else smax
-
 
 def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float) -> bool:
     """Whether any ball-player pair is closer than ``sqrt(bp_limit2)`` or any player pair than ``sqrt(pp_limit2)``
@@ -1177,6 +1178,11 @@ def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, 
         if dx * dx + dy * dy < bp_limit2:
             return True
     n = len(players)
+    if n == 2:  # HFO 1v1: the one pair without the loops
+        a, b = players
+        dx = b.x - a.x
+        dy = b.y - a.y
+        return dx * dx + dy * dy < pp_limit2
     for i in range(n - 1):
         a = players[i]
         for j in range(i + 1, n):
