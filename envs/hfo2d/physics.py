@@ -586,9 +586,17 @@ class World:
         moment = moment if moment < sp.max_moment else sp.max_moment
         factor = 1.0
         if self.noise and sp.player_rand > 0.0:
-            factor += sp.player_rand * (2.0 * self._uniform() - 1.0)
+            # self._uniform() and normalize_deg below written out: a turn is issued almost every cycle
+            i = self._next_uniform
+            if i >= len(self._uniforms):
+                self._uniforms = self._rng.random(_RANDOM_BLOCK).tolist()
+                i = 0
+            self._next_uniform = i + 1
+            factor += sp.player_rand * (2.0 * self._uniforms[i] - 1.0)
         speed = math.hypot(p.vx, p.vy)
-        p.body_deg = normalize_deg(p.body_deg + factor * moment / (1.0 + sp.inertia_moment * speed))
+        p.body_deg = (
+            p.body_deg + factor * moment / (1.0 + sp.inertia_moment * speed) + 180.0
+        ) % 360.0 - 180.0
 
     def kick(self, p: PlayerState, power: float, direction_deg: float) -> bool:
         """Server kick; returns False (no effect) unless the ball is within kickable_area (1.085 m) and the
