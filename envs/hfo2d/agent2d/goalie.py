@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import struct
 
 import numpy as np
 
@@ -109,6 +110,10 @@ def fullstate_value(x: float) -> float:
         _FULLSTATE_MEMO[x] = y
     return y
 
+
+# The bytes of four doubles: Agent2dGoalie._view's key for a group of numbers that repeats from cycle to cycle
+# (bitwise, so that -0.0 and 0.0 differ)
+_PACK_FOUR = struct.Struct("<4d").pack
 
 _POW10 = tuple(float(10**k) for k in range(23))  # exact doubles
 _POW10_INT = tuple(10**k for k in range(330))  # the scales of the numbers below 1e-16, down to 5e-324
@@ -317,6 +322,12 @@ class Agent2dGoalie:
         self._prev_ball_vel: tuple[float, float] | None = None
         self._play_on = True
         self._catch_pending = False
+        # _view's last conversions of the ball (x, y, vx, vy) and of the goalie's (body, stamina, effort, recovery),
+        # by the bytes of their server values: a resting ball and a goalie that does not turn repeat them
+        self._ball_key: bytes | None = None
+        self._ball_numbers: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
+        self._body_key: bytes | None = None
+        self._body_numbers: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
 
     def reset(self) -> None:
         """A new episode: the referee's before_kick_off / play_on messages put the world model back in PlayOn."""
@@ -391,7 +402,24 @@ class Agent2dGoalie:
         ball = world.ball
         fs = fullstate_value
         px, py, vx, vy = -fs(keeper.x), -fs(keeper.y), -fs(keeper.vx), -fs(keeper.vy)
-        bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+        # (the same numbers as last cycle for the same server values: fullstate_value is a function of the bits)
+        key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
+        if key == self._ball_key:
+            bx, by, wx, wy = self._ball_numbers
+        else:
+            bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+            self._ball_key = key
+            self._ball_numbers = (bx, by, wx, wy)
+        key = _PACK_FOUR(keeper.body_deg, keeper.stamina, keeper.effort, keeper.recovery)
+        if key == self._body_key:
+            body, stamina, effort, recovery = self._body_numbers
+        else:
+            body = norm_deg(fs(keeper.body_deg) + 180.0)
+            stamina = fs(keeper.stamina)
+            effort = fs(keeper.effort)
+            recovery = fs(keeper.recovery)
+            self._body_key = key
+            self._body_numbers = (body, stamina, effort, recovery)
         d_b = math.hypot(bx - px, by - py)
         attacker = None
         side = keeper.side
@@ -439,10 +467,10 @@ class Agent2dGoalie:
             py,
             vx,
             vy,
-            norm_deg(fs(keeper.body_deg) + 180.0),
-            fs(keeper.stamina),
-            fs(keeper.effort),
-            fs(keeper.recovery),
+            body,
+            stamina,
+            effort,
+            recovery,
             bx,
             by,
             wx,
