@@ -496,7 +496,8 @@ class HFOEnv(gym.Env):
             self._goals += status == GOAL
             self._last_end = (self._episode_number, status)
 
-        features = self._features()
+        # (self._features(), one call fewer)
+        features = low_level_feature_list(agent, world.ball, self._kickable_distance, (), self._opponents)
         reward, terms = self._reward_fn(features, status, terminated)
         info = self._info(features)
         info["reward_terms"] = terms

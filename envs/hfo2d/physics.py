@@ -423,6 +423,7 @@ class World:
             (sp.ball_size, sp.ball_decay, sp.ball_rand, sp.ball_speed_max, sp.ball_accel_max),
             (bp_limit * bp_limit, pp_limit * pp_limit),
             (sp.recover_dec_thr * smax, sp.effort_dec_thr * smax, sp.effort_inc_thr * smax),
+            sp.kickable_area - CLIENT_KICKABLE_BUFFER,  # client_kick's reach
         )
         return self._derived
 
@@ -689,7 +690,11 @@ class World:
         """HFO KICK as librcsc sends it: power clamped to [0, 100]; refused (False, no effect) when the ball
         is farther than kickable_area - 0.055 (= 1.03 m)."""
         sp = self.params
-        if self.ball_distance(p) > sp.kickable_area - CLIENT_KICKABLE_BUFFER:
+        derived = self._derived
+        if derived[0] is not sp:
+            derived = self._derive()
+        ball = self.ball
+        if math.hypot(ball.x - p.x, ball.y - p.y) > derived[5]:  # self.ball_distance(p), client's kickable
             return False
         power = min(sp.maxpower, max(0.0, float(power)))
         return self.kick(p, power, normalize_deg(float(direction_deg)))
@@ -1281,6 +1286,8 @@ class HFOReferee:
         "cycles",
         "prev_ball_x",
         "prev_ball_y",
+        "_limit_params",
+        "_kickable_limit2",
     )
 
     def __init__(self, params: ServerParams, untouched_time: int = 100, trial_time: int = 0) -> None:
@@ -1294,6 +1301,8 @@ class HFOReferee:
         self.cycles = 0
         self.prev_ball_x = 0.0
         self.prev_ball_y = 0.0
+        self._limit_params: ServerParams | None = None  # the params _kickable_limit2 was computed from
+        self._kickable_limit2 = 0.0
 
     def reset(self, world: World) -> None:
         """``HFORef::resetField``'s bookkeeping: counters zeroed, no holder, previous ball = the placed ball."""
@@ -1314,11 +1323,14 @@ class HFOReferee:
         if world.play_on:
             self.cycles += 1
             # (crosses_right_goal_line is False while |x| <= its line_x; that test alone first, as it fails most cycles)
+            prev_x = self.prev_ball_x
+            prev_y = self.prev_ball_y
             if abs(bx) > PITCH_HALF_LENGTH + self.params.ball_size and crosses_right_goal_line(
-                self.prev_ball_x, self.prev_ball_y, bx, by, self.params
+                prev_x, prev_y, bx, by, self.params
             ):
                 status = HFO_GOAL
-            elif not in_hfo_area(self.prev_ball_x, self.prev_ball_y):
+            # in_hfo_area(prev_x, prev_y), written out
+            elif not (prev_x >= 0.0 and prev_x <= PITCH_HALF_LENGTH and abs(prev_y) <= PITCH_HALF_WIDTH):
                 status = HFO_OUT_OF_BOUNDS
             elif self.take_time >= HFO_TURNOVER_TIME:
                 status = HFO_CAPTURED_BY_DEFENSE
@@ -1330,8 +1342,12 @@ class HFOReferee:
                 self.untouched += 1
                 offense_possession = False
                 # ServerParam::kickableArea(): player_size + kickable_margin + ball_size, squared by std::pow
-                area = self.params.kickable_area
-                limit2 = area * area
+                # (remembered per params object: the property costs more than the rest of the test)
+                if self._limit_params is not self.params:
+                    area = self.params.kickable_area
+                    self._kickable_limit2 = area * area
+                    self._limit_params = self.params
+                limit2 = self._kickable_limit2
                 for p in world.players:
                     dx = p.x - bx
                     dy = p.y - by
