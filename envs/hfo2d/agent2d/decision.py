@@ -68,6 +68,10 @@ _NEAR_GOAL_X = -PITCH_HALF_LENGTH + 8.0  # is_ball_chase_situation A, getTargetP
 _NEAR_GOAL_Y = GOAL_HALF_WIDTH + 3.0
 _SIDE_Y = GOAL_HALF_WIDTH + 2.0  # getTargetPoint
 _DEEP_CROSS_Y = GOAL_HALF_WIDTH - 0.8  # doPrepareDeepCross
+_SHOOT_MAX_DIST = 30.0  # is_ball_shoot_moving: no shot farther than 30 m from the goalie
+# Bhv_BasicTackle (tackle.basic_tackle) sees no tackle chance beyond 2.5 m (its squared-distance test); a ball
+# measured farther than this is surely beyond it
+_TACKLE_SURE_FAR = 2.6
 _DANGER_X = -PITCH_HALF_LENGTH + 11.0  # doMoveForDangerousState
 _DANGER_Y = GOAL_HALF_WIDTH + 1.0
 _ANCHOR_X = -PITCH_HALF_LENGTH - LINE_ANCHOR_X_BACK  # getTargetPoint's line anchor
@@ -178,7 +182,8 @@ def decide(
             basic_move(eff, v, table)
         return
     d_b = math.hypot(v.bx - v.px, v.by - v.py)  # v.ball_dist, read by the rules below
-    if can_catch(v, last_catch_cycle, d_b):
+    # (can_catch's distance test made first: the ball is rarely that close, and the call is saved)
+    if d_b < CATCH_DIST and can_catch(v, last_catch_cycle, d_b):
         eff.catch(norm_deg(angle_of(v.bx - v.px, v.by - v.py) - v.body + CATCH_DIR_OFFSET))
         return
     if v.self_kickable:
@@ -276,7 +281,7 @@ def goalie_free_kick(eff: Effector, v: GoalieView, time_diff: int, state: FreeKi
 def is_ball_shoot_moving(v: GoalieView, d_b: float | None = None) -> bool:
     """Is the ball a shot rolling into the goal? (Bhv_GoalieChaseBall::is_ball_shoot_moving; ``d_b``: the
     ball's distance when the caller has it)."""
-    if (v.ball_dist if d_b is None else d_b) > 30.0:
+    if (v.ball_dist if d_b is None else d_b) > _SHOOT_MAX_DIST:
         return False
     if v.bx > -34.5:
         return False
@@ -317,8 +322,8 @@ def is_ball_chase_situation(v: GoalieView, table: InterceptTable, d_b: float | N
         if d_b < 3.0 and self_min <= 3:
             return True
         return not (self_min > opp_min + 3 and opp_min < 7)
-    # B. a shot
-    if is_ball_shoot_moving(v, d_b) and table.self_min < table.opp_min:
+    # B. a shot (is_ball_shoot_moving's distance test made first, saving the call for a far ball)
+    if d_b <= _SHOOT_MAX_DIST and is_ball_shoot_moving(v, d_b) and table.self_min < table.opp_min:
         return True
     # C. the intercept point must lie inside the penalty area shrunk by pen_thr: ballAt(self_min), which for a
     # resting ball is B + W (+-0) whatever the cycle
@@ -514,14 +519,15 @@ def basic_move(eff: Effector, v: GoalieView, table: InterceptTable, d_b: float |
     """Bhv_GoalieBasicMove::execute: nine steps, the first that acts ends the cycle (``d_b``: the ball's
     distance when the caller has it)."""
     mx, my = target_point(v, table)
-    if basic_tackle(eff, v, table, 0.8, 90.0):
-        return
     px = v.px
     py = v.py
     bx = v.bx
     by = v.by
     if d_b is None:
         d_b = math.hypot(bx - px, by - py)  # v.ball_dist
+    # (a ball beyond _TACKLE_SURE_FAR fails basic_tackle's own first test: the call is saved)
+    if d_b < _TACKLE_SURE_FAR and basic_tackle(eff, v, table, 0.8, 90.0):
+        return
     thr = d_b * 0.1  # max(0.5, d_b * 0.1) as the builtin decides
     if not thr > 0.5:
         thr = 0.5
