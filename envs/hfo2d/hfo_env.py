@@ -291,6 +291,8 @@ class HFOEnv(gym.Env):
         n_opponents = 1 if self.has_keeper else 0
         n_features = hfo_num_features(0, n_opponents) if self._hfo_layout else num_features(0, n_opponents)
         self.observation_space = spaces.Box(-1.0, 1.0, shape=(n_features,), dtype=np.float32)
+        # step()'s packer of the observation (see _observation)
+        self._observation_packer = struct.Struct(f"={n_features}f")
         if action_format == "flat":
             self.action_space: spaces.Space = hfo_flat_action_space()
         else:
@@ -507,7 +509,9 @@ class HFOEnv(gym.Env):
         if self.render_mode == "human":
             self.render()
         observation = self._hfo_features(success) if self._hfo_layout else features
-        return _observation(observation), reward, terminated, truncated, info
+        # _observation(observation), with the packer of this env's feature count
+        observation_array = np.frombuffer(self._observation_packer.pack(*observation), np.float32).copy()
+        return observation_array, reward, terminated, truncated, info
 
     def _agent2d_wait_frame(self) -> None:
         """Real HFO plays one more cycle after an episode ends and before the next reset; the goalie acts in it
