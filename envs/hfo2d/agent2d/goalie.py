@@ -64,10 +64,11 @@ def fullstate_value(x: float) -> float:
       IEEE division of the exact m by the exact s gives the double nearest to it, as the parser does. Anything
       else (a decade picked wrong at its boundary, a near tie) takes the string route;
     * for 0 < |x| < 1e-16 (the velocity of a goalie standing still decays by 0.4 a cycle through these) the same
-      test, with s = 10**(5 - e) > 10**22 no longer a double: p is |x| times 1e22 (up to 14 times) times one
-      exact power of ten, at most 15 roundings of relative error 2**-53 each, so p still lies within 2**-28 of
-      P, far inside both margins. The printed number m / 10**(5 - e) is then divided in Python integers, which
-      CPython rounds correctly (to the nearest double, subnormals included), as the parser does.
+      test, with s = 10**(5 - e) > 10**22 no longer a double: p is |x| times the double nearest to s (or, past
+      10**308, times 1e22 and the double nearest to s / 10**22), at most three roundings of relative error
+      2**-53 each, so p still lies within 2**-30 of P, far inside both margins. The printed number
+      m / 10**(5 - e) is then divided in Python integers, which CPython rounds correctly (to the nearest double,
+      subnormals included), as the parser does.
     """
     y = _FULLSTATE_MEMO.get(x)
     if y is not None:
@@ -91,17 +92,14 @@ def fullstate_value(x: float) -> float:
                 y = -y
     elif a < 1.0e-16:  # 5e-324 <= a: x is neither zero nor NaN here
         digits = 5 - math.floor(math.log10(a))  # 22 < digits <= 329
-        p = a
-        scale = digits
-        while scale > 22:
-            p *= 1.0e22
-            scale -= 22
-        p *= _POW10[scale]
+        # (10.0**308 is the largest power of ten below the double range)
+        p = a * _POW10_NEAREST[digits] if digits <= 308 else a * 1.0e22 * _POW10_NEAREST[digits - 22]
         f = p % 1.0
         if 100000.001 <= p < 999999.0 and not 0.499999 < f < 0.500001:
-            y = (int(p - f) + (1 if f > 0.5 else 0)) / _POW10_INT[digits]
-            if x < 0.0:
-                y = -y
+            m = int(p)  # p - f: p is positive
+            y = (m + 1 if f > 0.5 else m) / _POW10_INT[digits]
+            # (not memoised: these numbers decay from cycle to cycle and do not come back)
+            return -y if x < 0.0 else y
     if y is None:
         y = float(f"{x:.6g}")
     if x == x:
@@ -117,6 +115,7 @@ _PACK_FOUR = struct.Struct("<4d").pack
 
 _POW10 = tuple(float(10**k) for k in range(23))  # exact doubles
 _POW10_INT = tuple(10**k for k in range(330))  # the scales of the numbers below 1e-16, down to 5e-324
+_POW10_NEAREST = tuple(float(10**k) for k in range(309))  # the doubles nearest to them (exact up to 10**22)
 _FULLSTATE_MEMO: dict[float, float] = {}
 _FULLSTATE_MEMO_SIZE = 4096
 
