@@ -321,6 +321,7 @@ class Agent2dGoalie:
         self._prev_ball_vel: tuple[float, float] | None = None
         self._play_on = True
         self._catch_pending = False
+        self._effector = Effector()  # decide()'s, emptied for every decision
         # _view's last conversions of the ball (x, y, vx, vy) and of the goalie's (body, stamina, effort, recovery),
         # by the bytes of their server values: a resting ball and a goalie that does not turn repeat them
         self._ball_key: bytes | None = None
@@ -359,7 +360,8 @@ class Agent2dGoalie:
         else:
             table = build_intercept_table(view, None, None, False)  # the fast (and lazy) table
             table.complete = False
-            eff = Effector()
+            eff = self._effector
+            eff.command = None  # a fresh Effector's state
             decide(eff, view, table, self._last_catch_cycle, self._catch_command_cycle, self._free_kick)
             command = eff.command
             if command is not None and command.kind == "catch":
@@ -492,8 +494,13 @@ class Agent2dGoalie:
         )
         if attacker is not None:
             view._opp_raw = opp_raw
-        self._update_last_kicker(view, attacker is not None)
-        view.lk_not_ours = not self._last_kicker_ours
+        if self._last_kicker_ours or not self._play_on or self._last_body_kind == "tackle":
+            self._update_last_kicker(view, attacker is not None)
+            view.lk_not_ours = not self._last_kicker_ours
+        else:
+            # _update_last_kicker's usual cycle (the last kicker is theirs and stays so): it only records the
+            # velocity, and lk_not_ours stays True
+            self._prev_ball_vel = (wx, wy)
         if kick_opp and not view.self_kickable:
             view.wx = view.wy = 0.0  # BallObject::setOpponentControlEffect
         return view
