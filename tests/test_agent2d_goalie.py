@@ -213,6 +213,12 @@ def test_fullstate_value_is_the_six_digit_string_round_trip() -> None:
         rng.uniform(-1.0, 1.0, 1000) * 0.4 ** rng.integers(0, 60, 1000)
     )
     values += list(rng.integers(1, 2**24, 1000) / 2.0 ** rng.integers(0, 30, 1000))  # exact binary ties
+    # below 1e-16 (scaled in several steps, divided in integers): every decade down to the subnormals
+    values += list(rng.uniform(-1.0, 1.0, 3000) * 10.0 ** rng.integers(-323, -15, 3000).astype(float))
+    for e in range(-323, -16):
+        for base in (10.0**e, 9.999995 * 10.0**e, 1.234565 * 10.0**e):
+            values += [base, math.nextafter(base, math.inf), math.nextafter(base, -math.inf)]
+    values += [1e-323, -2.5e-323, 2.2250738585072014e-308, 2.225073858507201e-308]
     for x in values:
         x = float(x)
         want = struct.pack("<d", float(f"{x:.6g}"))

@@ -470,19 +470,11 @@ def low_level_feature_list(
     else:  # the player stands on a landmark
         features += _landmark_features(x, y, body_cos, body_sin, max_dist)
 
-    # Out-of-bounds proximities: 1 - 2 * clip(d / dmax, 0, 1).
-    for dist, dist_max in (
-        (x, out_of_bounds_x_max),
-        (PITCH_HALF_LENGTH - x, out_of_bounds_x_max),
-        (PITCH_HALF_WIDTH + y, out_of_bounds_y_max),
-        (PITCH_HALF_WIDTH - y, out_of_bounds_y_max),
-    ):
-        if dist <= 0.0:
-            features.append(1.0)
-        elif dist >= dist_max:
-            features.append(-1.0)
-        else:
-            features.append(1.0 - 2.0 * dist / dist_max)
+    # Out-of-bounds proximities: 1 - 2 * clip(d / dmax, 0, 1) of the distances to the four lines.
+    left = x
+    right = PITCH_HALF_LENGTH - x
+    top = PITCH_HALF_WIDTH + y
+    bottom = PITCH_HALF_WIDTH - y
 
     dx = ball.x - x
     dy = ball.y - y
@@ -502,6 +494,19 @@ def low_level_feature_list(
     else:
         ball_vel_cos, ball_vel_sin = 1.0, 0.0
     features += (
+        # (the out-of-bounds block written out: a loop over the four lines costs about twice as much)
+        1.0
+        if left <= 0.0
+        else (-1.0 if left >= out_of_bounds_x_max else 1.0 - 2.0 * left / out_of_bounds_x_max),
+        1.0
+        if right <= 0.0
+        else (-1.0 if right >= out_of_bounds_x_max else 1.0 - 2.0 * right / out_of_bounds_x_max),
+        1.0
+        if top <= 0.0
+        else (-1.0 if top >= out_of_bounds_y_max else 1.0 - 2.0 * top / out_of_bounds_y_max),
+        1.0
+        if bottom <= 0.0
+        else (-1.0 if bottom >= out_of_bounds_y_max else 1.0 - 2.0 * bottom / out_of_bounds_y_max),
         1.0,  # ball position valid
         heading_sin * body_cos - heading_cos * body_sin,
         heading_cos * body_cos + heading_sin * body_sin,
@@ -512,6 +517,14 @@ def low_level_feature_list(
         ball_vel_cos,
     )
 
+    if not teammates and len(opponents) == 1:
+        # 1v1 (the goalie tasks): the one slot without the sorting loop (the same numbers)
+        other = opponents[0]
+        if other.x > 0.0:  # HFO lists a player only inside the HFO half (x > 0)
+            _append_player_block(features, other, x, y, body_cos, body_sin, max_dist)
+        else:
+            features += _EMPTY_PLAYER_BLOCK
+        return features
     for group in (teammates, opponents):
         if not group:
             continue
@@ -524,6 +537,9 @@ def low_level_feature_list(
                 listed += 1
         features += [0.0] * (FEATURES_PER_PLAYER * (len(group) - listed))
     return features
+
+
+_EMPTY_PLAYER_BLOCK = (0.0,) * FEATURES_PER_PLAYER  # the slot of a player not listed
 
 
 def hfo_feature_list(

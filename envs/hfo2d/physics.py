@@ -423,6 +423,7 @@ class World:
             (sp.ball_size, sp.ball_decay, sp.ball_rand, sp.ball_speed_max, sp.ball_accel_max),
             (bp_limit * bp_limit, pp_limit * pp_limit),
             (sp.recover_dec_thr * smax, sp.effort_dec_thr * smax, sp.effort_inc_thr * smax),
+            sp.kickable_area - CLIENT_KICKABLE_BUFFER,  # client_kick's reach
         )
         return self._derived
 
@@ -518,6 +519,8 @@ class World:
         return math.hypot(self.ball.x - p.x, self.ball.y - p.y)
 
     # --- server-side commands (rcssserver Player::dash / turn / kick, hfo_reference §4.2-4.4) ------
+    # The clamps of the commands are min(hi, max(lo, v)) written out as the builtins decide them (max keeps lo
+    # unless v > lo, min keeps hi unless the value < hi; NaN gives lo): a builtin call costs more than the rest.
     def _dash_dir_rate(self, dir_deg: float) -> float:
         p = self.params
         a = abs(dir_deg)
@@ -525,11 +528,14 @@ class World:
             rate = p.back_dash_rate - (p.back_dash_rate - p.side_dash_rate) * (1.0 - (a - 90.0) / 90.0)
         else:
             rate = p.side_dash_rate + (1.0 - p.side_dash_rate) * (1.0 - a / 90.0)
-        return min(1.0, max(0.0, rate))
+        rate = rate if rate > 0.0 else 0.0
+        return rate if rate < 1.0 else 1.0
 
     def _discretize_dash_dir(self, direction_deg: float) -> float:
         p = self.params
-        d = min(p.max_dash_angle, max(p.min_dash_angle, float(direction_deg)))
+        d = float(direction_deg)
+        d = d if d > p.min_dash_angle else p.min_dash_angle
+        d = d if d < p.max_dash_angle else p.max_dash_angle
         if p.dash_angle_step > 1.0e-10:
             # round() is round-half-to-even like C's rint() in the default rounding mode
             d = p.dash_angle_step * round(d / p.dash_angle_step)
@@ -543,7 +549,9 @@ class World:
         player's acceleration.
         """
         sp = self.params
-        power = min(sp.maxpower, max(sp.minpower, float(power)))
+        power = float(power)
+        power = power if power > sp.minpower else sp.minpower
+        power = power if power < sp.maxpower else sp.maxpower
         d = self._discretize_dash_dir(direction_deg)
         self._push_dash(p, power, d, self._dash_dir_rate(d))
 
@@ -554,8 +562,10 @@ class World:
         sp = self.params
         back = power < 0.0
         need = -2.0 * power if back else power
-        need = min(need, p.stamina + sp.extra_stamina)
-        p.stamina = max(0.0, p.stamina - need)
+        available = p.stamina + sp.extra_stamina
+        need = available if available < need else need  # min(need, available)
+        left = p.stamina - need
+        p.stamina = left if left > 0.0 else 0.0  # max(0.0, left)
         power = -0.5 * need if back else need
         edp = abs(p.effort * power * dir_rate * sp.dash_power_rate)
         if back:
@@ -572,12 +582,22 @@ class World:
         if p.tackle_cycles > 0:
             return
         sp = self.params
-        moment = min(sp.max_moment, max(sp.min_moment, float(moment_deg)))
+        moment = float(moment_deg)
+        moment = moment if moment > sp.min_moment else sp.min_moment
+        moment = moment if moment < sp.max_moment else sp.max_moment
         factor = 1.0
         if self.noise and sp.player_rand > 0.0:
-            factor += sp.player_rand * (2.0 * self._uniform() - 1.0)
+            # self._uniform() and normalize_deg below written out: a turn is issued almost every cycle
+            i = self._next_uniform
+            if i >= len(self._uniforms):
+                self._uniforms = self._rng.random(_RANDOM_BLOCK).tolist()
+                i = 0
+            self._next_uniform = i + 1
+            factor += sp.player_rand * (2.0 * self._uniforms[i] - 1.0)
         speed = math.hypot(p.vx, p.vy)
-        p.body_deg = normalize_deg(p.body_deg + factor * moment / (1.0 + sp.inertia_moment * speed))
+        p.body_deg = (
+            p.body_deg + factor * moment / (1.0 + sp.inertia_moment * speed) + 180.0
+        ) % 360.0 - 180.0
 
     def kick(self, p: PlayerState, power: float, direction_deg: float) -> bool:
         """Server kick; returns False (no effect) unless the ball is within kickable_area (1.085 m) and the
@@ -623,7 +643,8 @@ class World:
         sp = self.params
         speed = math.hypot(p.vx, p.vy)
         moment = float(desired_turn_deg) * (1.0 + sp.inertia_moment * speed)
-        self.turn(p, min(sp.max_moment, max(sp.min_moment, moment)))
+        moment = moment if moment > sp.min_moment else sp.min_moment
+        self.turn(p, moment if moment < sp.max_moment else sp.max_moment)
 
     def client_dash(
         self, p: PlayerState, power: float, direction_deg: float = 0.0, limit_speed: bool = True
@@ -635,11 +656,17 @@ class World:
         acceleration is shrunk so that |v + a| <= player_speed_max.
         """
         sp = self.params
-        power = min(sp.maxpower, max(sp.minpower, float(power)))
+        power = float(power)
+        power = power if power > sp.minpower else sp.minpower
+        power = power if power < sp.maxpower else sp.maxpower
         d = self._discretize_dash_dir(direction_deg)
         available = p.stamina + sp.extra_stamina
         # librcsc conserveDashPower: a backward dash costs twice its power
-        power = min(power, available) if power >= 0.0 else max(power, -0.5 * available)
+        if power >= 0.0:
+            power = available if available < power else power  # min(power, available)
+        else:
+            half = -0.5 * available
+            power = half if half > power else power  # max(power, half)
         dir_rate = self._dash_dir_rate(d)
         if limit_speed and power != 0.0:
             rate = dir_rate * p.effort * sp.dash_power_rate
@@ -663,7 +690,11 @@ class World:
         """HFO KICK as librcsc sends it: power clamped to [0, 100]; refused (False, no effect) when the ball
         is farther than kickable_area - 0.055 (= 1.03 m)."""
         sp = self.params
-        if self.ball_distance(p) > sp.kickable_area - CLIENT_KICKABLE_BUFFER:
+        derived = self._derived
+        if derived[0] is not sp:
+            derived = self._derive()
+        ball = self.ball
+        if math.hypot(ball.x - p.x, ball.y - p.y) > derived[5]:  # self.ball_distance(p), client's kickable
             return False
         power = min(sp.maxpower, max(0.0, float(power)))
         return self.kick(p, power, normalize_deg(float(direction_deg)))
@@ -877,10 +908,40 @@ class World:
                     obj.collided_ball = obj.collided_ball or with_ball
                     obj.collided_player = obj.collided_player or with_player
             self._catch_contacts = []
-        self._collisions()
-        update_stamina = self._update_stamina
+        # (_collisions' own first test, made here: most cycles nothing overlaps and the call is saved)
+        if _any_overlap(self.players, ball, *derived[3]):
+            self._collisions()
+        # Player::updateStamina for every player (hfo_reference §4.5), its parameters read once for all
+        sp = self.params
+        recover_dec_thr, effort_dec_thr, effort_inc_thr = derived[4]  # each thr * stamina_max
+        smax = sp.stamina_max
+        recover_min = sp.recover_min
+        effort_min = sp.effort_min
+        effort_init = sp.effort_init
+        stamina_inc_max = sp.stamina_inc_max
+        limited_capacity = sp.stamina_capacity >= 0.0
         for player in self.players:
-            update_stamina(player)
+            # thresholds on the current stamina, then recover
+            stamina = player.stamina
+            if stamina <= recover_dec_thr and player.recovery > recover_min:
+                player.recovery = max(recover_min, player.recovery - sp.recover_dec)
+            if stamina <= effort_dec_thr and player.effort > effort_min:
+                player.effort = max(effort_min, player.effort - sp.effort_dec)
+            if stamina >= effort_inc_thr and player.effort < effort_init:
+                player.effort = min(effort_init, player.effort + sp.effort_inc)
+            # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
+            inc = stamina_inc_max * player.recovery
+            room = smax - stamina
+            if room < inc:
+                inc = room
+            if limited_capacity:
+                if player.capacity >= inc:
+                    player.capacity -= inc
+                else:
+                    inc = player.capacity
+                    player.capacity = 0.0
+            stamina += inc if inc > 0.0 else 0.0
+            player.stamina = stamina if stamina < smax else smax
             if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
                 player.catch_ban -= 1
         self.cycle += 1
@@ -1118,35 +1179,6 @@ class World:
                 t[1] += ty
                 t[2] += 1.0
 
-    def _update_stamina(self, p: PlayerState) -> None:
-        """``Player::updateStamina`` (hfo_reference §4.5): thresholds on the current stamina, then recover."""
-        sp = self.params
-        derived = self._derived
-        if derived[0] is not sp:
-            derived = self._derive()
-        recover_dec_thr, effort_dec_thr, effort_inc_thr = derived[4]  # each thr * stamina_max
-        stamina = p.stamina
-        smax = sp.stamina_max
-        if stamina <= recover_dec_thr and p.recovery > sp.recover_min:
-            p.recovery = max(sp.recover_min, p.recovery - sp.recover_dec)
-        if stamina <= effort_dec_thr and p.effort > sp.effort_min:
-            p.effort = max(sp.effort_min, p.effort - sp.effort_dec)
-        if stamina >= effort_inc_thr and p.effort < sp.effort_init:
-            p.effort = min(sp.effort_init, p.effort + sp.effort_inc)
-        # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
-        inc = sp.stamina_inc_max * p.recovery
-        room = smax - stamina
-        if room < inc:
-            inc = room
-        if sp.stamina_capacity >= 0.0:
-            if p.capacity >= inc:
-                p.capacity -= inc
-            else:
-                inc = p.capacity
-                p.capacity = 0.0
-        stamina += inc if inc > 0.0 else 0.0
-        p.stamina = stamina if stamina < smax else smax
-
 
 def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float) -> bool:
     """Whether any ball-player pair is closer than ``sqrt(bp_limit2)`` or any player pair than ``sqrt(pp_limit2)``
@@ -1159,6 +1191,11 @@ def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, 
         if dx * dx + dy * dy < bp_limit2:
             return True
     n = len(players)
+    if n == 2:  # HFO 1v1: the one pair without the loops
+        a, b = players
+        dx = b.x - a.x
+        dy = b.y - a.y
+        return dx * dx + dy * dy < pp_limit2
     for i in range(n - 1):
         a = players[i]
         for j in range(i + 1, n):
@@ -1249,6 +1286,8 @@ class HFOReferee:
         "cycles",
         "prev_ball_x",
         "prev_ball_y",
+        "_limit_params",
+        "_kickable_limit2",
     )
 
     def __init__(self, params: ServerParams, untouched_time: int = 100, trial_time: int = 0) -> None:
@@ -1262,6 +1301,8 @@ class HFOReferee:
         self.cycles = 0
         self.prev_ball_x = 0.0
         self.prev_ball_y = 0.0
+        self._limit_params: ServerParams | None = None  # the params _kickable_limit2 was computed from
+        self._kickable_limit2 = 0.0
 
     def reset(self, world: World) -> None:
         """``HFORef::resetField``'s bookkeeping: counters zeroed, no holder, previous ball = the placed ball."""
@@ -1282,11 +1323,14 @@ class HFOReferee:
         if world.play_on:
             self.cycles += 1
             # (crosses_right_goal_line is False while |x| <= its line_x; that test alone first, as it fails most cycles)
+            prev_x = self.prev_ball_x
+            prev_y = self.prev_ball_y
             if abs(bx) > PITCH_HALF_LENGTH + self.params.ball_size and crosses_right_goal_line(
-                self.prev_ball_x, self.prev_ball_y, bx, by, self.params
+                prev_x, prev_y, bx, by, self.params
             ):
                 status = HFO_GOAL
-            elif not in_hfo_area(self.prev_ball_x, self.prev_ball_y):
+            # in_hfo_area(prev_x, prev_y), written out
+            elif not (prev_x >= 0.0 and prev_x <= PITCH_HALF_LENGTH and abs(prev_y) <= PITCH_HALF_WIDTH):
                 status = HFO_OUT_OF_BOUNDS
             elif self.take_time >= HFO_TURNOVER_TIME:
                 status = HFO_CAPTURED_BY_DEFENSE
@@ -1298,8 +1342,12 @@ class HFOReferee:
                 self.untouched += 1
                 offense_possession = False
                 # ServerParam::kickableArea(): player_size + kickable_margin + ball_size, squared by std::pow
-                area = self.params.kickable_area
-                limit2 = area * area
+                # (remembered per params object: the property costs more than the rest of the test)
+                if self._limit_params is not self.params:
+                    area = self.params.kickable_area
+                    self._kickable_limit2 = area * area
+                    self._limit_params = self.params
+                limit2 = self._kickable_limit2
                 for p in world.players:
                     dx = p.x - bx
                     dy = p.y - by

@@ -157,25 +157,6 @@ def ball_to_gap_distance(features: Sequence[float]) -> float:
     return 2.0 * math.hypot(ball_x - target_x, ball_y - target_y) / MAX_HFO_DIST
 
 
-def _kick_bonus_due(kickable: float, previous_kickable: float, already_paid: bool) -> bool:
-    """DQNHFO's kick bonus: the kickable feature jumped from -1 to +1 and the episode has not been paid it yet."""
-    return not already_paid and kickable - previous_kickable >= KICKABLE_JUMP
-
-
-def _reward_and_terms(
-    move_to_ball: float, kick_bonus: float, ball_to_goal: float, status: str
-) -> tuple[float, dict[str, float]]:
-    """A step's reward and its REWARD_TERM_NAMES shares, the goal's paid when ``status`` is GOAL."""
-    goal = GOAL_REWARD if status == STATUS_GOAL else 0.0
-    terms = {
-        "move_to_ball": move_to_ball,
-        "kick_bonus": kick_bonus,
-        "ball_to_goal": ball_to_goal,
-        "goal": goal,
-    }
-    return move_to_ball + kick_bonus + ball_to_goal + goal, terms
-
-
 class ShapedReward:
     """Hausknecht & Stone's shaped reward, DQNHFO's 2016 computation (see the module docstring)."""
 
@@ -225,7 +206,8 @@ class ShapedReward:
         if not self._first_step and status == STATUS_IN_GAME:
             move_to_ball = ball_proximity - self._previous_ball_proximity
             ball_to_goal_term = BALL_TO_GOAL_WEIGHT * (self._previous_ball_to_goal - ball_to_goal)
-            if _kick_bonus_due(kickable, self._previous_kickable, self._kick_bonus_paid):
+            # DQNHFO's kick bonus: the kickable feature jumped from -1 to +1 and the episode has not been paid it
+            if not self._kick_bonus_paid and kickable - self._previous_kickable >= KICKABLE_JUMP:
                 kick_bonus = KICK_BONUS
                 self._kick_bonus_paid = True
         if self.refund_lost_progress:
@@ -242,7 +224,15 @@ class ShapedReward:
         self._previous_ball_proximity = ball_proximity
         self._previous_kickable = kickable
         self._previous_ball_to_goal = ball_to_goal
-        return _reward_and_terms(move_to_ball, kick_bonus, ball_to_goal_term, status)
+        # the reward and its REWARD_TERM_NAMES shares, the goal's paid when ``status`` is GOAL
+        goal = GOAL_REWARD if status == STATUS_GOAL else 0.0
+        terms = {
+            "move_to_ball": move_to_ball,
+            "kick_bonus": kick_bonus,
+            "ball_to_goal": ball_to_goal_term,
+            "goal": goal,
+        }
+        return move_to_ball + kick_bonus + ball_to_goal_term + goal, terms
 
 
 class GapShapedReward(ShapedReward):

@@ -157,7 +157,14 @@ def client_turn_moment(view: GoalieView, desired: float) -> float:
 
     moment = norm(desired) * (1 + inertia_moment * |V|), clamped to [-180, 180], rounded to 0.001.
     """
-    m = norm_deg(desired) * (1.0 + math.sqrt(view.vx * view.vx + view.vy * view.vy) * INERTIA_MOMENT)
+    # norm_deg(desired), written out: the goalie turns almost every cycle
+    if desired < -360.0 or desired > 360.0:
+        desired = math.fmod(desired, 360.0)
+    if desired < -180.0:
+        desired += 360.0
+    if desired > 180.0:
+        desired -= 360.0
+    m = desired * (1.0 + math.sqrt(view.vx * view.vx + view.vy * view.vy) * INERTIA_MOMENT)
     if m > MAX_MOMENT:
         m = MAX_MOMENT
     if m < -MAX_MOMENT:

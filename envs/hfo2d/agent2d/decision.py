@@ -68,6 +68,10 @@ _NEAR_GOAL_X = -PITCH_HALF_LENGTH + 8.0  # is_ball_chase_situation A, getTargetP
 _NEAR_GOAL_Y = GOAL_HALF_WIDTH + 3.0
 _SIDE_Y = GOAL_HALF_WIDTH + 2.0  # getTargetPoint
 _DEEP_CROSS_Y = GOAL_HALF_WIDTH - 0.8  # doPrepareDeepCross
+_SHOOT_MAX_DIST = 30.0  # is_ball_shoot_moving: no shot farther than 30 m from the goalie
+# Bhv_BasicTackle (tackle.basic_tackle) sees no tackle chance beyond 2.5 m (its squared-distance test); a ball
+# measured farther than this is surely beyond it
+_TACKLE_SURE_FAR = 2.6
 _DANGER_X = -PITCH_HALF_LENGTH + 11.0  # doMoveForDangerousState
 _DANGER_Y = GOAL_HALF_WIDTH + 1.0
 _ANCHOR_X = -PITCH_HALF_LENGTH - LINE_ANCHOR_X_BACK  # getTargetPoint's line anchor
@@ -143,13 +147,14 @@ def _opp_ball_dist(v: GoalieView) -> float:
 # ---------------------------------------------------------------------------------------------------------------
 # RoleGoalie::execute (role_goalie.cpp)
 # ---------------------------------------------------------------------------------------------------------------
-def can_catch(v: GoalieView, last_catch_cycle: int) -> bool:
-    """The catch test: ban over (client side), ball closer than 1.25 m, ball inside the catch rectangle."""
+def can_catch(v: GoalieView, last_catch_cycle: int, d_b: float | None = None) -> bool:
+    """The catch test: ban over (client side), ball closer than 1.25 m, ball inside the catch rectangle (``d_b``:
+    the ball's distance when the caller has it)."""
     if not v.play_on:
         return False
     if not v.cycle > last_catch_cycle + CATCH_BAN_CYCLE:
         return False
-    if not v.ball_dist < CATCH_DIST:
+    if not (v.ball_dist if d_b is None else d_b) < CATCH_DIST:
         return False
     return (
         -PITCH_HALF_LENGTH <= v.bx <= CATCH_RECT_MAX_X
@@ -176,17 +181,19 @@ def decide(
         else:
             basic_move(eff, v, table)
         return
-    if can_catch(v, last_catch_cycle):
+    d_b = math.hypot(v.bx - v.px, v.by - v.py)  # v.ball_dist, read by the rules below
+    # (can_catch's distance test made first: the ball is rarely that close, and the call is saved)
+    if d_b < CATCH_DIST and can_catch(v, last_catch_cycle, d_b):
         eff.catch(norm_deg(angle_of(v.bx - v.px, v.by - v.py) - v.body + CATCH_DIR_OFFSET))
         return
     if v.self_kickable:
         # Body_ClearBall: unreachable in a live HFO episode (the referee ends it at 1.085 m first).
         eff.turn(0.0)
         return
-    if is_ball_chase_situation(v, table):
+    if is_ball_chase_situation(v, table, d_b):
         chase_ball(eff, v, table)
     else:
-        basic_move(eff, v, table)
+        basic_move(eff, v, table, d_b)
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -274,7 +281,7 @@ def goalie_free_kick(eff: Effector, v: GoalieView, time_diff: int, state: FreeKi
 def is_ball_shoot_moving(v: GoalieView, d_b: float | None = None) -> bool:
     """Is the ball a shot rolling into the goal? (Bhv_GoalieChaseBall::is_ball_shoot_moving; ``d_b``: the
     ball's distance when the caller has it)."""
-    if (v.ball_dist if d_b is None else d_b) > 30.0:
+    if (v.ball_dist if d_b is None else d_b) > _SHOOT_MAX_DIST:
         return False
     if v.bx > -34.5:
         return False
@@ -296,8 +303,9 @@ def is_ball_shoot_moving(v: GoalieView, d_b: float | None = None) -> bool:
     return False
 
 
-def is_ball_chase_situation(v: GoalieView, table: InterceptTable) -> bool:
-    """Bhv_GoalieChaseBall::is_ball_chase_situation (PlayOn only)."""
+def is_ball_chase_situation(v: GoalieView, table: InterceptTable, d_b: float | None = None) -> bool:
+    """Bhv_GoalieChaseBall::is_ball_chase_situation (PlayOn only; ``d_b``: the ball's distance when the caller
+    has it)."""
     if not v.play_on:
         return False
     # (the table's reach cycles are read only where a rule needs them: a full=False table computes them then)
@@ -305,7 +313,8 @@ def is_ball_chase_situation(v: GoalieView, table: InterceptTable) -> bool:
     wy = v.wy
     next_x = v.bx + wx
     next_y = v.by + wy
-    d_b = v.ball_dist
+    if d_b is None:
+        d_b = v.ball_dist
     # A. the danger area in front of the goal
     if next_x < _NEAR_GOAL_X and abs(next_y) < _NEAR_GOAL_Y:
         self_min = table.self_min
@@ -313,8 +322,8 @@ def is_ball_chase_situation(v: GoalieView, table: InterceptTable) -> bool:
         if d_b < 3.0 and self_min <= 3:
             return True
         return not (self_min > opp_min + 3 and opp_min < 7)
-    # B. a shot
-    if is_ball_shoot_moving(v, d_b) and table.self_min < table.opp_min:
+    # B. a shot (is_ball_shoot_moving's distance test made first, saving the call for a far ball)
+    if d_b <= _SHOOT_MAX_DIST and is_ball_shoot_moving(v, d_b) and table.self_min < table.opp_min:
         return True
     # C. the intercept point must lie inside the penalty area shrunk by pen_thr: ballAt(self_min), which for a
     # resting ball is B + W (+-0) whatever the cycle
@@ -325,7 +334,10 @@ def is_ball_chase_situation(v: GoalieView, table: InterceptTable) -> bool:
         f = _BALL_FACTORS[table.self_min]  # ball_at(B, W, self_min)
         ix = v.bx + wx * f
         iy = v.by + wy * f
-    pen_thr = max(1.0, d_b * 0.1 + 1.0)
+    # max(1.0, t) and the like written out as the builtin decides (its call costs more than the rule)
+    pen_thr = d_b * 0.1 + 1.0
+    if not pen_thr > 1.0:
+        pen_thr = 1.0
     if abs(iy) > PENALTY_AREA_HALF_WIDTH - pen_thr or ix > PENALTY_AREA_X - pen_thr:
         return False
     self_min = table.self_min
@@ -451,16 +463,22 @@ def target_point(v: GoalieView, table: InterceptTable) -> tuple[float, float]:
             qx = bx + wx
             qy = by + wy
         else:
-            f = _BALL_FACTORS[min(BALL_PRED_CYCLE, table.opp_min)]
+            opp_min = table.opp_min
+            f = _BALL_FACTORS[opp_min if opp_min < BALL_PRED_CYCLE else BALL_PRED_CYCLE]
             qx = bx + wx * f
             qy = by + wy * f
-    qx = max(qx, _ANCHOR_X_MIN)
+    # max(qx, _ANCHOR_X_MIN) and the clamp of move_y below written out as the builtins decide
+    if qx < _ANCHOR_X_MIN:
+        qx = _ANCHOR_X_MIN
     # Line.from_points(Q, (anchor_x, 0)).get_y(BASE_MOVE_X), inlined
     la = -(0.0 - qy)
     lb = _ANCHOR_X - qx
     # (get_y's vertical-line case, |b| < 1e-10, is unreachable: qx > anchor_x)
     move_y = 0.0 if abs(lb) < 1.0e-10 else -(la * BASE_MOVE_X + (-la * qx - lb * qy)) / lb
-    move_y = min(max(move_y, _MOVE_Y_MIN), _MOVE_Y_MAX)
+    if move_y < _MOVE_Y_MIN:
+        move_y = _MOVE_Y_MIN
+    if move_y > _MOVE_Y_MAX:
+        move_y = _MOVE_Y_MAX
     return BASE_MOVE_X, move_y
 
 
@@ -497,17 +515,22 @@ def _go_to_point_look_ball(
         body_turn_to_angle(eff, v, angle_of(v.bx - v.px, v.by - v.py))
 
 
-def basic_move(eff: Effector, v: GoalieView, table: InterceptTable) -> None:
-    """Bhv_GoalieBasicMove::execute: nine steps, the first that acts ends the cycle."""
+def basic_move(eff: Effector, v: GoalieView, table: InterceptTable, d_b: float | None = None) -> None:
+    """Bhv_GoalieBasicMove::execute: nine steps, the first that acts ends the cycle (``d_b``: the ball's
+    distance when the caller has it)."""
     mx, my = target_point(v, table)
-    if basic_tackle(eff, v, table, 0.8, 90.0):
-        return
     px = v.px
     py = v.py
     bx = v.bx
     by = v.by
-    d_b = math.hypot(bx - px, by - py)  # v.ball_dist
-    thr = max(0.5, d_b * 0.1)
+    if d_b is None:
+        d_b = math.hypot(bx - px, by - py)  # v.ball_dist
+    # (a ball beyond _TACKLE_SURE_FAR fails basic_tackle's own first test: the call is saved)
+    if d_b < _TACKLE_SURE_FAR and basic_tackle(eff, v, table, 0.8, 90.0):
+        return
+    thr = d_b * 0.1  # max(0.5, d_b * 0.1) as the builtin decides
+    if not thr > 0.5:
+        thr = 0.5
     fx = px + v.vx / _ONE_MINUS_PD
     fy = py + v.vy / _ONE_MINUS_PD
     # angle(B - G0), read by doPrepareDeepCross and doCorrectBodyDir
@@ -580,13 +603,17 @@ def _go_to_move_point(
 ) -> bool:
     """Bhv_GoalieBasicMove::doGoToMovePoint: correct y, sideways dashes when standing sideways (``d_b``:
     ``v.ball_dist`` when the caller has it)."""
-    thr = max(0.5, (v.ball_dist if d_b is None else d_b) * 0.08)
+    thr = (v.ball_dist if d_b is None else d_b) * 0.08  # max(0.5, ...) as the builtin decides
+    if not thr > 0.5:
+        thr = 0.5
     y_diff = abs(my - v.py)
     if y_diff < thr:
         return False
     power = basic_dash_power(v, table, mx)
     if abs(abs(v.body) - 90.0) < 7.0:
-        power = min(power, y_diff / (DASH_RATE * v.effort))
+        limit = y_diff / (DASH_RATE * v.effort)
+        if limit < power:  # min(power, limit)
+            power = limit
         if (my > v.py and v.body < 0.0) or (my <= v.py and v.body > 0.0):
             power = -power
         eff.dash(min(max(power, -100.0), 100.0))  # ServerParam::normalizeDashPower

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import struct
 
 import numpy as np
 
@@ -61,7 +62,13 @@ def fullstate_value(x: float) -> float:
       and no carry to the next one can happen; if moreover p's fraction is more than 1e-6 away from one half,
       P rounds (half to even or not) to the same whole number m as p does. The printed number is m / s, and one
       IEEE division of the exact m by the exact s gives the double nearest to it, as the parser does. Anything
-      else (a decade picked wrong at its boundary, a near tie) takes the string route.
+      else (a decade picked wrong at its boundary, a near tie) takes the string route;
+    * for 0 < |x| < 1e-16 (the velocity of a goalie standing still decays by 0.4 a cycle through these) the same
+      test, with s = 10**(5 - e) > 10**22 no longer a double: p is |x| times the double nearest to s (or, past
+      10**308, times 1e22 and the double nearest to s / 10**22), at most three roundings of relative error
+      2**-53 each, so p still lies within 2**-30 of P, far inside both margins. The printed number
+      m / 10**(5 - e) is then divided in Python integers, which CPython rounds correctly (to the nearest double,
+      subnormals included), as the parser does.
     """
     y = _FULLSTATE_MEMO.get(x)
     if y is not None:
@@ -83,6 +90,16 @@ def fullstate_value(x: float) -> float:
             y = ((p - f) + 1.0 if f > 0.5 else p - f) / s
             if x < 0.0:
                 y = -y
+    elif a < 1.0e-16:  # 5e-324 <= a: x is neither zero nor NaN here
+        digits = 5 - math.floor(math.log10(a))  # 22 < digits <= 329
+        # (10.0**308 is the largest power of ten below the double range)
+        p = a * _POW10_NEAREST[digits] if digits <= 308 else a * 1.0e22 * _POW10_NEAREST[digits - 22]
+        f = p % 1.0
+        if 100000.001 <= p < 999999.0 and not 0.499999 < f < 0.500001:
+            m = int(p)  # p - f: p is positive
+            y = (m + 1 if f > 0.5 else m) / _POW10_INT[digits]
+            # (not memoised: these numbers decay from cycle to cycle and do not come back)
+            return -y if x < 0.0 else y
     if y is None:
         y = float(f"{x:.6g}")
     if x == x:
@@ -92,7 +109,13 @@ def fullstate_value(x: float) -> float:
     return y
 
 
+# The bytes of four doubles: Agent2dGoalie._view's key for a group of numbers that repeats from cycle to cycle
+# (bitwise, so that -0.0 and 0.0 differ)
+_PACK_FOUR = struct.Struct("<4d").pack
+
 _POW10 = tuple(float(10**k) for k in range(23))  # exact doubles
+_POW10_INT = tuple(10**k for k in range(330))  # the scales of the numbers below 1e-16, down to 5e-324
+_POW10_NEAREST = tuple(float(10**k) for k in range(309))  # the doubles nearest to them (exact up to 10**22)
 _FULLSTATE_MEMO: dict[float, float] = {}
 _FULLSTATE_MEMO_SIZE = 4096
 
@@ -298,6 +321,13 @@ class Agent2dGoalie:
         self._prev_ball_vel: tuple[float, float] | None = None
         self._play_on = True
         self._catch_pending = False
+        self._effector = Effector()  # decide()'s, emptied for every decision
+        # _view's last conversions of the ball (x, y, vx, vy) and of the goalie's (body, stamina, effort, recovery),
+        # by the bytes of their server values: a resting ball and a goalie that does not turn repeat them
+        self._ball_key: bytes | None = None
+        self._ball_numbers: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
+        self._body_key: bytes | None = None
+        self._body_numbers: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
 
     def reset(self) -> None:
         """A new episode: the referee's before_kick_off / play_on messages put the world model back in PlayOn."""
@@ -323,14 +353,15 @@ class Agent2dGoalie:
         view = self._view(world, keeper)
         self.last_view = view
         command: Command | None = None
-        if getattr(keeper, "tackle_cycles", 0) > 0:
+        if keeper.tackle_cycles > 0:
             command = None  # frozen by its own tackle: SamplePlayer sends no body command
         elif self.skill < 1.0 and self.rng.random() >= self.skill:
             command = None  # the weakening: hesitate this cycle
         else:
             table = build_intercept_table(view, None, None, False)  # the fast (and lazy) table
             table.complete = False
-            eff = Effector()
+            eff = self._effector
+            eff.command = None  # a fresh Effector's state
             decide(eff, view, table, self._last_catch_cycle, self._catch_command_cycle, self._free_kick)
             command = eff.command
             if command is not None and command.kind == "catch":
@@ -372,7 +403,24 @@ class Agent2dGoalie:
         ball = world.ball
         fs = fullstate_value
         px, py, vx, vy = -fs(keeper.x), -fs(keeper.y), -fs(keeper.vx), -fs(keeper.vy)
-        bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+        # (the same numbers as last cycle for the same server values: fullstate_value is a function of the bits)
+        key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
+        if key == self._ball_key:
+            bx, by, wx, wy = self._ball_numbers
+        else:
+            bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+            self._ball_key = key
+            self._ball_numbers = (bx, by, wx, wy)
+        key = _PACK_FOUR(keeper.body_deg, keeper.stamina, keeper.effort, keeper.recovery)
+        if key == self._body_key:
+            body, stamina, effort, recovery = self._body_numbers
+        else:
+            body = norm_deg(fs(keeper.body_deg) + 180.0)
+            stamina = fs(keeper.stamina)
+            effort = fs(keeper.effort)
+            recovery = fs(keeper.recovery)
+            self._body_key = key
+            self._body_numbers = (body, stamina, effort, recovery)
         d_b = math.hypot(bx - px, by - py)
         attacker = None
         side = keeper.side
@@ -388,7 +436,7 @@ class Agent2dGoalie:
             # kickable test needs its position unless the raw position is surely too far from the ball
             ox = oy = ux = uy = obody = None
             opp_raw = (attacker.x, attacker.y, attacker.vx, attacker.vy, attacker.body_deg)
-            frozen = getattr(attacker, "tackle_cycles", 0)
+            frozen = attacker.tackle_cycles
             if frozen <= 0:
                 rox = -opp_raw[0]
                 roy = -opp_raw[1]
@@ -420,10 +468,10 @@ class Agent2dGoalie:
             py,
             vx,
             vy,
-            norm_deg(fs(keeper.body_deg) + 180.0),
-            fs(keeper.stamina),
-            fs(keeper.effort),
-            fs(keeper.recovery),
+            body,
+            stamina,
+            effort,
+            recovery,
             bx,
             by,
             wx,
@@ -446,8 +494,13 @@ class Agent2dGoalie:
         )
         if attacker is not None:
             view._opp_raw = opp_raw
-        self._update_last_kicker(view, attacker is not None)
-        view.lk_not_ours = not self._last_kicker_ours
+        if self._last_kicker_ours or not self._play_on or self._last_body_kind == "tackle":
+            self._update_last_kicker(view, attacker is not None)
+            view.lk_not_ours = not self._last_kicker_ours
+        else:
+            # _update_last_kicker's usual cycle (the last kicker is theirs and stays so): it only records the
+            # velocity, and lk_not_ours stays True
+            self._prev_ball_vel = (wx, wy)
         if kick_opp and not view.self_kickable:
             view.wx = view.wy = 0.0  # BallObject::setOpponentControlEffect
         return view
