@@ -49,8 +49,14 @@ def test_the_env_plays_what_the_layout_decodes() -> None:
     rng = np.random.default_rng(0)
     for _ in range(200):
         flat = rng.choice([0.0, 0.5, 1.0], size=8).astype(np.float32)  # ties are common
-        kind, _, _ = env._parse_flat_action(flat)
-        assert kind == HFO_FLAT_ACTION_LAYOUT.decode(flat.tolist())[0]
+        kind, power, direction = env._parse_flat_action(flat)
+        expected, parameters = HFO_FLAT_ACTION_LAYOUT.decode(flat.tolist())
+        assert kind == expected
+        # the parameters the env plays are the chosen action's, on rcssserver's scales (power 0-100, -180-180 deg)
+        if kind == TURN:
+            assert (power, direction) == (0.0, -180.0 + 360.0 * parameters[0])
+        else:
+            assert (power, direction) == (100.0 * parameters[0], -180.0 + 360.0 * parameters[1])
 
 
 def test_the_hfo_envs_declare_the_layout_by_their_action_space() -> None:
