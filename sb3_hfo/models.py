@@ -36,10 +36,10 @@ from dataclasses import asdict
 from pathlib import Path
 from typing import Any
 
-from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, fail, module_missing, non_negative_int
+from sb3_hfo.cli.errors import OneLineArgumentParser, UserError, fail, module_missing, non_negative_int
 
-#: The committed models and their manifest (the repository's ``models/`` folder).
-MODELS_DIR = Path(__file__).resolve().parent.parent / "models"
+#: The committed models and their manifest (package data: ``sb3_hfo/pretrained/``).
+MODELS_DIR = Path(__file__).resolve().parent / "pretrained"
 MANIFEST_PATH = MODELS_DIR / "manifest.json"
 #: Upper bound on a committed model's size (bytes).
 MAX_MODEL_BYTES = 1_000_000
@@ -146,7 +146,7 @@ def load_model(path: str | Path, algo_class: type | None = None, **kwargs: Any) 
 
     ``kwargs`` go to ``load`` (e.g. ``device="cpu"``, ``buffer_size=1``, ``env=...``).
     """
-    from sb3_hfo.zoo import skill_ddpg_class
+    from sb3_hfo.cli.zoo import skill_ddpg_class
 
     if not Path(path).is_file() and looks_like_name(str(path)):
         entry = manifest_entry(str(path))
@@ -214,9 +214,9 @@ def playback_argv(args: Sequence[str], run_root: Path) -> list[str]:
     """
     from huggingface_sb3 import EnvironmentName
 
-    from sb3_hfo.cli_errors import option_value, option_values
-    from sb3_hfo.evaluate import REMOVED_ENV_KWARGS, resolve_model
-    from sb3_hfo.zoo import ALGO_NAME
+    from sb3_hfo.cli.errors import option_value, option_values
+    from sb3_hfo.cli.evaluate import REMOVED_ENV_KWARGS, resolve_model
+    from sb3_hfo.cli.zoo import ALGO_NAME
 
     args = list(args)
     if not args or args[0].startswith("-"):
@@ -296,7 +296,7 @@ def check_same_actions(
 
 
 def _real_hfo_entry(args: argparse.Namespace) -> dict[str, Any] | None:
-    from sb3_hfo.evaluate import wilson_interval
+    from sb3_hfo.cli.evaluate import wilson_interval
 
     status_counts: dict[str, int] | None = None
     if args.real_hfo_json:
@@ -377,8 +377,8 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     """Strip, check, evaluate and record one model (see the module docstring); returns its manifest entry."""
     import torch
 
-    from sb3_hfo.cli_errors import check_model_zip
-    from sb3_hfo.evaluate import (
+    from sb3_hfo.cli.errors import check_model_zip
+    from sb3_hfo.cli.evaluate import (
         REMOVED_ENV_KWARGS,
         check_env_id,
         evaluate,
@@ -464,7 +464,7 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
 
 
 def build_parser() -> argparse.ArgumentParser:
-    from sb3_hfo.evaluate import add_acting_argument
+    from sb3_hfo.cli.evaluate import add_acting_argument
 
     parser = OneLineArgumentParser(prog="python -m sb3_hfo.models", description=__doc__.split("\n")[0])
     commands = parser.add_subparsers(dest="command", required=True, parser_class=OneLineArgumentParser)

@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 import torch as th
 
-from sb3_hfo.evaluate import (
+from sb3_hfo.cli.evaluate import (
     episodes_parser,
     load_for_evaluation,
     model_n_skills,

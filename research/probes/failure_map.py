@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from hfo2d.physics import GOAL_HALF_WIDTH
-from sb3_hfo.evaluate import (
+from sb3_hfo.cli.evaluate import (
     GOAL_CENTRE,
     EpisodeRecord,
     add_acting_argument,

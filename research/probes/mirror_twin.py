@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from hfo2d.symmetry import start_offset_is_drawn, start_y_is_clamped
-from sb3_hfo.evaluate import (
+from sb3_hfo.cli.evaluate import (
     EpisodeRecord,
     episodes_parser,
     load_for_evaluation,

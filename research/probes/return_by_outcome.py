@@ -20,7 +20,7 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from hfo2d.reward import REWARD_NAMES
-from sb3_hfo.evaluate import (
+from sb3_hfo.cli.evaluate import (
     EpisodeRecord,
     episodes_parser,
     load_for_evaluation,

@@ -26,8 +26,8 @@ from stable_baselines3.common.noise import NormalActionNoise
 
 import hfo2d  # noqa: F401  (registers the envs)
 from sb3_hfo import SkillDDPG
+from sb3_hfo.cli.zoo import HFOEpisodeStatsCallback
 from sb3_hfo.models import load_model
-from sb3_hfo.zoo import HFOEpisodeStatsCallback
 
 
 class AnchoredSkillDDPG(SkillDDPG):

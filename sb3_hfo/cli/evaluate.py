@@ -43,7 +43,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, check_model_zip, non_negative_int
+from sb3_hfo.cli.errors import OneLineArgumentParser, UserError, check_model_zip, non_negative_int
 
 if TYPE_CHECKING:
     from sb3_hfo.skill_ddpg.acting import ActingSpec
@@ -313,7 +313,7 @@ def check_env_id(env_id: str) -> None:
     """Raise EvaluationError listing the registered HFO ids when ``env_id`` is not registered."""
     import gymnasium as gym
 
-    from sb3_hfo.zoo import hfo_env_ids
+    from sb3_hfo.cli.zoo import hfo_env_ids
 
     known = hfo_env_ids()
     if env_id not in gym.registry:
@@ -448,8 +448,8 @@ def load_for_evaluation(
     import gymnasium as gym
     import torch
 
+    from sb3_hfo.cli.zoo import skill_ddpg_class
     from sb3_hfo.models import load_model
-    from sb3_hfo.zoo import skill_ddpg_class
 
     # Small networks, one observation at a time: extra torch threads only contend for the cores.
     torch.set_num_threads(1)

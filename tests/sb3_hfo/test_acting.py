@@ -212,13 +212,11 @@ def test_a_committed_model_saved_with_the_single_options_loads_with_the_same_str
 ) -> None:
     import warnings
 
-    from sb3_hfo.models import load_model
+    from sb3_hfo.models import MODELS_DIR, load_model
 
     with warnings.catch_warnings():
         warnings.simplefilter("error", DeprecationWarning)  # a saved model's options are translated silently
-        model = load_model(
-            Path(__file__).parents[1] / "models" / "e6_keeper_v0.zip", device="cpu", buffer_size=1
-        )
+        model = load_model(MODELS_DIR / "e6_keeper_v0.zip", device="cpu", buffer_size=1)
     assert model.policy.acting == (CriticChoice(), KickMask())
     assert not set(model.policy_kwargs) & set(LEGACY_POLICY_OPTIONS)
     model.save(tmp_path / "again.zip")

@@ -17,7 +17,7 @@ from typing import Any
 
 import pytest
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 CONFIG = str(REPO / "zoo_configs" / "e1_empty_goal_fast.yml")
 ENV = "HFO/EmptyGoal-v0"
 
@@ -78,7 +78,7 @@ def _one_line_error(
     ],
 )
 def test_evaluate_bad_model(capsys: pytest.CaptureFixture[str], tmp_path: Path, kind: str) -> None:
-    from sb3_hfo.evaluate import main
+    from sb3_hfo.cli.evaluate import main
 
     models = _fake_models(tmp_path)
     model = tmp_path / "nope.zip" if kind == "missing" else models[kind]
@@ -98,7 +98,7 @@ def test_evaluate_bad_model(capsys: pytest.CaptureFixture[str], tmp_path: Path, 
     ],
 )
 def test_evaluate_bad_options(capsys: pytest.CaptureFixture[str], argv: list[str], expected: str) -> None:
-    from sb3_hfo.evaluate import main
+    from sb3_hfo.cli.evaluate import main
 
     assert expected in _one_line_error(capsys, main, ["m.zip", "--env", ENV, *argv])
 
@@ -107,7 +107,7 @@ def test_evaluate_bad_env_kwargs(
     capsys: pytest.CaptureFixture[str], tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """A model that loads, with env kwargs HFOEnv refuses: the env's own message, in one line."""
-    import sb3_hfo.evaluate as evaluate
+    import sb3_hfo.cli.evaluate as evaluate
 
     model = tmp_path / "model.zip"
     with zipfile.ZipFile(model, "w") as archive:
@@ -118,7 +118,7 @@ def test_evaluate_bad_env_kwargs(
         def load(*args: Any, **kwargs: Any) -> Any:
             return object()
 
-    monkeypatch.setattr("sb3_hfo.zoo.skill_ddpg_class", lambda: Loaded)
+    monkeypatch.setattr("sb3_hfo.cli.zoo.skill_ddpg_class", lambda: Loaded)
     for kwargs, expected in (
         ("noise:'no'", "noise must be True or False, got 'no'"),
         ("no_such_kwarg:1", "unexpected keyword argument 'no_such_kwarg'"),
@@ -133,7 +133,7 @@ def test_evaluate_bad_env_kwargs(
 
 
 def test_evaluate_json_folder(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
-    from sb3_hfo.evaluate import main
+    from sb3_hfo.cli.evaluate import main
 
     assert "is a folder" in _one_line_error(capsys, main, ["m.zip", "--env", ENV, "--json", str(tmp_path)])
 
@@ -185,7 +185,7 @@ def test_train_user_errors(
     argv: list[str],
     expected: str,
 ) -> None:
-    from sb3_hfo.train import main
+    from sb3_hfo.cli.train import main
 
     monkeypatch.chdir(tmp_path)
     # should a check let the mistake through, rl-zoo3 trains one step into tmp_path instead of a whole run
@@ -196,7 +196,7 @@ def test_train_user_errors(
 def test_train_bad_config_env_kwargs(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     config = tmp_path / "bad.yml"
     config.write_text(f"{ENV}:\n  n_timesteps: 10\n  policy: MlpPolicy\n  env_kwargs:\n    noise: 'off'\n")
-    from sb3_hfo.train import main
+    from sb3_hfo.cli.train import main
 
     line = _one_line_error(capsys, main, ["--env", ENV, "--conf-file", str(config), "-f", str(tmp_path)])
     assert f"bad env_kwargs in {config} for {ENV}" in line and "noise must be True or False" in line
@@ -239,7 +239,7 @@ def test_playback_user_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path
 
 # --- plot --------------------------------------------------------------------------------------------------------
 def test_plot_user_errors(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
-    from sb3_hfo.plot import main
+    from sb3_hfo.cli.plot import main
 
     events = tmp_path / "run"
     events.mkdir()

@@ -15,7 +15,7 @@ from hfo2d.agent2d.actions import client_dash, client_turn_moment
 from hfo2d.agent2d.goalie import Agent2dGoalie, fullstate_value
 from hfo2d.physics import ServerParams, World
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
 import real_hfo_logs  # noqa: E402  (benchmarks/real_hfo_logs.py)
 
 

@@ -16,9 +16,9 @@ from typing import Any
 
 import pytest
 
-from sb3_hfo.cli_errors import EXTRA_MODULES, UserError, check_installed
+from sb3_hfo.cli.errors import EXTRA_MODULES, UserError, check_installed
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 ZOO_MODULES = ("rl_zoo3", "optuna", "pandas", "matplotlib")
 
 
@@ -72,7 +72,7 @@ def test_extras_in_pyproject_hold_the_modules_the_messages_name() -> None:
 def test_importing_the_api_loads_none_of_the_zoo_modules() -> None:
     code = (
         "import sys\n"
-        "import sb3_hfo, sb3_hfo.models, sb3_hfo.evaluate, sb3_hfo.zoo, sb3_hfo.cli_errors\n"
+        "import sb3_hfo, sb3_hfo.models, sb3_hfo.evaluate, sb3_hfo.zoo, sb3_hfo.cli.errors\n"
         f"print(sorted(m for m in {ZOO_MODULES!r} if m in sys.modules))\n"
     )
     completed = _run_python(code)
@@ -85,7 +85,7 @@ def test_the_python_api_works_without_the_extras() -> None:
     code = _block((*ZOO_MODULES, "requests", "pygame", "moviepy")) + (
         "import gymnasium as gym\n"
         "from sb3_hfo import SkillDDPG\n"
-        "from sb3_hfo.evaluate import main as evaluate\n"
+        "from sb3_hfo.cli.evaluate import main as evaluate\n"
         "from sb3_hfo.models import load_model\n"
         "model = SkillDDPG('HFOPolicy', gym.make('HFO/EmptyGoal-v0'), learning_starts=16, batch_size=8, seed=0)\n"
         "model.learn(48)\n"

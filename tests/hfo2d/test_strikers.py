@@ -120,7 +120,7 @@ def test_unknown_striker() -> None:
 # ---------------------------------------------------------------------------------------------------------------
 # benchmarks/keeper_fidelity.py: the log readers and the replay's command conversions (no HFO build needed)
 # ---------------------------------------------------------------------------------------------------------------
-BENCHMARKS = Path(__file__).resolve().parents[1] / "benchmarks"
+BENCHMARKS = Path(__file__).resolve().parents[2] / "benchmarks"
 
 
 @pytest.fixture(scope="module")

@@ -187,7 +187,7 @@ def register_with_rl_zoo(playback: bool = False) -> None:
     import rl_zoo3.utils
 
     import hfo2d  # noqa: F401  (registers the HFO/* Gymnasium ids)
-    from sb3_hfo.hyperparams_opt import (
+    from sb3_hfo.cli.hyperparams_opt import (
         convert_skill_ddpg_params,
         sample_skill_ddpg_params,
         sample_skill_pdqn_params,

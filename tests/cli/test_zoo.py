@@ -24,7 +24,7 @@ import yaml
 
 pytestmark = pytest.mark.xdist_group("zoo")
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 CONFIG_DIR = REPO / "zoo_configs"
 CONFIGS = sorted(CONFIG_DIR.glob("*.yml"))
 CONFIG_NAMES = [path.stem for path in CONFIGS]
@@ -119,7 +119,7 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
 # records, per config, either "ok" or the traceback, so one broken config fails only its own test.
 DRIVER = """
 import json, sys, traceback
-from sb3_hfo.train import main
+from sb3_hfo.cli.train import main
 argvs, report_path = json.loads(sys.argv[1]), sys.argv[2]  # main() replaces sys.argv
 report = {}
 for name, argv in argvs.items():
@@ -244,7 +244,7 @@ def test_paper_configs_use_the_paper_settings(config: Path) -> None:
 
 
 def test_wilson_interval_matches_reference_values() -> None:
-    from sb3_hfo.evaluate import wilson_interval
+    from sb3_hfo.cli.evaluate import wilson_interval
 
     assert wilson_interval(0, 10) == pytest.approx((0.0, 0.2775), abs=1e-4)
     assert wilson_interval(5, 10) == pytest.approx((0.2366, 0.7634), abs=1e-4)
@@ -253,7 +253,7 @@ def test_wilson_interval_matches_reference_values() -> None:
 
 
 def test_summarize_counts_goals_kicks_and_skills() -> None:
-    from sb3_hfo.evaluate import EpisodeRecord, summarize
+    from sb3_hfo.cli.evaluate import EpisodeRecord, summarize
 
     records = [
         EpisodeRecord("GOAL", 80, 6.0, 3, [100.0, 50.0, 30.0], 10, [60, 20]),
@@ -275,7 +275,7 @@ def test_summarize_counts_goals_kicks_and_skills() -> None:
 
 
 def test_summarize_bins_last_kicks_by_distance_to_goal() -> None:
-    from sb3_hfo.evaluate import EpisodeRecord, shot_distance_label, summarize
+    from sb3_hfo.cli.evaluate import EpisodeRecord, shot_distance_label, summarize
 
     def record(status: str, shot_distance: float | None) -> EpisodeRecord:
         return EpisodeRecord(status, 10, 0.0, 1, [100.0], 0, [10], shot_distance=shot_distance)
@@ -304,7 +304,7 @@ def test_summarize_bins_last_kicks_by_distance_to_goal() -> None:
 def test_evaluation_measures_the_shot_from_where_the_ball_was_kicked() -> None:
     import gymnasium as gym
 
-    from sb3_hfo.evaluate import run_episodes, summarize
+    from sb3_hfo.cli.evaluate import run_episodes, summarize
 
     class PlacedStart(gym.Wrapper):  # facing the goal centre, ball 0.5 m ahead: 22 m out
         def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
@@ -336,7 +336,7 @@ def test_evaluation_names_the_line_an_out_of_bounds_ball_crossed(
 ) -> None:
     import gymnasium as gym
 
-    from sb3_hfo.evaluate import run_episodes, summarize
+    from sb3_hfo.cli.evaluate import run_episodes, summarize
 
     class PlacedStart(gym.Wrapper):
         def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
@@ -362,7 +362,7 @@ def test_evaluation_names_the_line_an_out_of_bounds_ball_crossed(
 def test_evaluation_records_where_the_keeper_caught_the_ball() -> None:
     import gymnasium as gym
 
-    from sb3_hfo.evaluate import run_episodes
+    from sb3_hfo.cli.evaluate import run_episodes
 
     class PlacedStart(gym.Wrapper):  # 12 m out, facing the static keeper on the goal centre
         def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
@@ -386,7 +386,7 @@ def test_evaluation_loop_counts_goals_and_kicks_of_a_scoring_policy() -> None:
     import gymnasium as gym
 
     import hfo2d
-    from sb3_hfo.evaluate import run_episodes, summarize
+    from sb3_hfo.cli.evaluate import run_episodes, summarize
 
     env = gym.make("HFO/EmptyGoal-v0")
 
@@ -409,7 +409,7 @@ def test_evaluation_loop_counts_goals_and_kicks_of_a_scoring_policy() -> None:
 
 
 def test_parse_schedule_handles_rl_zoo_strings() -> None:
-    from sb3_hfo.zoo import parse_schedule
+    from sb3_hfo.cli.zoo import parse_schedule
 
     schedule = parse_schedule("lin_0.001")
     assert schedule(1.0) == pytest.approx(1e-3) and schedule(0.5) == pytest.approx(5e-4)
@@ -422,7 +422,7 @@ def test_parse_schedule_handles_rl_zoo_strings() -> None:
 def test_optuna_sampler_returns_constructor_arguments() -> None:
     import optuna
 
-    from sb3_hfo.hyperparams_opt import NET_ARCHS, convert_skill_ddpg_params, sample_skill_ddpg_params
+    from sb3_hfo.cli.hyperparams_opt import NET_ARCHS, convert_skill_ddpg_params, sample_skill_ddpg_params
 
     study = optuna.create_study(sampler=optuna.samplers.RandomSampler(seed=0))
     trial = study.ask()
@@ -438,7 +438,7 @@ def test_optuna_sampler_returns_constructor_arguments() -> None:
 
 
 def test_wrapper_defaults_algo_and_threads_but_keeps_explicit_values() -> None:
-    from sb3_hfo.zoo import default_algo_argv
+    from sb3_hfo.cli.zoo import default_algo_argv
 
     assert default_algo_argv(["--env", "X"], single_thread=True) == [
         "--algo",
@@ -456,7 +456,7 @@ def test_wrapper_defaults_algo_and_threads_but_keeps_explicit_values() -> None:
 
 
 def test_train_reports_unknown_env_and_missing_config_in_one_line() -> None:
-    from sb3_hfo.train import main
+    from sb3_hfo.cli.train import main
 
     with pytest.raises(
         SystemExit, match=r"unknown env id 'HFO/NoSuchTask-v0'; registered HFO ids: .*HFO/Keeper-v0"
@@ -481,7 +481,7 @@ def test_evaluation_env_gets_the_configs_env_kwargs(
     expected_train: str,
     expected_eval: str,
 ) -> None:
-    from sb3_hfo.zoo import _experiment_manager_class, register_with_rl_zoo
+    from sb3_hfo.cli.zoo import _experiment_manager_class, register_with_rl_zoo
 
     register_with_rl_zoo()
     config = tmp_path / "gap.yml"
@@ -505,7 +505,7 @@ def test_evaluation_env_gets_the_configs_env_kwargs(
 
 
 def test_merge_policy_kwargs_keeps_the_experiment_keys() -> None:
-    from sb3_hfo.zoo import merge_policy_kwargs
+    from sb3_hfo.cli.zoo import merge_policy_kwargs
 
     def sampler(*_: Any) -> dict[str, Any]:
         return {"policy_kwargs": {"net_arch": [8]}}
@@ -515,7 +515,7 @@ def test_merge_policy_kwargs_keeps_the_experiment_keys() -> None:
 
 
 def test_moving_average_and_episode_estimate() -> None:
-    from sb3_hfo.plot import Run, moving_average
+    from sb3_hfo.cli.plot import Run, moving_average
 
     assert moving_average(np.array([1.0, 3.0, 5.0, 7.0]), 2) == pytest.approx([1.0, 2.0, 4.0, 6.0])
     run = Run("r", {"rollout/ep_len_mean": (np.array([100.0, 300.0]), np.array([100.0, 50.0]))})
@@ -524,7 +524,7 @@ def test_moving_average_and_episode_estimate() -> None:
 
 
 def test_time_to_targets_reads_the_first_evaluation_at_each_rate() -> None:
-    from sb3_hfo.plot import EVAL_SUCCESS_TAG, Run, time_to_targets
+    from sb3_hfo.cli.plot import EVAL_SUCCESS_TAG, Run, time_to_targets
 
     steps = np.array([10_000.0, 20_000.0, 30_000.0, 40_000.0])
     run = Run("r", {EVAL_SUCCESS_TAG: (steps, np.array([0.5, 0.96, 0.9, 0.99]))})
@@ -542,7 +542,7 @@ def test_time_to_targets_reads_the_first_evaluation_at_each_rate() -> None:
 
 
 def test_episode_stats_callback_logs_episodes_and_leaves_the_goal_rate_to_sb3() -> None:
-    from sb3_hfo.zoo import HFOEpisodeStatsCallback
+    from sb3_hfo.cli.zoo import HFOEpisodeStatsCallback
 
     class Recorder:
         def __init__(self) -> None:
@@ -566,7 +566,7 @@ def test_episode_stats_callback_logs_episodes_and_leaves_the_goal_rate_to_sb3() 
 def test_plot_reads_the_goal_rate_of_older_runs(tmp_path: Path) -> None:
     from stable_baselines3.common.logger import configure
 
-    from sb3_hfo.plot import GOAL_RATE_TAG, load_run
+    from sb3_hfo.cli.plot import GOAL_RATE_TAG, load_run
 
     assert GOAL_RATE_TAG == "rollout/success_rate"
     for name, tag, value in (("old", "rollout/goal_rate", 0.25), ("new", GOAL_RATE_TAG, 0.75)):
@@ -584,7 +584,7 @@ def test_keeper_skill_curriculum_ramps_the_training_envs_only() -> None:
     from stable_baselines3.common.env_util import make_vec_env
 
     from sb3_hfo import SkillDDPG
-    from sb3_hfo.zoo import KeeperSkillCurriculumCallback
+    from sb3_hfo.cli.zoo import KeeperSkillCurriculumCallback
 
     class SkillRecorder(BaseCallback):
         def __init__(self) -> None:
@@ -627,7 +627,7 @@ def test_action_noise_decay_callback_anneals_sigma_per_env() -> None:
     from stable_baselines3.common.env_util import make_vec_env
     from stable_baselines3.common.noise import NormalActionNoise
 
-    from sb3_hfo.zoo import ActionNoiseDecayCallback
+    from sb3_hfo.cli.zoo import ActionNoiseDecayCallback
 
     class SigmaRecorder(BaseCallback):
         def __init__(self) -> None:
@@ -707,7 +707,7 @@ def test_evaluation_leaves_out_env_kwargs_the_env_no_longer_takes(tmp_path: Path
 
     import hfo2d  # noqa: F401  (registers the envs)
     from sb3_hfo import SkillDDPG
-    from sb3_hfo.evaluate import load_for_evaluation
+    from sb3_hfo.cli.evaluate import load_for_evaluation
 
     run = tmp_path / "HFO-EmptyGoal-v0_1"
     (run / "HFO-EmptyGoal-v0").mkdir(parents=True)
@@ -724,7 +724,7 @@ def test_evaluation_leaves_out_env_kwargs_the_env_no_longer_takes(tmp_path: Path
 
 
 def test_evaluate_can_switch_on_the_mirror_choice() -> None:
-    from sb3_hfo.evaluate import build_parser, evaluate
+    from sb3_hfo.cli.evaluate import build_parser, evaluate
 
     model = "e6_keeper_v0"
     result = evaluate(str(model), episodes=2, seed=0, acting="critic,mirror")
@@ -747,7 +747,7 @@ def test_evaluate_can_switch_on_the_mirror_choice() -> None:
 
 
 def test_evaluate_acting_flag_parses_and_names_a_bad_token(capsys: pytest.CaptureFixture[str]) -> None:
-    from sb3_hfo.evaluate import build_parser, main
+    from sb3_hfo.cli.evaluate import build_parser, main
 
     parser = build_parser()
     assert parser.parse_args(["m.zip", "--acting", "critic,mirror:0.1"]).acting == "critic,mirror:0.1"
@@ -761,7 +761,7 @@ def test_evaluate_acting_flag_parses_and_names_a_bad_token(capsys: pytest.Captur
 def test_evaluate_sets_the_mirror_margin_and_threads_predicts_state_through_each_episode() -> None:
     import gymnasium as gym
 
-    from sb3_hfo.evaluate import EvaluationError, build_parser, evaluate, run_episodes
+    from sb3_hfo.cli.evaluate import EvaluationError, build_parser, evaluate, run_episodes
 
     model = "e6_keeper_v0"
     result = evaluate(str(model), episodes=1, seed=0, acting="critic,mirror:inf")
@@ -794,7 +794,7 @@ def test_evaluate_sets_the_mirror_margin_and_threads_predicts_state_through_each
 
 
 def test_evaluate_is_greedy_unless_stochastic() -> None:
-    from sb3_hfo.evaluate import build_parser
+    from sb3_hfo.cli.evaluate import build_parser
 
     parser = build_parser()
     assert parser.parse_args(["m.zip"]).deterministic is True
@@ -823,7 +823,7 @@ def test_evaluate_missing_model_is_a_clear_error(tmp_path: Path) -> None:
 
 
 def test_plot_writes_a_png_with_the_runs(trained_runs: tuple[Path, dict[str, str], str]) -> None:
-    from sb3_hfo.plot import collect_runs
+    from sb3_hfo.cli.plot import collect_runs
 
     root, _, _ = trained_runs
     logdirs = [str(root / "tb" / "e1_empty_goal_fast"), str(root / "tb" / "e2_empty_goal_skills_fast")]

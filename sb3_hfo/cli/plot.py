@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from sb3_hfo.cli_errors import OneLineArgumentParser, UserError, check_installed, one_line
+from sb3_hfo.cli.errors import OneLineArgumentParser, UserError, check_installed, one_line
 
 #: The training goal rate (with exploration; SB3's, from HFO's ``info["is_success"]``); its panel also shows the
 #: greedy evaluations (EVAL_SUCCESS_TAG).

@@ -20,9 +20,9 @@ PROG = "python -m sb3_hfo.train"
 def main(argv: Sequence[str] | None = None) -> None:
     """Run rl-zoo3's training entry point with SkillDDPG registered; ``argv`` defaults to ``sys.argv[1:]``.
 
-    User errors (see :func:`sb3_hfo.cli_errors.check_train_args`) exit with one line on stderr and code 2.
+    User errors (see :func:`sb3_hfo.cli.errors.check_train_args`) exit with one line on stderr and code 2.
     """
-    from sb3_hfo.cli_errors import (
+    from sb3_hfo.cli.errors import (
         UserError,
         check_installed,
         check_train_args,
@@ -43,7 +43,7 @@ def main(argv: Sequence[str] | None = None) -> None:
 
     import rl_zoo3.train
 
-    from sb3_hfo.zoo import run_rl_zoo_entry_point
+    from sb3_hfo.cli.zoo import run_rl_zoo_entry_point
 
     with one_line_argparse_errors(PROG):
         run_rl_zoo_entry_point(rl_zoo3.train.train, args, playback=False, single_thread=True)

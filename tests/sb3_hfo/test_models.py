@@ -17,8 +17,8 @@ import torch
 
 import hfo2d  # noqa: F401  (registers the HFO/* ids)
 from sb3_hfo import SkillDDPG
-from sb3_hfo.cli_errors import UsageExit, UserError
-from sb3_hfo.evaluate import evaluate, wilson_interval
+from sb3_hfo.cli.errors import UsageExit, UserError
+from sb3_hfo.cli.evaluate import evaluate, wilson_interval
 from sb3_hfo.models import (
     MANIFEST_PATH,
     MAX_MODEL_BYTES,
@@ -35,7 +35,7 @@ from sb3_hfo.models import (
 )
 from sb3_hfo.skill_ddpg.acting import CriticChoice, MirrorChoice, format_acting, parse_acting
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 
 
 def _trained_model(tmp_path: Path, **policy_kwargs: object) -> Path:
@@ -318,7 +318,7 @@ def test_playback_names_the_render_extra_when_its_modules_are_missing(
 ) -> None:
     import importlib.util
 
-    from sb3_hfo.cli_errors import check_render_extra
+    from sb3_hfo.cli.errors import check_render_extra
 
     real_find_spec = importlib.util.find_spec
     monkeypatch.setattr(

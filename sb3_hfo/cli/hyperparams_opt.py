@@ -71,7 +71,7 @@ def sample_skill_ddpg_params(
     :param additional_args: rl-zoo3's extra arguments (HER settings; unused here).
     :return: constructor keyword arguments; learning rates as floats or schedules, action noise as an object.
     """
-    from sb3_hfo.zoo import parse_schedule
+    from sb3_hfo.cli.zoo import parse_schedule
 
     sampled = {
         "one_minus_gamma": trial.suggest_float("one_minus_gamma", 1e-3, 5e-2, log=True),

@@ -11,12 +11,12 @@ import torch as th
 import yaml
 
 from sb3_hfo import SkillDDPG, SkillPDQN
+from sb3_hfo.cli.zoo import SCHEDULE_KEYS, parse_schedule
 from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask
 from sb3_hfo.skill_ddpg.skill_pdqn import PRESET_ALGORITHM_DEFAULTS, PRESET_POLICY_DEFAULTS
-from sb3_hfo.zoo import SCHEDULE_KEYS, parse_schedule
 
-REPO = Path(__file__).resolve().parents[1]
+REPO = Path(__file__).resolve().parents[2]
 BEST_CONFIGS = sorted(
     path for path in (REPO / "zoo_configs").glob("x*.yml") if "--algo skill_pdqn " in path.read_text()
 )
@@ -120,8 +120,8 @@ def test_rl_zoo_knows_both_algorithms() -> None:
     import rl_zoo3.hyperparams_opt
     import rl_zoo3.utils
 
-    from sb3_hfo.hyperparams_opt import sample_skill_pdqn_params
-    from sb3_hfo.zoo import register_with_rl_zoo
+    from sb3_hfo.cli.hyperparams_opt import sample_skill_pdqn_params
+    from sb3_hfo.cli.zoo import register_with_rl_zoo
 
     register_with_rl_zoo()
     assert rl_zoo3.utils.ALGOS["skill_ddpg"] is SkillDDPG and rl_zoo3.utils.ALGOS["skill_pdqn"] is SkillPDQN
@@ -131,7 +131,7 @@ def test_rl_zoo_knows_both_algorithms() -> None:
 
 def test_the_preset_sampler_adds_its_numeric_defaults() -> None:
     optuna = pytest.importorskip("optuna")
-    from sb3_hfo.hyperparams_opt import sample_skill_pdqn_params
+    from sb3_hfo.cli.hyperparams_opt import sample_skill_pdqn_params
 
     trial = optuna.create_study().ask()
     hyperparams = sample_skill_pdqn_params(trial, 8, 1, {})

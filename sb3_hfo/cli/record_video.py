@@ -37,7 +37,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     """
     import torch
 
-    from sb3_hfo.cli_errors import (
+    from sb3_hfo.cli.errors import (
         UserError,
         check_installed,
         check_playback_args,
@@ -46,7 +46,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         one_line_argparse_errors,
         option_value,
     )
-    from sb3_hfo.zoo import ALGO_NAME, run_rl_zoo_entry_point
+    from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
 
     args = list(sys.argv[1:] if argv is None else argv)
     try:

@@ -173,7 +173,7 @@ def option_values(args: Sequence[str], *names: str) -> list[str] | None:
 
 
 def _known_ids() -> str:
-    from sb3_hfo.zoo import hfo_env_ids
+    from sb3_hfo.cli.zoo import hfo_env_ids
 
     return ", ".join(hfo_env_ids())
 

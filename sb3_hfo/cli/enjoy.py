@@ -23,7 +23,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     User errors (no or unknown ``--env``, no ``-f``, no model there or a damaged one, bad ``--env-kwargs``, a
     negative ``--seed``, a bad option) exit with one line on stderr and code 2.
     """
-    from sb3_hfo.cli_errors import (
+    from sb3_hfo.cli.errors import (
         UserError,
         check_installed,
         check_playback_args,
@@ -31,7 +31,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         fail,
         one_line_argparse_errors,
     )
-    from sb3_hfo.zoo import ALGO_NAME, run_rl_zoo_entry_point
+    from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
 
     args = list(sys.argv[1:] if argv is None else argv)
     try:
