@@ -27,6 +27,8 @@ the paper's figures are plotted against episodes). The training goal rate is SB3
 
 from __future__ import annotations
 
+import contextlib
+import shutil
 import sys
 import tempfile
 from collections.abc import Callable, Sequence
@@ -98,6 +100,26 @@ def _experiment_manager_class() -> type:
 
     class HFOExperimentManager(ExperimentManager):
         """rl-zoo3's ExperimentManager with SkillDDPG's two learning rates, policy_kwargs merging and eval env_kwargs."""
+
+        def setup_experiment(self) -> Any:
+            # A run that fails while it is set up (a bad value in the config, an env that cannot be made) leaves
+            # no folder behind: rl-zoo3 numbers a run after the folders present, so an empty HFO-...-v0_1 would
+            # turn the next run into _2.
+            # The folders this run would create: the run's own and the missing ones above it (-f, its algo folder).
+            created = []
+            folder = Path(self.save_path).absolute()
+            while not folder.exists():
+                created.append(folder)
+                folder = folder.parent
+            try:
+                return super().setup_experiment()
+            except BaseException:
+                if created:
+                    shutil.rmtree(created[0], ignore_errors=True)
+                    for parent in created[1:]:
+                        with contextlib.suppress(OSError):  # not empty: something else wrote there meanwhile
+                            parent.rmdir()
+                raise
 
         def _preprocess_hyperparams(self, hyperparams: dict[str, Any]) -> Any:
             processed = super()._preprocess_hyperparams(hyperparams)

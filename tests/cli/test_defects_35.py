@@ -84,3 +84,49 @@ def test_optimize_may_still_draw_no_noise_for_the_paper_config(monkeypatch: pyte
     """The paper's configs explore by epsilon-greedy alone, so "none" stays in their search space."""
     noises = _sampled_noises(_installed_sampler(monkeypatch, CONFIGS / "e1_empty_goal.yml", ENV), 30)
     assert any(noise is None for noise in noises) and any(noise is not None for noise in noises)
+
+
+# --- 6: a mistyped hyperparameter -------------------------------------------------------------------------------
+
+
+def _train_argv(logs: Path, *extra: str, config: Path = CONFIGS / "e1_empty_goal_fast.yml") -> list[str]:
+    return ["--env", ENV, "--conf-file", str(config), "-n", "100", "-f", str(logs), *extra]
+
+
+@pytest.mark.parametrize(
+    ("hyperparams", "key", "suggestion"),
+    [("taau:0.01", "'taau'", "'tau'"), ("policy_kwargs:dict(n_skils=2)", "'n_skils'", "'n_skills'")],
+)
+def test_train_hyperparams_typo_is_one_line(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path, hyperparams: str, key: str, suggestion: str
+) -> None:
+    from sb3_hfo.train import main
+
+    logs = tmp_path / "logs"
+    line = _one_line_error(capsys, main, _train_argv(logs, "--hyperparams", hyperparams))
+    assert key in line and f"did you mean {suggestion}?" in line and "valid: " in line
+    assert not logs.exists()
+
+
+def test_train_config_key_typo_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    from sb3_hfo.train import main
+
+    text = (CONFIGS / "e1_empty_goal_fast.yml").read_text()
+    assert "\n  tau: 0.001\n" in text
+    config = tmp_path / "typo.yml"
+    config.write_text(text.replace("\n  tau: 0.001\n", "\n  taau: 0.001\n"))
+    logs = tmp_path / "logs"
+    line = _one_line_error(capsys, main, _train_argv(logs, config=config))
+    assert str(config) in line and "'taau'" in line and "did you mean 'tau'?" in line
+    assert not logs.exists()
+
+
+def test_train_failing_at_setup_leaves_no_run_folder(tmp_path: Path) -> None:
+    """A value the constructor rejects fails after rl-zoo3 made the run folder; the folder goes with the run, so
+    the next run is still ``_1``."""
+    from sb3_hfo.train import main
+
+    logs = tmp_path / "logs"
+    with pytest.raises(ValueError, match="mc_mixing"):
+        main(_train_argv(logs, "--hyperparams", "mc_mixing:2.0"))
+    assert not logs.exists()
