@@ -17,6 +17,7 @@ import difflib
 import importlib.util
 import inspect
 import io
+import os
 import sys
 import zipfile
 import zlib
@@ -379,6 +380,24 @@ def check_render_extra(video: bool = False) -> None:
     missing."""
     modules = ("pygame", "moviepy") if video else ("pygame",)
     check_installed("render", modules, "recording a video" if video else "a window (or pass --no-render)")
+
+
+def check_output_folder(folder: str | Path, option: str) -> None:
+    """UserError unless ``folder`` is a writable folder or one that can be made: its nearest existing ancestor is
+    a writable folder. Nothing is created."""
+    target = Path(folder).absolute()
+    existing = target
+    try:
+        while not existing.exists():
+            existing = existing.parent
+    except OSError as error:  # e.g. a parent that may not be searched
+        raise UserError(f"{option} {folder}: cannot create it ({one_line(error)})") from None
+    if not existing.is_dir():
+        where = "it is a file" if existing == target else f"{existing} is a file"
+        raise UserError(f"{option} {folder}: cannot make a folder there, {where}")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        where = "it is" if existing == target else f"{existing} is"
+        raise UserError(f"{option} {folder}: cannot write there, {where} not writable")
 
 
 def check_playback_args(args: Sequence[str], algo: str) -> Path:

@@ -130,3 +130,98 @@ def test_train_failing_at_setup_leaves_no_run_folder(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="mc_mixing"):
         main(_train_argv(logs, "--hyperparams", "mc_mixing:2.0"))
     assert not logs.exists()
+
+
+# --- 7, 8: record_video -------------------------------------------------------------------------------------------
+
+
+def _video_stream(path: Path) -> tuple[str, str, int, int]:
+    """Codec, pixel format, width and height of ``path``'s video stream, by ffprobe when installed, else from
+    ``ffmpeg -i`` (imageio-ffmpeg, a moviepy dependency, ships an ffmpeg binary)."""
+    import re
+    import shutil
+    import subprocess
+
+    ffprobe = shutil.which("ffprobe")
+    if ffprobe is not None:
+        entries = "stream=codec_name,pix_fmt,width,height"
+        command = [
+            ffprobe,
+            "-v",
+            "error",
+            "-select_streams",
+            "v:0",
+            "-show_entries",
+            entries,
+            "-of",
+            "json",
+            str(path),
+        ]
+        import json
+
+        stream = json.loads(subprocess.run(command, capture_output=True, text=True, check=True).stdout)[
+            "streams"
+        ][0]
+        return stream["codec_name"], stream["pix_fmt"], int(stream["width"]), int(stream["height"])
+    imageio_ffmpeg = pytest.importorskip("imageio_ffmpeg")
+    info = subprocess.run(
+        [imageio_ffmpeg.get_ffmpeg_exe(), "-hide_banner", "-i", str(path)], capture_output=True, text=True
+    )
+    match = re.search(r"Video: (\w+).*?, (\w+)\(?[^,]*, (\d+)x(\d+)", info.stderr)
+    assert match is not None, info.stderr
+    return match[1], match[2], int(match[3]), int(match[4])
+
+
+def test_even_frame_repeats_the_last_column_and_row() -> None:
+    import numpy as np
+
+    from sb3_hfo.record_video import even_frame
+
+    frame = np.arange(740 * 585 * 3, dtype=np.int64).reshape(740, 585, 3).astype(np.uint8)
+    padded = even_frame(frame)
+    assert padded.shape == (740, 586, 3)
+    assert np.array_equal(padded[:, :585], frame) and np.array_equal(padded[:, 585], frame[:, 584])
+    assert even_frame(frame[:739]).shape == (740, 586, 3)
+    assert even_frame(padded) is not None and even_frame(padded).shape == padded.shape
+
+
+@pytest.mark.xdist_group("playback")
+def test_record_video_writes_h264_yuv420p_with_even_sides(tmp_path: Path) -> None:
+    """yuv444p (H.264 High 4:4:4), moviepy's default for RGB frames, plays in neither browsers nor QuickTime."""
+    pytest.importorskip("pygame")
+    pytest.importorskip("moviepy")
+    from sb3_hfo.record_video import main
+
+    main(["e1", "-n", "10", "-o", str(tmp_path / "videos")])
+    (video,) = (tmp_path / "videos").glob("*.mp4")
+    codec, pixel_format, width, height = _video_stream(video)
+    assert (codec, pixel_format) == ("h264", "yuv420p")
+    assert width % 2 == 0 and height % 2 == 0
+
+
+def test_record_video_to_a_folder_it_cannot_create_is_one_line(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    from sb3_hfo.record_video import main
+
+    blocker = tmp_path / "a_file"
+    blocker.write_text("not a folder\n")
+    line = _one_line_error(capsys, main, ["e1", "-n", "10", "-o", str(blocker / "videos")])
+    assert str(blocker / "videos") in line and f"{blocker} is a file" in line
+    line = _one_line_error(capsys, main, ["e1", "-n", "10", "-o", str(blocker)])
+    assert "it is a file" in line
+
+
+def test_record_video_to_a_read_only_folder_is_one_line(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
+    import os
+
+    from sb3_hfo.record_video import main
+
+    read_only = tmp_path / "read_only"
+    read_only.mkdir(mode=0o555)
+    if os.access(read_only, os.W_OK):
+        pytest.skip("this user may write anywhere (root)")
+    line = _one_line_error(capsys, main, ["e1", "-n", "10", "-o", str(read_only / "videos")])
+    assert "not writable" in line and not (read_only / "videos").exists()
