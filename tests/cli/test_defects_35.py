@@ -225,3 +225,40 @@ def test_record_video_to_a_read_only_folder_is_one_line(
         pytest.skip("this user may write anywhere (root)")
     line = _one_line_error(capsys, main, ["e1", "-n", "10", "-o", str(read_only / "videos")])
     assert "not writable" in line and not (read_only / "videos").exists()
+
+
+# --- 5: enjoy ---------------------------------------------------------------------------------------------------
+
+
+@pytest.mark.xdist_group("playback")
+def test_enjoy_draws_each_step_once_and_says_when_no_window_shows(
+    monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Every reset and step draws one frame, held to 10 fps: rl-zoo3's extra ``render("human")`` drew each one
+    twice (half speed). Headless, one ``note:`` line says that nothing is shown, and the run goes on."""
+    pytest.importorskip("pygame")
+    import hfo2d.rendering
+    from hfo2d.hfo_env import HFOEnv
+    from sb3_hfo.enjoy import main
+
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
+    monkeypatch.setattr(hfo2d.rendering, "RENDER_FPS", 10_000)  # the count matters here, not the clock
+    counts = {"draws": 0, "steps and resets": 0}
+
+    def counting(method: Callable[..., Any], key: str) -> Callable[..., Any]:
+        def counted(*args: Any, **kwargs: Any) -> Any:
+            counts[key] += 1
+            return method(*args, **kwargs)
+
+        return counted
+
+    monkeypatch.setattr(
+        hfo2d.rendering.HFORenderer, "render", counting(hfo2d.rendering.HFORenderer.render, "draws")
+    )
+    for name in ("step", "reset"):
+        monkeypatch.setattr(HFOEnv, name, counting(getattr(HFOEnv, name), "steps and resets"))
+    main(["e1", "-n", "30"])
+    assert counts["steps and resets"] >= 31
+    assert counts["draws"] == counts["steps and resets"]
+    notes = [line for line in capsys.readouterr().err.splitlines() if line.startswith("note:")]
+    assert len(notes) == 1 and "'dummy'" in notes[0] and "--no-render" in notes[0]
