@@ -262,3 +262,109 @@ def test_enjoy_draws_each_step_once_and_says_when_no_window_shows(
     assert counts["draws"] == counts["steps and resets"]
     notes = [line for line in capsys.readouterr().err.splitlines() if line.startswith("note:")]
     assert len(notes) == 1 and "'dummy'" in notes[0] and "--no-render" in notes[0]
+
+
+# --- 9: the README --------------------------------------------------------------------------------------------------
+
+README = (REPO / "README.md").read_text()
+
+
+def _python_blocks() -> list[str]:
+    import re
+
+    return re.findall(r"```python\n(.*?)```", README, re.S)
+
+
+def _undefined_names(code: str) -> set[str]:
+    """Names that ``code`` reads as globals without importing, assigning or defining them (nor builtins)."""
+    import builtins
+    import symtable
+
+    module = symtable.symtable(code, "<README>", "exec")
+    defined = {
+        s.get_name() for s in module.get_symbols() if s.is_assigned() or s.is_imported() or s.is_namespace()
+    }
+    undefined: set[str] = set()
+    tables = [module]
+    while tables:
+        table = tables.pop()
+        for symbol in table.get_symbols():
+            reads_global = symbol.is_referenced() and (table is module or symbol.is_global())
+            name = symbol.get_name()
+            if reads_global and name not in defined and not hasattr(builtins, name):
+                undefined.add(name)
+        tables += table.get_children()
+    return undefined
+
+
+def test_readme_python_snippets_import_what_they_use() -> None:
+    """Each snippet runs on its own: it imports every name it uses (clone_striker's lacked SkillDDPG), and its
+    imports work."""
+    import ast
+
+    blocks = _python_blocks()
+    assert len(blocks) >= 4 and any("clone_striker" in block for block in blocks)
+    for block in blocks:
+        assert _undefined_names(block) == set(), block
+        imports = [node for node in ast.parse(block).body if isinstance(node, (ast.Import, ast.ImportFrom))]
+        exec(compile(ast.Module(body=imports, type_ignores=[]), "<README>", "exec"), {})
+
+
+def test_undefined_names_finds_a_missing_import() -> None:
+    assert _undefined_names("import os\nmodel = SkillDDPG(os.sep)\ndef f():\n    return clone(model)\n") == {
+        "SkillDDPG",
+        "clone",
+    }
+
+
+def test_readme_names_the_goal_rate_tag_that_training_logs() -> None:
+    """Every ``rollout/...`` tag the README names is one a short run with a fast config's callbacks logs."""
+    import re
+
+    import gymnasium as gym
+    import numpy as np
+    from stable_baselines3.common.logger import KVWriter, Logger
+    from stable_baselines3.common.noise import NormalActionNoise
+
+    from sb3_hfo import SkillDDPG
+    from sb3_hfo.zoo import ActionNoiseDecayCallback, HFOEpisodeStatsCallback
+
+    class Keys(KVWriter):
+        def __init__(self) -> None:
+            self.keys: set[str] = set()
+
+        def write(self, key_values: dict[str, Any], key_excluded: dict[str, Any], step: int = 0) -> None:
+            excluded = {key for key, formats in key_excluded.items() if formats and "tensorboard" in formats}
+            self.keys |= set(key_values) - excluded
+
+    named = set(re.findall(r"`(rollout/\w+)`", README))
+    assert "rollout/success_rate" in named
+    keys = Keys()
+    noise = NormalActionNoise(np.zeros(8), np.full(8, 0.2))
+    model = SkillDDPG("HFOPolicy", gym.make(ENV), learning_starts=10**6, action_noise=noise, seed=0)
+    model.set_logger(Logger(folder=None, output_formats=[keys]))
+    callbacks = [HFOEpisodeStatsCallback(), ActionNoiseDecayCallback(final_std=0.05, decay_fraction=0.7)]
+    model.learn(400, callback=callbacks, log_interval=1)
+    assert named <= keys.keys, named - keys.keys
+
+
+def test_readme_playback_examples_name_the_quick_starts_run() -> None:
+    """The quick start trains one run, so the examples after it can only name its ``_1`` folders."""
+    import re
+
+    assert "-f logs/quickstart" in README and "--tensorboard-log runs/tb" in README
+    runs = re.findall(
+        r"(?:runs/tb/HFO-\w+-v\d/SkillDDPG|logs/quickstart/skill_ddpg/HFO-\w+-v\d)_(\d+)", README
+    )
+    assert runs and set(runs) == {"1"}
+
+
+def test_what_the_readme_examples_write_is_git_ignored() -> None:
+    import shutil
+    import subprocess
+
+    if shutil.which("git") is None or not (REPO / ".git").exists():
+        pytest.skip("not a git checkout")
+    written = ["figure3.png", "results/e1.json", "videos/x.mp4", "logs/quickstart/a", "runs/tb/b"]
+    completed = subprocess.run(["git", "check-ignore", *written], cwd=REPO, capture_output=True, text=True)
+    assert completed.stdout.split() == written
