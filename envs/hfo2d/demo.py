@@ -2,7 +2,7 @@
 
 Example::
 
-    python -m hfo2d.demo --env HFO/Keeper-v0 --episodes 5 --render-mode human --seed 0
+    python -m hfo2d.demo --env HFO/Keeper-v1 --episodes 5 --render-mode human --seed 0
 
 Prints each episode's outcome and, at the end, the scoring rate.
 """
@@ -14,10 +14,11 @@ from collections.abc import Sequence
 
 import gymnasium as gym
 
-import hfo2d  # noqa: F401  (registers the HFO/* environments)
+import hfo2d  # (importing it registers the HFO/* environments)
 from hfo2d.heuristic import heuristic
 
-ENV_IDS = ("HFO/EmptyGoal-v0", "HFO/StaticKeeper-v0", "HFO/Keeper-v0")
+#: Every hfo2d task, HFO's own goalie (Keeper-v1) included.
+ENV_IDS = tuple(hfo2d.ENV_IDS)
 
 
 def run_demo(env_id: str, episodes: int, render_mode: str | None, seed: int, verbose: bool = True) -> float:

@@ -10,6 +10,7 @@ Field geometry (metres) from rcssserver's constants via hfo_reference §1.
 from __future__ import annotations
 
 import math
+import os
 from dataclasses import dataclass
 from typing import Any
 
@@ -152,6 +153,9 @@ class HFORenderer:
         """
         pygame = self._pygame
         if self.render_mode == "human" and self._screen is None:
+            # SDL would otherwise take over SIGTERM (it has the default handler) and turn it into a QUIT event,
+            # which a window that only pumps events ignores: `kill` would leave the program running.
+            os.environ.setdefault("SDL_NO_SIGNAL_HANDLERS", "1")
             pygame.display.init()  # display only: pygame.init() would also open an audio device
             pygame.display.set_caption("hfo2d: Half Field Offense")
             self._screen = pygame.display.set_mode((SCREEN_WIDTH, SCREEN_HEIGHT))

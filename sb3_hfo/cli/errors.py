@@ -13,8 +13,11 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import difflib
 import importlib.util
+import inspect
 import io
+import os
 import sys
 import zipfile
 import zlib
@@ -249,6 +252,10 @@ def check_train_args(args: Sequence[str]) -> None:
                 f"--conf-file {conf} has no hyperparameters for {env_id} (it has: {', '.join(map(str, config))})"
             )
         config_kwargs = dict(section.get("env_kwargs") or {})
+        check_hyperparameter_keys(section, f"--conf-file {conf}", option_value(args, "--algo"))
+    if "--hyperparams" in zoo_dicts or "-params" in zoo_dicts:
+        cli_hyperparams = {**zoo_dicts.get("-params", {}), **zoo_dicts.get("--hyperparams", {})}
+        check_hyperparameter_keys(cli_hyperparams, "--hyperparams", option_value(args, "--algo"))
     if "--env-kwargs" in zoo_dicts:
         # rl-zoo3: the command line's env_kwargs replace the config's
         check_env_kwargs(env_id, zoo_dicts["--env-kwargs"])
@@ -256,6 +263,84 @@ def check_train_args(args: Sequence[str]) -> None:
         check_env_kwargs(env_id, config_kwargs, what=f"env_kwargs in {conf}")
     if "--eval-env-kwargs" in zoo_dicts:
         check_env_kwargs(env_id, zoo_dicts["--eval-env-kwargs"], what="--eval-env-kwargs")
+
+
+#: Config keys that rl-zoo3 (2.x, ``ExperimentManager._preprocess_hyperparams`` and ``_preprocess_action_noise``)
+#: reads itself instead of passing them to the algorithm.
+ZOO_CONFIG_KEYS: tuple[str, ...] = (
+    "n_timesteps",
+    "n_envs",
+    "normalize",
+    "monitor_kwargs",
+    "env_kwargs",
+    "frame_stack",
+    "env_wrapper",
+    "vec_env_wrapper",
+    "callback",
+    "noise_type",
+    "noise_std",
+)
+#: Constructor arguments that rl-zoo3 sets from its own options (a config that sets them too makes the constructor
+#: fail with "got multiple values").
+ZOO_OPTION_ARGS: dict[str, str] = {
+    "env": "--env",
+    "seed": "--seed",
+    "verbose": "--verbose",
+    "device": "--device",
+    "tensorboard_log": "--tensorboard-log",
+}
+
+
+def constructor_arguments(cls: type) -> list[str]:
+    """The keyword arguments of ``cls(...)``, following ``**kwargs`` up the base classes (SkillPDQN passes its
+    own to SkillDDPG); private ones (``_init_setup_model``) left out."""
+    names: list[str] = []
+    for klass in cls.__mro__:
+        if "__init__" not in vars(klass):
+            continue
+        parameters = list(inspect.signature(klass.__init__).parameters.values())[1:]
+        names += [p.name for p in parameters if p.kind in (p.POSITIONAL_OR_KEYWORD, p.KEYWORD_ONLY)]
+        if not any(p.kind == p.VAR_KEYWORD for p in parameters):
+            break
+    return sorted({name for name in names if not name.startswith("_")})
+
+
+def _check_names(given: Sequence[str], valid: Sequence[str], what: str, where: str) -> None:
+    for name in given:
+        if name in valid:
+            continue
+        close = difflib.get_close_matches(str(name), valid, n=1)
+        hint = f" (did you mean {close[0]!r}?)" if close else ""
+        raise UserError(f"{where}: unknown {what} {name!r}{hint}; valid: {', '.join(valid)}")
+
+
+def check_hyperparameter_keys(hyperparams: dict[str, Any], where: str, algo: str | None) -> None:
+    """UserError naming a key of ``hyperparams`` (a config section or ``--hyperparams``) that neither rl-zoo3 nor
+    the algorithm's constructor takes, with the closest valid key; the same for the keys of a ``policy_kwargs``
+    dict when the policy is the algorithm's own. Algorithms other than sb3_hfo's are not checked."""
+    from sb3_hfo.skill_ddpg.legacy import LEGACY_POLICY_OPTIONS
+    from sb3_hfo.zoo import ALGO_NAME, algo_classes
+
+    algo_class = algo_classes().get(algo or ALGO_NAME)
+    if algo_class is None:
+        return
+    for name, option in ZOO_OPTION_ARGS.items():
+        if name in hyperparams:
+            raise UserError(f"{where}: {name!r} is set by rl-zoo3's {option} option, not as a hyperparameter")
+    arguments = [name for name in constructor_arguments(algo_class) if name not in ZOO_OPTION_ARGS]
+    label = algo or ALGO_NAME
+    _check_names(list(hyperparams), sorted({*arguments, *ZOO_CONFIG_KEYS}), f"{label} hyperparameter", where)
+    policy_kwargs = hyperparams.get("policy_kwargs")
+    policy_class = algo_class.policy_aliases.get(hyperparams.get("policy", "MlpPolicy"))
+    if isinstance(policy_kwargs, dict) and policy_class is not None:
+        # observation_space, action_space and lr_schedule are the algorithm's to pass
+        policy_arguments = [
+            name
+            for name in constructor_arguments(policy_class)
+            if name not in ("observation_space", "action_space", "lr_schedule")
+        ]
+        valid = sorted({*policy_arguments, *LEGACY_POLICY_OPTIONS})
+        _check_names(list(policy_kwargs), valid, f"{policy_class.__name__} policy_kwargs key", where)
 
 
 #: The modules each extra of pyproject.toml brings (top-level import names) and what needs them.
@@ -295,6 +380,24 @@ def check_render_extra(video: bool = False) -> None:
     missing."""
     modules = ("pygame", "moviepy") if video else ("pygame",)
     check_installed("render", modules, "recording a video" if video else "a window (or pass --no-render)")
+
+
+def check_output_folder(folder: str | Path, option: str) -> None:
+    """UserError unless ``folder`` is a writable folder or one that can be made: its nearest existing ancestor is
+    a writable folder. Nothing is created."""
+    target = Path(folder).absolute()
+    existing = target
+    try:
+        while not existing.exists():
+            existing = existing.parent
+    except OSError as error:  # e.g. a parent that may not be searched
+        raise UserError(f"{option} {folder}: cannot create it ({one_line(error)})") from None
+    if not existing.is_dir():
+        where = "it is a file" if existing == target else f"{existing} is a file"
+        raise UserError(f"{option} {folder}: cannot make a folder there, {where}")
+    if not os.access(existing, os.W_OK | os.X_OK):
+        where = "it is" if existing == target else f"{existing} is"
+        raise UserError(f"{option} {folder}: cannot write there, {where} not writable")
 
 
 def check_playback_args(args: Sequence[str], algo: str) -> Path:

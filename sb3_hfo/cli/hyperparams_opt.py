@@ -27,6 +27,13 @@ NET_ARCHS: dict[str, list[int]] = {
     "paper": [400, 300, 200],
 }
 
+#: The action noises an Optuna trial may choose ("none": epsilon-greedy exploration only, as in the paper).
+NOISE_TYPES: tuple[str, ...] = ("none", "normal", "ornstein-uhlenbeck")
+#: Key of rl-zoo3's ``additional_args`` under which :class:`sb3_hfo.zoo.HFOExperimentManager` says that the
+#: config's callbacks need an action noise (``ActionNoiseDecayCallback`` rejects a model without one, so a trial
+#: that drew "none" would be pruned before its first step).
+NOISE_REQUIRED_ARG = "action_noise_required"
+
 
 def convert_skill_ddpg_params(sampled_params: dict[str, Any]) -> dict[str, Any]:
     """Map raw Optuna values onto SkillDDPG constructor arguments (YAML-friendly: numbers and strings).
@@ -68,11 +75,14 @@ def sample_skill_ddpg_params(
     :param trial: the Optuna trial.
     :param n_actions: size of the flat action vector (8 for HFO: 3 action preferences + 5 parameters).
     :param n_envs: number of training environments (unused: the update-to-data ratio is kept at 1 per step).
-    :param additional_args: rl-zoo3's extra arguments (HER settings; unused here).
+    :param additional_args: rl-zoo3's extra arguments (its HER settings are unused here); with
+        ``additional_args[NOISE_REQUIRED_ARG]`` true, ``noise_type`` is drawn without "none".
     :return: constructor keyword arguments; learning rates as floats or schedules, action noise as an object.
     """
     from sb3_hfo.cli.zoo import parse_schedule
 
+    noise_required = bool(additional_args.get(NOISE_REQUIRED_ARG, False))
+    noise_types = [kind for kind in NOISE_TYPES if not (noise_required and kind == "none")]
     sampled = {
         "one_minus_gamma": trial.suggest_float("one_minus_gamma", 1e-3, 5e-2, log=True),
         "batch_size_pow": trial.suggest_int("batch_size_pow", 5, 8),  # 32 (paper) .. 256
@@ -84,7 +94,7 @@ def sample_skill_ddpg_params(
         "exploration_final_eps": trial.suggest_float("exploration_final_eps", 0.0, 0.2),
         "exploration_fraction": trial.suggest_float("exploration_fraction", 0.01, 0.5, log=True),
         "net_arch": trial.suggest_categorical("net_arch", list(NET_ARCHS)),
-        "noise_type": trial.suggest_categorical("noise_type", ["none", "normal", "ornstein-uhlenbeck"]),
+        "noise_type": trial.suggest_categorical("noise_type", noise_types),
     }
     if sampled["noise_type"] != "none":
         sampled["noise_std"] = trial.suggest_float("noise_std", 0.01, 0.3, log=True)

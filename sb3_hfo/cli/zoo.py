@@ -27,6 +27,8 @@ the paper's figures are plotted against episodes). The training goal rate is SB3
 
 from __future__ import annotations
 
+import contextlib
+import shutil
 import sys
 import tempfile
 from collections.abc import Callable, Sequence
@@ -99,6 +101,26 @@ def _experiment_manager_class() -> type:
     class HFOExperimentManager(ExperimentManager):
         """rl-zoo3's ExperimentManager with SkillDDPG's two learning rates, policy_kwargs merging and eval env_kwargs."""
 
+        def setup_experiment(self) -> Any:
+            # A run that fails while it is set up (a bad value in the config, an env that cannot be made) leaves
+            # no folder behind: rl-zoo3 numbers a run after the folders present, so an empty HFO-...-v0_1 would
+            # turn the next run into _2.
+            # The folders this run would create: the run's own and the missing ones above it (-f, its algo folder).
+            created = []
+            folder = Path(self.save_path).absolute()
+            while not folder.exists():
+                created.append(folder)
+                folder = folder.parent
+            try:
+                return super().setup_experiment()
+            except BaseException:
+                if created:
+                    shutil.rmtree(created[0], ignore_errors=True)
+                    for parent in created[1:]:
+                        with contextlib.suppress(OSError):  # not empty: something else wrote there meanwhile
+                            parent.rmdir()
+                raise
+
         def _preprocess_hyperparams(self, hyperparams: dict[str, Any]) -> Any:
             processed = super()._preprocess_hyperparams(hyperparams)
             if self._eval_env_kwargs_args is None:
@@ -131,7 +153,10 @@ def _experiment_manager_class() -> type:
         def hyperparameters_optimization(self) -> None:
             original_sampler = HYPERPARAMS_SAMPLER[self.algo]
             base_policy_kwargs = dict(self._hyperparams.get("policy_kwargs") or {})
-            HYPERPARAMS_SAMPLER[self.algo] = merge_policy_kwargs(original_sampler, base_policy_kwargs)
+            sampler = merge_policy_kwargs(original_sampler, base_policy_kwargs)
+            if callbacks_need_action_noise(self.specified_callbacks):
+                sampler = require_action_noise(sampler)
+            HYPERPARAMS_SAMPLER[self.algo] = sampler
             try:
                 super().hyperparameters_optimization()
             finally:
@@ -151,6 +176,28 @@ def merge_policy_kwargs(
         return sampled
 
     return merged_sampler
+
+
+def callbacks_need_action_noise(callbacks: Any) -> bool:
+    """Whether a config's ``callback:`` entry (a name, a ``{name: kwargs}`` dict or a list of them) lists
+    :class:`ActionNoiseDecayCallback`, which needs the model to have an action noise."""
+    entries = callbacks if isinstance(callbacks, list) else [callbacks]
+    names = [name for entry in entries for name in (entry if isinstance(entry, dict) else [entry])]
+    return any(
+        isinstance(name, str) and name.rsplit(".", 1)[-1] == "ActionNoiseDecayCallback" for name in names
+    )
+
+
+def require_action_noise(sampler: Callable[..., dict[str, Any]]) -> Callable[..., dict[str, Any]]:
+    """Wrap an Optuna sampler of :mod:`sb3_hfo.hyperparams_opt` so that it never draws ``noise_type: none``."""
+    from sb3_hfo.hyperparams_opt import NOISE_REQUIRED_ARG
+
+    def noisy_sampler(
+        trial: Any, n_actions: int, n_envs: int, additional_args: dict[str, Any]
+    ) -> dict[str, Any]:
+        return sampler(trial, n_actions, n_envs, {**additional_args, NOISE_REQUIRED_ARG: True})
+
+    return noisy_sampler
 
 
 def _playback_class(algo_class: type) -> type:
