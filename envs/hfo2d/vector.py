@@ -90,6 +90,38 @@ def _reset_mask(options: Mapping[str, Any] | None, num_envs: int) -> tuple[np.nd
     return mask, game_options or None
 
 
+def _per_game_options(
+    per_game: Sequence[Mapping[str, Any] | None] | None, common: Mapping[str, Any] | None, num_envs: int
+) -> list[Mapping[str, Any] | None]:
+    if per_game is None:
+        return [common] * num_envs
+    if len(per_game) != num_envs:
+        raise ValueError(
+            f"per_game_options needs {num_envs} entries (a dict or None each), got {len(per_game)}"
+        )
+    return [options or None for options in per_game]
+
+
+def _indices(indices: Sequence[int] | int | None, num_envs: int) -> list[int]:
+    """SB3's ``indices``: None for every game, one index, or a sequence of them (each checked)."""
+    if indices is None:
+        return list(range(num_envs))
+    chosen = [indices] if isinstance(indices, (int, np.integer)) else list(indices)
+    for index in chosen:
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not 0 <= index < num_envs:
+            raise ValueError(f"game index {index!r} is not one of 0 ... {num_envs - 1}")
+    return [int(index) for index in chosen]
+
+
+def _values_for(values: Any, count: int) -> list[Any]:
+    """One value for every chosen game, or a list / tuple of exactly one per game."""
+    if not isinstance(values, (list, tuple)):
+        return [values] * count
+    if len(values) != count:
+        raise ValueError(f"set_attr needs one value or {count} values, got {len(values)}")
+    return list(values)
+
+
 # -----------------------------------------------------------------------------------------------------------------
 # Gymnasium's vector info dict, built column by column
 # -----------------------------------------------------------------------------------------------------------------
@@ -350,34 +382,57 @@ class HFOVectorEnv(gym.vector.VectorEnv):
 
     def call(self, name: str, *args: Any, **kwargs: Any) -> tuple[Any, ...]:
         """Each game's attribute ``name``, called with the arguments if it is callable (SyncVectorEnv's call)."""
-        results = []
-        for env in self.envs:
-            attribute = getattr(env, name)
-            results.append(attribute(*args, **kwargs) if callable(attribute) else attribute)
-        return tuple(results)
+        return tuple(self.call_games(name, args, kwargs))
 
     def get_attr(self, name: str) -> tuple[Any, ...]:
         """Each game's attribute ``name``."""
-        return tuple(getattr(env, name) for env in self.envs)
+        return tuple(self.get_attr_games(name))
 
     def set_attr(self, name: str, values: Any) -> None:
         """Set attribute ``name`` of every game: one value for all, or a list / tuple of one per game."""
-        if not isinstance(values, (list, tuple)):
-            values = [values] * self.num_envs
-        if len(values) != self.num_envs:
-            raise ValueError(f"set_attr needs one value or {self.num_envs} values, got {len(values)}")
-        for env, value in zip(self.envs, values, strict=True):
-            setattr(env, name, value)
+        self.set_attr_games(name, values)
+
+    # --- the same for some games (SB3's indices) -------------------------------------------------------------
+    def call_games(
+        self,
+        name: str,
+        args: Sequence[Any] = (),
+        kwargs: Mapping[str, Any] | None = None,
+        indices: Sequence[int] | None = None,
+    ) -> list[Any]:
+        """Attribute ``name`` of the games ``indices`` (default: all), called with the arguments if callable."""
+        results = []
+        for index in _indices(indices, self.num_envs):
+            attribute = getattr(self.envs[index], name)
+            results.append(attribute(*args, **(kwargs or {})) if callable(attribute) else attribute)
+        return results
+
+    def get_attr_games(self, name: str, indices: Sequence[int] | None = None) -> list[Any]:
+        return [getattr(self.envs[index], name) for index in _indices(indices, self.num_envs)]
+
+    def set_attr_games(self, name: str, values: Any, indices: Sequence[int] | None = None) -> None:
+        """Set ``name`` on the games ``indices``: one value for all of them, or a list / tuple of one per game."""
+        chosen = _indices(indices, self.num_envs)
+        for index, value in zip(chosen, _values_for(values, len(chosen)), strict=True):
+            setattr(self.envs[index], name, value)
 
     # --- the batch's core (shared with the workers of ShardedHFOVectorEnv and with sb3_hfo's adapter) -----------
     def reset_games(
-        self, *, seed: int | Sequence[int | None] | None = None, options: Mapping[str, Any] | None = None
+        self,
+        *,
+        seed: int | Sequence[int | None] | None = None,
+        options: Mapping[str, Any] | None = None,
+        per_game_options: Sequence[Mapping[str, Any] | None] | None = None,
     ) -> list[dict[str, Any]]:
-        """Reset the games into the observation buffer; returns each game's reset info ({} for a masked-out one)."""
+        """Reset the games into the observation buffer; returns each game's reset info ({} for a masked-out one).
+        ``per_game_options`` (one reset options dict or None per game, SB3's ``set_options``) replaces
+        ``options``' placements."""
         seeds = _game_seeds(seed, self.num_envs)
         mask, game_options = _reset_mask(options, self.num_envs)
-        if mask is None and game_options is not None:
-            self.envs[0]._parse_reset_options(game_options)  # a bad option fails before any game resets
+        every_options = _per_game_options(per_game_options, game_options, self.num_envs)
+        for checked in every_options:
+            if checked is not None:  # a bad option fails before any game resets
+                self.envs[0]._parse_reset_options(checked)
         if mask is not None and self._needs_reset and not mask.all():
             raise RuntimeError("the first reset() must reset every game (no reset_mask, or one of all True)")
         infos: list[dict[str, Any]] = []
@@ -386,7 +441,7 @@ class HFOVectorEnv(gym.vector.VectorEnv):
             if mask is not None and not mask[index]:
                 infos.append({})
                 continue
-            observations[index], info = reset(seed=seeds[index], options=game_options)
+            observations[index], info = reset(seed=seeds[index], options=every_options[index])
             self._ended[index] = False
             infos.append(info)
         self._rewards[:] = 0.0
@@ -505,12 +560,11 @@ def _worker(
             elif command == "reset":
                 result = batch.reset_games(**data)
             elif command == "call":
-                name, args, kwargs = data
-                result = batch.call(name, *args, **kwargs)
+                result = batch.call_games(*data)
             elif command == "get_attr":
-                result = batch.get_attr(data)
+                result = batch.get_attr_games(*data)
             elif command == "set_attr":
-                result = batch.set_attr(*data)
+                result = batch.set_attr_games(*data)
             elif command == "render":
                 result = tuple(env.render() for env in batch.envs)
             elif command == "close":
@@ -666,17 +720,56 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         return tuple(frame for part in self._broadcast("render", None) for frame in part)
 
     def call(self, name: str, *args: Any, **kwargs: Any) -> tuple[Any, ...]:
-        return tuple(value for part in self._broadcast("call", (name, args, kwargs)) for value in part)
+        return tuple(self.call_games(name, args, kwargs))
 
     def get_attr(self, name: str) -> tuple[Any, ...]:
-        return tuple(value for part in self._broadcast("get_attr", name) for value in part)
+        return tuple(self.get_attr_games(name))
 
     def set_attr(self, name: str, values: Any) -> None:
-        if not isinstance(values, (list, tuple)):
-            values = [values] * self.num_envs
-        if len(values) != self.num_envs:
-            raise ValueError(f"set_attr needs one value or {self.num_envs} values, got {len(values)}")
-        self._scatter("set_attr", [(name, list(values[block.start : block.stop])) for block in self.blocks])
+        self.set_attr_games(name, values)
+
+    def call_games(
+        self,
+        name: str,
+        args: Sequence[Any] = (),
+        kwargs: Mapping[str, Any] | None = None,
+        indices: Sequence[int] | None = None,
+    ) -> list[Any]:
+        """As :meth:`HFOVectorEnv.call_games` (the results must pickle: they come back through the pipes)."""
+        return self._per_block(
+            indices, lambda local, _: ("call", (name, tuple(args), dict(kwargs or {}), local))
+        )
+
+    def get_attr_games(self, name: str, indices: Sequence[int] | None = None) -> list[Any]:
+        return self._per_block(indices, lambda local, _: ("get_attr", (name, local)))
+
+    def set_attr_games(self, name: str, values: Any, indices: Sequence[int] | None = None) -> None:
+        chosen = _indices(indices, self.num_envs)
+        by_game = dict(zip(chosen, _values_for(values, len(chosen)), strict=True))
+        self._per_block(
+            chosen,
+            lambda local, block: ("set_attr", (name, [by_game[block.start + i] for i in local], local)),
+        )
+
+    def _per_block(
+        self, indices: Sequence[int] | None, message: Callable[[list[int], range], tuple]
+    ) -> list[Any]:
+        """Send each worker holding some of the games ``indices`` its command (made by ``message`` from the games'
+        indices within the worker); returns the results in the order of ``indices``."""
+        chosen = _indices(indices, self.num_envs)
+        workers, payloads, locals_ = [], [], []
+        for worker, block in enumerate(self.blocks):
+            local = [index - block.start for index in chosen if index in block]
+            if local:
+                workers.append(worker)
+                locals_.append((block, local))
+                payloads.append(message(local, block))
+        parts = self._exchange(workers, payloads)
+        by_game = {}
+        for (block, local), part in zip(locals_, parts, strict=True):
+            if part is not None:
+                by_game.update({block.start + i: value for i, value in zip(local, part, strict=True)})
+        return [by_game.get(index) for index in chosen]
 
     def close_extras(self, **kwargs: Any) -> None:
         for connection in self._connections:
@@ -703,12 +796,19 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
 
     # --- the batch's core --------------------------------------------------------------------------------------
     def reset_games(
-        self, *, seed: int | Sequence[int | None] | None = None, options: Mapping[str, Any] | None = None
+        self,
+        *,
+        seed: int | Sequence[int | None] | None = None,
+        options: Mapping[str, Any] | None = None,
+        per_game_options: Sequence[Mapping[str, Any] | None] | None = None,
     ) -> list[dict[str, Any]]:
+        """As :meth:`HFOVectorEnv.reset_games`."""
         seeds = _game_seeds(seed, self.num_envs)
         mask, game_options = _reset_mask(options, self.num_envs)
-        if mask is None and game_options is not None:
-            self._probe._parse_reset_options(game_options)  # a bad option fails before any game resets
+        every_options = _per_game_options(per_game_options, game_options, self.num_envs)
+        for checked in every_options:
+            if checked is not None:  # a bad option fails before any game resets
+                self._probe._parse_reset_options(checked)
         if mask is not None and self._needs_reset and not mask.all():
             raise RuntimeError("the first reset() must reset every game (no reset_mask, or one of all True)")
         payloads = []
@@ -716,7 +816,15 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
             block_options = game_options
             if mask is not None:
                 block_options = {**(game_options or {}), "reset_mask": mask[block.start : block.stop]}
-            payloads.append({"seed": seeds[block.start : block.stop], "options": block_options})
+            payloads.append(
+                {
+                    "seed": seeds[block.start : block.stop],
+                    "options": block_options,
+                    "per_game_options": None
+                    if per_game_options is None
+                    else every_options[block.start : block.stop],
+                }
+            )
         infos = [info for part in self._scatter("reset", payloads) for info in part]
         self._needs_reset = False
         return infos
@@ -735,15 +843,21 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         return [info for part in self._scatter("step", payloads) for info in part]
 
     def _scatter(self, command: str, payloads: Sequence[Any]) -> list[Any]:
+        """``command`` to every worker, each with its payload; the workers' results in order."""
+        return self._exchange(range(self.num_workers), [(command, payload) for payload in payloads])
+
+    def _exchange(self, workers: Sequence[int], messages: Sequence[tuple[str, Any]]) -> list[Any]:
+        """Send each of ``workers`` its (command, payload), then collect their results; a worker's exception is
+        raised here once every worker has answered (so that the pipes stay in step)."""
         if self.closed:
             raise RuntimeError("the ShardedHFOVectorEnv is closed")
-        for connection, payload in zip(self._connections, payloads, strict=True):
-            connection.send((command, payload))
+        for worker, message in zip(workers, messages, strict=True):
+            self._connections[worker].send(message)
         results = []
         error: BaseException | None = None
-        for connection in self._connections:
+        for worker in workers:
             try:
-                status, result = connection.recv()
+                status, result = self._connections[worker].recv()
             except (EOFError, OSError) as broken:
                 raise RuntimeError("an hfo2d worker died; close() this env and make a new one") from broken
             if status == "raise":
