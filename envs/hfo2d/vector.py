@@ -32,7 +32,6 @@ from __future__ import annotations
 import contextlib
 import multiprocessing
 import multiprocessing.connection
-import os
 import signal
 import traceback
 from collections.abc import Callable, Mapping, Sequence
@@ -518,7 +517,6 @@ def _shared_array(context: Any, shape: tuple[int, ...], dtype: Any) -> tuple[Any
 
 def _worker(
     connection: multiprocessing.connection.Connection,
-    parent_pid: int,
     block: tuple[int, int],
     autoreset_mode: str,
     env_kwargs: dict[str, Any],
@@ -527,9 +525,11 @@ def _worker(
     """One worker: a :class:`HFOVectorEnv` of games ``block`` (start, stop) whose buffers are its rows of the
     shared arrays.
 
-    It leaves when the parent says "close", when the pipe breaks (the parent died: nobody else holds the
-    parent's end, the workers are started by spawn / forkserver, not fork), or when the parent pid changes."""
+    It leaves when the parent says "close", when the parent process dies (multiprocessing's parent sentinel) or
+    when the pipe breaks (nobody else holds the parent's end: the workers are started by spawn / forkserver, not
+    fork)."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle; it then closes us
+    parent = multiprocessing.parent_process()
     try:
         start, stop = block
         batch = HFOVectorEnv(stop - start, autoreset_mode=autoreset_mode, **env_kwargs)
@@ -547,9 +547,9 @@ def _worker(
         connection.send(("error", traceback.format_exc()))
         return
     while True:
-        while not connection.poll(1.0):
-            if os.getppid() != parent_pid:  # orphaned (re-parented): nobody will ever close us
-                return
+        # a command, or the parent's death: its sentinel (spawn / forkserver children have one) becomes ready
+        if parent is not None and connection not in multiprocessing.connection.wait([connection, parent.sentinel]):
+            return
         try:
             command, data = connection.recv()
         except (EOFError, OSError):
@@ -668,7 +668,6 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
                     target=_worker,
                     args=(
                         child_end,
-                        os.getpid(),
                         (block.start, block.stop),
                         self.autoreset_mode.value,
                         self.env_kwargs,
