@@ -13,12 +13,15 @@ every id:
 * ``sb3 sharded xN/W``: ``make_hfo_vec_env(id, N, num_workers=W, monitor=False)``;
 * ``DummyVecEnv xN`` (``--dummy``): SB3's ``DummyVecEnv`` of ``gym.make(id)``, for comparison.
 
-Rounds interleave the contestants (round r runs each once), so background load hits them alike; each round's ratio
-to ``single`` is taken within the round, and the medians over rounds are reported. Steps count every game's step.
+Rounds interleave the contestants (round r runs each once, for a fraction of a second), so background load hits them
+alike; each round's ratio to ``single`` is taken within the round, and the medians over rounds are reported. Steps
+count every game's step. Besides the wall clock, the CPU time per game step of this process and of the busiest
+worker process (Linux /proc) are reported: on a loaded machine a sharded step waits for every worker, and the CPU
+times show what the sharding itself costs.
 
 Usage::
 
-    python benchmarks/vector_throughput.py --steps 16000 --rounds 5 --out benchmarks/results/vector_throughput.json
+    python benchmarks/vector_throughput.py --steps 4800 --rounds 15 --out benchmarks/results/vector_throughput.json
     python benchmarks/vector_throughput.py --ids HFO/Keeper-v1 --profile      # cProfile of the one-process batch
 """
 
@@ -52,7 +55,23 @@ def uptime() -> str:
         return ""
 
 
-def time_single(env_id: str, steps: int, seed: int) -> tuple[float, float]:
+def process_cpu_seconds(pid: int) -> float:
+    """User + system CPU seconds of process ``pid`` (Linux /proc; 0 elsewhere)."""
+    try:
+        with open(f"/proc/{pid}/stat") as handle:
+            fields = handle.read().rsplit(")", 1)[1].split()
+    except OSError:
+        return 0.0
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def worker_pids(env: Any) -> list[int]:
+    """The worker processes of a sharded batch (also under SB3's adapter), else none."""
+    batch = getattr(env, "batch", env)
+    return [process.pid for process in getattr(batch, "_processes", [])]
+
+
+def time_single(env_id: str, steps: int, seed: int) -> tuple[float, float, float]:
     env = gym.make(env_id).unwrapped
     actions = np.random.default_rng(seed).random((steps, ACTION_SIZE), dtype=np.float32)
     env.reset(seed=seed)
@@ -64,7 +83,7 @@ def time_single(env_id: str, steps: int, seed: int) -> tuple[float, float]:
             env.reset()
     wall, cpu = time.perf_counter() - start, time.process_time() - start_cpu
     env.close()
-    return wall, cpu
+    return wall, cpu, 0.0
 
 
 def time_vector(
@@ -79,6 +98,8 @@ def time_vector(
     else:
         env.reset(seed=seed)
     step = env.step
+    pids = worker_pids(env)
+    workers_before = [process_cpu_seconds(pid) for pid in pids]
     start_cpu, start = time.process_time(), time.perf_counter()
     if read_info:
         for action in actions:
@@ -86,7 +107,9 @@ def time_vector(
     else:
         for action in actions:
             step(action)
-    return time.perf_counter() - start, time.process_time() - start_cpu
+    wall, cpu = time.perf_counter() - start, time.process_time() - start_cpu
+    workers = [process_cpu_seconds(pid) - before for pid, before in zip(pids, workers_before, strict=True)]
+    return wall, cpu, max(workers, default=0.0)
 
 
 def contestants(env_id: str, num_envs: int, workers: list[int], dummy: bool) -> dict[str, Callable[..., Any]]:
@@ -135,11 +158,13 @@ def benchmark(
             run(min(steps, 2 * num_envs * 50), seed + 1)
         walls: dict[str, list[float]] = {name: [] for name in made}
         cpus: dict[str, list[float]] = {name: [] for name in made}
-        for _ in range(rounds):
+        worker_cpus: dict[str, list[float]] = {name: [] for name in made}
+        for round_index in range(rounds):
             for name, (run, _) in made.items():
-                wall, cpu = run(steps, seed)
+                wall, cpu, worker_cpu = run(steps, seed + round_index)
                 walls[name].append(wall)
                 cpus[name].append(cpu)
+                worker_cpus[name].append(worker_cpu)
     finally:
         for _, close in made.values():
             close()
@@ -160,13 +185,26 @@ def benchmark(
                 "steps_per_s_rounds": [round(rate, 1) for rate in rates],
                 "ratio_to_single_median": round(statistics.median(ratios), 3),
                 "ratio_to_single_rounds": [round(ratio, 3) for ratio in ratios],
-                # steps per CPU-second of this process (workers' CPU not included for the sharded ones)
-                "steps_per_cpu_s_median": round(statistics.median(counted / cpu for cpu in cpus[name]), 1),
+                # CPU time per game step, of this process and (sharded) of the busiest worker: on a loaded machine
+                # these say more than the wall clock (a sharded step waits for every worker)
+                "process_cpu_us_per_step_median": round(1e6 * statistics.median(cpus[name]) / counted, 2),
+                "worker_cpu_us_per_step_median": round(
+                    1e6 * statistics.median(worker_cpus[name]) / counted, 2
+                ),
+                "cpu_ratio_to_single_median": round(
+                    statistics.median(
+                        (single_cpu / steps) / (cpu / counted)
+                        for cpu, single_cpu in zip(cpus[name], cpus["single"], strict=True)
+                    ),
+                    3,
+                ),
             }
         )
         print(
             f"  {env_id:<20s} {name:<24s} {rows[-1]['steps_per_s_median']:>9,.0f} steps/s "
-            f"x{rows[-1]['ratio_to_single_median']:.2f}  rounds {rows[-1]['ratio_to_single_rounds']}",
+            f"x{rows[-1]['ratio_to_single_median']:.2f} (CPU x{rows[-1]['cpu_ratio_to_single_median']:.2f}, "
+            f"{rows[-1]['process_cpu_us_per_step_median']:.1f} + worker {rows[-1]['worker_cpu_us_per_step_median']:.1f}"
+            " CPU-us/step)",
             flush=True,
         )
     return {"env_id": env_id, "rows": rows}
@@ -179,8 +217,8 @@ def main() -> None:
         nargs="+",
         default=["HFO/Keeper-v1", "HFO/Keeper-v0", "HFO/StaticKeeper-v0", "HFO/EmptyGoal-v0"],
     )
-    parser.add_argument("--steps", type=int, default=16000, help="game steps per contestant and round")
-    parser.add_argument("--rounds", type=int, default=5)
+    parser.add_argument("--steps", type=int, default=4800, help="game steps per contestant and round")
+    parser.add_argument("--rounds", type=int, default=15)
     parser.add_argument("--num-envs", type=int, default=16)
     parser.add_argument(
         "--workers", type=int, nargs="*", default=[2], help="worker counts of the sharded runs"

@@ -32,6 +32,7 @@ from __future__ import annotations
 import contextlib
 import multiprocessing
 import multiprocessing.connection
+import pickle
 import signal
 import traceback
 from collections.abc import Callable, Mapping, Sequence
@@ -185,14 +186,19 @@ class VectorInfo(dict):
 
     __slots__ = ("_games",)
 
-    def __init__(self, games: Sequence[Mapping[str, Any]]) -> None:
+    def __init__(
+        self, games: Sequence[Mapping[str, Any]] | Callable[[], Sequence[Mapping[str, Any]]]
+    ) -> None:
+        """``games``: the games' info dicts, or a function that returns them (called once, on the first read)."""
         super().__init__()
-        self._games: Sequence[Mapping[str, Any]] | None = games
+        self._games: Any = games
 
     def _build(self) -> None:
         games = self._games
         if games is not None:
             self._games = None
+            if callable(games):
+                games = games()
             dict.update(self, vector_info(games, len(games)))
 
     def __reduce_ex__(self, protocol: Any) -> Any:  # pickle / deepcopy: a plain dict of the built contents
@@ -259,8 +265,8 @@ def checked_actions(actions: Any, envs: Sequence[HFOEnv], flat_shape: tuple[int,
             type(actions) is np.ndarray
             and actions.shape == flat_shape
             and actions.dtype.kind == "f"
-            and (actions >= 0.0).all()
-            and (actions <= 1.0).all()  # (NaN fails both comparisons)
+            and actions.min() >= 0.0  # (a NaN anywhere makes min() and max() NaN, which fails the comparison)
+            and actions.max() <= 1.0
         ):
             return actions  # rows of a valid float array: what the single env's fast path takes
         if type(actions) is not np.ndarray or actions.ndim != 2:
@@ -338,6 +344,7 @@ class HFOVectorEnv(gym.vector.VectorEnv):
         self._action_shape = (self.num_envs, *self.single_action_space.shape) if self._flat else None
         n = self.num_envs
         self._observations = np.zeros((n, *self.single_observation_space.shape), dtype=np.float32)
+        self._flat_observations = self._observations.reshape(-1)  # a view: the games' rows end to end
         self._rewards = np.zeros(n, dtype=np.float64)
         self._terminations = np.zeros(n, dtype=np.bool_)
         self._truncations = np.zeros(n, dtype=np.bool_)
@@ -456,36 +463,41 @@ class HFOVectorEnv(gym.vector.VectorEnv):
         if self._needs_reset:
             raise RuntimeError("call reset() before step()")
         rows = self._game_actions(actions)
-        observations = self._observations
-        rewards = self._rewards
-        terminations = self._terminations
-        truncations = self._truncations
+        # The hot loop gathers plain Python lists and fills the numpy buffers once per batch (cheaper than an item
+        # assignment per game); the rare episode ends take the branch.
         same_step = self.autoreset_mode is AutoresetMode.SAME_STEP
         ended = self._ended
+        resets = self._game_resets
+        any_ended = ended.any()
+        observation_list: list[np.ndarray] = []
+        rewards: list[float] = []
+        terminations: list[bool] = []
+        truncations: list[bool] = []
         infos: list[dict[str, Any]] = []
-        append = infos.append
         for index, (step, action) in enumerate(zip(self._game_steps, rows, strict=False)):
-            if ended[index]:  # NEXT_STEP: this step resets the game; its action is ignored
-                observations[index], info = self._game_resets[index]()
-                rewards[index] = 0.0
-                terminations[index] = truncations[index] = ended[index] = False
-                append(info)
-                continue
-            observation, reward, terminated, truncated, info = step(action)
-            rewards[index] = reward
-            terminations[index] = terminated
-            truncations[index] = truncated
-            if terminated or truncated:
-                if same_step:
-                    observations[index], reset_info = self._game_resets[index]()
-                    # (SyncVectorEnv's order of the keys, which the vector info's key order follows)
-                    info = {"final_obs": observation, "final_info": info, **reset_info}
-                else:
-                    observations[index] = observation
-                    ended[index] = True
+            if any_ended and ended[index]:  # NEXT_STEP: this step resets the game; its action is ignored
+                observation, info = resets[index]()
+                reward, terminated, truncated = 0.0, False, False
+                ended[index] = False
             else:
-                observations[index] = observation
-            append(info)
+                observation, reward, terminated, truncated, info = step(action)
+                if terminated or truncated:
+                    if same_step:
+                        final_observation = observation
+                        observation, reset_info = resets[index]()
+                        # (SyncVectorEnv's order of the keys, which the vector info's key order follows)
+                        info = {"final_obs": final_observation, "final_info": info, **reset_info}
+                    else:
+                        ended[index] = True
+            observation_list.append(observation)
+            rewards.append(reward)
+            terminations.append(terminated)
+            truncations.append(truncated)
+            infos.append(info)
+        np.concatenate(observation_list, out=self._flat_observations)
+        self._rewards[:] = rewards
+        self._terminations[:] = terminations
+        self._truncations[:] = truncations
         return infos
 
     def _game_actions(self, actions: Any) -> Any:
@@ -515,6 +527,11 @@ def _shared_array(context: Any, shape: tuple[int, ...], dtype: Any) -> tuple[Any
     return raw, np.frombuffer(raw, dtype=dtype, count=int(np.prod(shape))).reshape(shape)
 
 
+# A worker's answer: one byte saying whether the command succeeded, then the pickled result (or exception), so that
+# the parent can check every answer at once and unpickle a step's infos only when they are read.
+_ANSWERED, _RAISED = b"a", b"r"
+
+
 def _worker(
     connection: multiprocessing.connection.Connection,
     block: tuple[int, int],
@@ -538,6 +555,7 @@ def _worker(
             for name, (raw, shape, dtype) in buffers.items()
         }
         batch._observations = views["observations"]
+        batch._flat_observations = batch._observations.reshape(-1)  # (a view of the contiguous rows)
         batch._rewards = views["rewards"]
         batch._terminations = views["terminations"]
         batch._truncations = views["truncations"]
@@ -548,7 +566,9 @@ def _worker(
         return
     while True:
         # a command, or the parent's death: its sentinel (spawn / forkserver children have one) becomes ready
-        if parent is not None and connection not in multiprocessing.connection.wait([connection, parent.sentinel]):
+        if parent is not None and connection not in multiprocessing.connection.wait(
+            [connection, parent.sentinel]
+        ):
             return
         try:
             command, data = connection.recv()
@@ -569,13 +589,13 @@ def _worker(
                 result = tuple(env.render() for env in batch.envs)
             elif command == "close":
                 batch.close()
-                connection.send(("ok", None))
+                connection.send_bytes(_ANSWERED + pickle.dumps(None))
                 return
             else:
                 raise ValueError(f"unknown command {command!r}")
-            connection.send(("ok", result))
+            connection.send_bytes(_ANSWERED + pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL))
         except Exception as error:  # sent to the parent, which raises it (the worker stays usable)
-            connection.send(("raise", error))
+            connection.send_bytes(_RAISED + pickle.dumps(error, protocol=pickle.HIGHEST_PROTOCOL))
 
 
 class ShardedHFOVectorEnv(gym.vector.VectorEnv):
@@ -701,13 +721,14 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         return self._observations.copy(), VectorInfo(infos)
 
     def step(self, actions: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, dict[str, Any]]:
-        infos = self.step_games(actions)
+        """As :meth:`HFOVectorEnv.step`; the workers' infos are unpickled only when the info dict is read."""
+        answers = self.step_games(actions, pickled=True)
         return (
             self._observations.copy(),
             self._rewards.copy(),
             self._terminations.copy(),
             self._truncations.copy(),
-            VectorInfo(infos),
+            VectorInfo(lambda: [info for answer in answers for info in pickle.loads(answer)]),
         )
 
     def render(self) -> tuple[np.ndarray | None, ...] | None:
@@ -775,11 +796,9 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
             with contextlib.suppress(BrokenPipeError, OSError):
                 connection.send(("close", None))
         for process, connection in zip(self._processes, self._connections, strict=False):
-            try:
+            with contextlib.suppress(EOFError, OSError):
                 if connection.poll(5.0):
-                    connection.recv()
-            except (EOFError, OSError):
-                pass
+                    connection.recv_bytes()
             process.join(timeout=5.0)
             if process.is_alive():
                 process.terminate()
@@ -828,7 +847,8 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         self._needs_reset = False
         return infos
 
-    def step_games(self, actions: Any) -> list[dict[str, Any]]:
+    def step_games(self, actions: Any, pickled: bool = False) -> list[Any]:
+        """As :meth:`HFOVectorEnv.step_games`; with ``pickled`` the infos come as each worker's pickled list."""
         if self._needs_reset:
             raise RuntimeError("call reset() before step()")
         # every game's action is checked here, before any worker moves (the workers check their own rows again)
@@ -839,32 +859,36 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         else:  # other dtypes, lists, parameterized tuples: exactly as given, through the pipes
             rows = list(rows)
             payloads = [rows[block.start : block.stop] for block in self.blocks]
-        return [info for part in self._scatter("step", payloads) for info in part]
+        answers = self._scatter("step", payloads, pickled=pickled)
+        return answers if pickled else [info for part in answers for info in part]
 
-    def _scatter(self, command: str, payloads: Sequence[Any]) -> list[Any]:
+    def _scatter(self, command: str, payloads: Sequence[Any], pickled: bool = False) -> list[Any]:
         """``command`` to every worker, each with its payload; the workers' results in order."""
-        return self._exchange(range(self.num_workers), [(command, payload) for payload in payloads])
+        return self._exchange(range(self.num_workers), [(command, payload) for payload in payloads], pickled)
 
-    def _exchange(self, workers: Sequence[int], messages: Sequence[tuple[str, Any]]) -> list[Any]:
-        """Send each of ``workers`` its (command, payload), then collect their results; a worker's exception is
-        raised here once every worker has answered (so that the pipes stay in step)."""
+    def _exchange(
+        self, workers: Sequence[int], messages: Sequence[tuple[str, Any]], pickled: bool = False
+    ) -> list[Any]:
+        """Send each of ``workers`` its (command, payload), then collect their results (still pickled, as
+        memoryviews, with ``pickled``); a worker's exception is raised here once every worker has answered (so
+        that the pipes stay in step)."""
         if self.closed:
             raise RuntimeError("the ShardedHFOVectorEnv is closed")
         for worker, message in zip(workers, messages, strict=True):
             self._connections[worker].send(message)
-        results = []
+        answers = []
         error: BaseException | None = None
         for worker in workers:
             try:
-                status, result = self._connections[worker].recv()
+                answer = self._connections[worker].recv_bytes()
             except (EOFError, OSError) as broken:
                 raise RuntimeError("an hfo2d worker died; close() this env and make a new one") from broken
-            if status == "raise":
-                error = error or result
-            results.append(result)
+            if answer[:1] == _RAISED:
+                error = error or pickle.loads(memoryview(answer)[1:])
+            answers.append(memoryview(answer)[1:])
         if error is not None:
             raise error
-        return results
+        return answers if pickled else [pickle.loads(answer) for answer in answers]
 
     def _broadcast(self, command: str, payload: Any) -> list[Any]:
         return self._scatter(command, [payload] * self.num_workers)
