@@ -9,7 +9,8 @@ every id:
 * ``batch xN, info read``: the same, reading ``info["status"]`` every step (builds the whole vector info);
 * ``sb3 xN``: ``sb3_hfo.common.vec_env.make_hfo_vec_env(id, N, monitor=False)``, SB3's ``step`` (infos with
   ``terminal_observation`` and ``TimeLimit.truncated``);
-* ``sharded xN/W``: ``hfo2d.vector.ShardedHFOVectorEnv(id, N, W)`` (W worker processes);
+* ``sharded xN/W``: ``hfo2d.vector.ShardedHFOVectorEnv(id, N, W)`` (W shards: this process steps one, W - 1
+  worker processes the others); ``, all in workers``: the same with ``in_process_shard=False`` (W workers);
 * ``sb3 sharded xN/W``: ``make_hfo_vec_env(id, N, num_workers=W, monitor=False)``;
 * ``DummyVecEnv xN`` (``--dummy``): SB3's ``DummyVecEnv`` of ``gym.make(id)``, for comparison.
 
@@ -137,6 +138,9 @@ def contestants(env_id: str, num_envs: int, workers: list[int], dummy: bool) -> 
         makers[f"sharded x{num_envs}/{count}"] = vector(
             lambda count=count: ShardedHFOVectorEnv(env_id, num_envs, count)
         )
+        makers[f"sharded x{num_envs}/{count}, all in workers"] = vector(
+            lambda count=count: ShardedHFOVectorEnv(env_id, num_envs, count, in_process_shard=False)
+        )
         makers[f"sb3 sharded x{num_envs}/{count}"] = vector(
             lambda count=count: make_hfo_vec_env(env_id, num_envs, num_workers=count, monitor=False), sb3=True
         )
@@ -201,7 +205,7 @@ def benchmark(
             }
         )
         print(
-            f"  {env_id:<20s} {name:<24s} {rows[-1]['steps_per_s_median']:>9,.0f} steps/s "
+            f"  {env_id:<20s} {name:<36s} {rows[-1]['steps_per_s_median']:>9,.0f} steps/s "
             f"x{rows[-1]['ratio_to_single_median']:.2f} (CPU x{rows[-1]['cpu_ratio_to_single_median']:.2f}, "
             f"{rows[-1]['process_cpu_us_per_step_median']:.1f} + worker {rows[-1]['worker_cpu_us_per_step_median']:.1f}"
             " CPU-us/step)",

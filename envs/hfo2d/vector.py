@@ -19,10 +19,17 @@ Conventions (Gymnasium 1.x's, as its ``SyncVectorEnv`` follows them):
   ``SyncVectorEnv``) is also supported: the step after an episode's end resets the game, ignores its action and
   returns reward 0, not terminated, not truncated and the reset's info.
 * **Infos**: Gymnasium's vector info dict: each key holds an array over the games and ``"_key"`` a boolean mask
-  of the games that have it (built as ``VectorEnv._add_info`` builds it, with the same dtypes, only faster).
+  of the games that have it (the arrays, dtypes and key order of ``VectorEnv._add_info``). It is a
+  :class:`VectorInfo`, a ``dict`` built on its first read: building it costs about as much as stepping a fast game,
+  and training loops rarely read it. ``step_games`` (what ``sb3_hfo``'s adapter uses) returns the games' own info
+  dicts instead.
 * **Actions**: a batch of the single action space (flat: an array (N, 8); parameterized: a tuple of four arrays
   over the games). Every game's action is validated before any game moves: a bad one is a ValueError naming the
   game and the problem (the single env's message), and no game changes.
+
+Speed: the games are the single env's ``step`` and ``reset`` unchanged; the batch's own work (the action check,
+the buffers, the copies returned) is about 13 µs per step of 16 stand-in games that cost nothing. The figures
+against the single env are in ``benchmarks/README.md`` (``benchmarks/vector_throughput.py``).
 
 Only numpy and gymnasium (and hfo2d) are imported: no torch, no SB3 (their adapter is ``sb3_hfo.common.vec_env``).
 """
@@ -527,6 +534,53 @@ def _shared_array(context: Any, shape: tuple[int, ...], dtype: Any) -> tuple[Any
     return raw, np.frombuffer(raw, dtype=dtype, count=int(np.prod(shape))).reshape(shape)
 
 
+def _unpickled(answer: Any) -> Any:
+    """A shard's answer: a worker's is pickled (a memoryview), the parent's own shard's is not."""
+    return pickle.loads(answer) if isinstance(answer, memoryview) else answer
+
+
+def _handle(batch: HFOVectorEnv, actions: np.ndarray | None, command: str, data: Any) -> Any:
+    """One command of the parent to a shard (a worker's batch, or the parent's own shard)."""
+    if command == "step":
+        return batch.step_games(actions if data is None else data)
+    if command == "reset":
+        return batch.reset_games(**data)
+    if command == "call":
+        return batch.call_games(*data)
+    if command == "get_attr":
+        return batch.get_attr_games(*data)
+    if command == "set_attr":
+        return batch.set_attr_games(*data)
+    if command == "render":
+        return tuple(env.render() for env in batch.envs)
+    raise ValueError(f"unknown command {command!r}")
+
+
+def _shard_views(
+    buffers: Mapping[str, tuple[Any, tuple[int, ...], str]], start: int, stop: int
+) -> dict[str, np.ndarray]:
+    """Rows ``start:stop`` of each shared array."""
+    return {
+        name: np.frombuffer(raw, dtype=dtype, count=int(np.prod(shape))).reshape(shape)[start:stop]
+        for name, (raw, shape, dtype) in buffers.items()
+    }
+
+
+def _shard_batch(
+    block: tuple[int, int], autoreset_mode: str, env_kwargs: Mapping[str, Any], buffers: Mapping[str, Any]
+) -> tuple[HFOVectorEnv, np.ndarray | None]:
+    """The batch of games ``block`` whose buffers are its rows of the shared arrays, and its rows of the actions."""
+    start, stop = block
+    batch = HFOVectorEnv(stop - start, autoreset_mode=autoreset_mode, **env_kwargs)
+    views = _shard_views(buffers, start, stop)
+    batch._observations = views["observations"]
+    batch._flat_observations = batch._observations.reshape(-1)  # (a view of the contiguous rows)
+    batch._rewards = views["rewards"]
+    batch._terminations = views["terminations"]
+    batch._truncations = views["truncations"]
+    return batch, views.get("actions")
+
+
 # A worker's answer: one byte saying whether the command succeeded, then the pickled result (or exception), so that
 # the parent can check every answer at once and unpickle a step's infos only when they are read.
 _ANSWERED, _RAISED = b"a", b"r"
@@ -548,18 +602,7 @@ def _worker(
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the parent's to handle; it then closes us
     parent = multiprocessing.parent_process()
     try:
-        start, stop = block
-        batch = HFOVectorEnv(stop - start, autoreset_mode=autoreset_mode, **env_kwargs)
-        views = {
-            name: np.frombuffer(raw, dtype=dtype, count=int(np.prod(shape))).reshape(shape)[start:stop]
-            for name, (raw, shape, dtype) in buffers.items()
-        }
-        batch._observations = views["observations"]
-        batch._flat_observations = batch._observations.reshape(-1)  # (a view of the contiguous rows)
-        batch._rewards = views["rewards"]
-        batch._terminations = views["terminations"]
-        batch._truncations = views["truncations"]
-        actions = views.get("actions")
+        batch, actions = _shard_batch(block, autoreset_mode, env_kwargs, buffers)
         connection.send(("ready", None))
     except Exception:
         connection.send(("error", traceback.format_exc()))
@@ -575,31 +618,19 @@ def _worker(
         except (EOFError, OSError):
             return
         try:
-            if command == "step":
-                result: Any = batch.step_games(actions if data is None else data)
-            elif command == "reset":
-                result = batch.reset_games(**data)
-            elif command == "call":
-                result = batch.call_games(*data)
-            elif command == "get_attr":
-                result = batch.get_attr_games(*data)
-            elif command == "set_attr":
-                result = batch.set_attr_games(*data)
-            elif command == "render":
-                result = tuple(env.render() for env in batch.envs)
-            elif command == "close":
+            if command == "close":
                 batch.close()
                 connection.send_bytes(_ANSWERED + pickle.dumps(None))
                 return
-            else:
-                raise ValueError(f"unknown command {command!r}")
+            result = _handle(batch, actions, command, data)
             connection.send_bytes(_ANSWERED + pickle.dumps(result, protocol=pickle.HIGHEST_PROTOCOL))
         except Exception as error:  # sent to the parent, which raises it (the worker stays usable)
             connection.send_bytes(_RAISED + pickle.dumps(error, protocol=pickle.HIGHEST_PROTOCOL))
 
 
 class ShardedHFOVectorEnv(gym.vector.VectorEnv):
-    """The games of :class:`HFOVectorEnv` spread over ``num_workers`` processes, one batch per worker (one per core).
+    """The games of :class:`HFOVectorEnv` in ``num_workers`` shards stepped in parallel, one batch per process (one
+    per core): by default this process steps the first shard and ``num_workers - 1`` worker processes the others.
 
     Game i is the same game whatever the sharding: ``reset(seed=s)`` seeds it with ``s + i``, it plays bit for bit
     as in an unsharded batch (and as ``gym.make(id)``), with the same auto-reset and info conventions.
@@ -609,10 +640,13 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
     Args:
         env_id: an hfo2d id (``"HFO/Keeper-v1"``, ...); the keyword rules of ``gym.make`` apply to ``env_kwargs``.
         num_envs: the number of games.
-        num_workers: worker processes (each holds a contiguous block of games; at most ``num_envs``).
+        num_workers: shards, each a contiguous block of games stepped by one process (at most ``num_envs``).
         autoreset_mode: as for :class:`HFOVectorEnv`.
         start_method: multiprocessing start method, "forkserver" (default where available) or "spawn". Not
             "fork": a forked worker would inherit its siblings' pipe ends and outlive a dead parent.
+        in_process_shard: True (default): this process steps the first shard itself while the others step
+            theirs (``num_workers - 1`` worker processes; its core would otherwise wait idle, and each step saves a
+            round trip); False: every shard in its own worker process (``num_workers`` processes).
         **env_kwargs: :class:`hfo2d.HFOEnv`'s arguments beyond the id's own.
     """
 
@@ -623,6 +657,7 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         num_workers: int = 2,
         autoreset_mode: AutoresetMode | str = AutoresetMode.SAME_STEP,
         start_method: str | None = None,
+        in_process_shard: bool = True,
         **env_kwargs: Any,
     ) -> None:
         from hfo2d import ENV_IDS, RegisteredEnvCreator
@@ -660,7 +695,10 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         self.blocks = split_games(self.num_envs, self.num_workers)
         self.closed = False
         self._processes: list[Any] = []
-        self._connections: list[multiprocessing.connection.Connection] = []
+        # one per shard (block); None for the shard this process steps itself
+        self._connections: list[multiprocessing.connection.Connection | None] = []
+        self._local: HFOVectorEnv | None = None
+        self._local_actions: np.ndarray | None = None
 
         n = self.num_envs
         context = multiprocessing.get_context(start_method)
@@ -682,7 +720,13 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
             buffers = {
                 name: (raws[name][0], shape, np.dtype(dtype).str) for name, (shape, dtype) in shapes.items()
             }
-            for block in self.blocks:
+            for shard, block in enumerate(self.blocks):
+                if shard == 0 and in_process_shard:
+                    self._local, self._local_actions = _shard_batch(
+                        (block.start, block.stop), self.autoreset_mode.value, self.env_kwargs, buffers
+                    )
+                    self._connections.append(None)
+                    continue
                 parent_end, child_end = context.Pipe()
                 process = context.Process(
                     target=_worker,
@@ -701,6 +745,8 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
                 self._processes.append(process)
                 self._connections.append(parent_end)
             for connection in self._connections:
+                if connection is None:
+                    continue
                 try:
                     status, message = connection.recv()
                 except EOFError:
@@ -728,7 +774,7 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
             self._rewards.copy(),
             self._terminations.copy(),
             self._truncations.copy(),
-            VectorInfo(lambda: [info for answer in answers for info in pickle.loads(answer)]),
+            VectorInfo(lambda: [info for answer in answers for info in _unpickled(answer)]),
         )
 
     def render(self) -> tuple[np.ndarray | None, ...] | None:
@@ -792,10 +838,13 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         return [by_game.get(index) for index in chosen]
 
     def close_extras(self, **kwargs: Any) -> None:
-        for connection in self._connections:
+        if self._local is not None:
+            self._local.close()
+        remote = [connection for connection in self._connections if connection is not None]
+        for connection in remote:
             with contextlib.suppress(BrokenPipeError, OSError):
                 connection.send(("close", None))
-        for process, connection in zip(self._processes, self._connections, strict=False):
+        for process, connection in zip(self._processes, remote, strict=False):
             with contextlib.suppress(EOFError, OSError):
                 if connection.poll(5.0):
                     connection.recv_bytes()
@@ -856,9 +905,11 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         if rows is actions and type(actions) is np.ndarray and actions.dtype == np.float32:
             self._actions[:] = actions  # the workers read their rows from the shared memory
             payloads: list[Any] = [None] * self.num_workers
-        else:  # other dtypes, lists, parameterized tuples: exactly as given, through the pipes
+        elif self._flat:  # other dtypes, lists: each game's row exactly as given, through the pipes
             rows = list(rows)
             payloads = [rows[block.start : block.stop] for block in self.blocks]
+        else:  # parameterized: each worker's slice of the four parts
+            payloads = [tuple(part[block.start : block.stop] for part in actions) for block in self.blocks]
         answers = self._scatter("step", payloads, pickled=pickled)
         return answers if pickled else [info for part in answers for info in part]
 
@@ -867,20 +918,30 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
         return self._exchange(range(self.num_workers), [(command, payload) for payload in payloads], pickled)
 
     def _exchange(
-        self, workers: Sequence[int], messages: Sequence[tuple[str, Any]], pickled: bool = False
+        self, shards: Sequence[int], messages: Sequence[tuple[str, Any]], pickled: bool = False
     ) -> list[Any]:
-        """Send each of ``workers`` its (command, payload), then collect their results (still pickled, as
-        memoryviews, with ``pickled``); a worker's exception is raised here once every worker has answered (so
-        that the pipes stay in step)."""
+        """Send each of ``shards`` its (command, payload) (the workers first, so that they work while this process
+        runs its own shard), then collect the results (a worker's still pickled, as a memoryview, with
+        ``pickled``); an exception is raised here once every shard has answered (so that the pipes stay in step)."""
         if self.closed:
             raise RuntimeError("the ShardedHFOVectorEnv is closed")
-        for worker, message in zip(workers, messages, strict=True):
-            self._connections[worker].send(message)
-        answers = []
+        connections = self._connections
+        for shard, message in zip(shards, messages, strict=True):
+            if connections[shard] is not None:
+                connections[shard].send(message)
+        answers: list[Any] = []
         error: BaseException | None = None
-        for worker in workers:
+        for shard, message in zip(shards, messages, strict=True):
+            connection = connections[shard]
+            if connection is None:
+                try:
+                    answers.append(_handle(self._local, self._local_actions, *message))
+                except Exception as raised:
+                    error = error or raised
+                    answers.append(None)
+                continue
             try:
-                answer = self._connections[worker].recv_bytes()
+                answer = connection.recv_bytes()
             except (EOFError, OSError) as broken:
                 raise RuntimeError("an hfo2d worker died; close() this env and make a new one") from broken
             if answer[:1] == _RAISED:
@@ -888,7 +949,9 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
             answers.append(memoryview(answer)[1:])
         if error is not None:
             raise error
-        return answers if pickled else [pickle.loads(answer) for answer in answers]
+        if pickled:
+            return answers
+        return [pickle.loads(answer) if isinstance(answer, memoryview) else answer for answer in answers]
 
     def _broadcast(self, command: str, payload: Any) -> list[Any]:
         return self._scatter(command, [payload] * self.num_workers)

@@ -185,15 +185,20 @@ def test_game_of_batch_reproduces_golden_rollout(case: tuple) -> None:
     batch.close()
 
 
-@pytest.mark.parametrize("num_workers", [1, 2, 3])
-def test_sharded_batch_is_the_unsharded_batch(num_workers: int) -> None:
+@pytest.mark.parametrize(
+    ("num_workers", "in_process_shard"), [(1, False), (2, True), (2, False), (3, True)], ids=str
+)
+def test_sharded_batch_is_the_unsharded_batch(num_workers: int, in_process_shard: bool) -> None:
     """Whatever the sharding, game i gets seed + i and every step is bit for bit the unsharded batch's: float32
     actions through shared memory, float64 actions and lists through the pipes."""
     num_envs, steps = 5, 150
     single = gym.make_vec(
         "HFO/Keeper-v1", num_envs, vectorization_mode="vector_entry_point", keeper_skill=0.8
     )
-    sharded = ShardedHFOVectorEnv("HFO/Keeper-v1", num_envs, num_workers, keeper_skill=0.8)
+    sharded = ShardedHFOVectorEnv(
+        "HFO/Keeper-v1", num_envs, num_workers, in_process_shard=in_process_shard, keeper_skill=0.8
+    )
+    assert len(sharded._processes) == num_workers - in_process_shard
     try:
         assert sharded.get_attr("keeper_skill") == (0.8,) * num_envs
         for mine, theirs in zip(sharded.reset(seed=7), single.reset(seed=7), strict=True):
@@ -225,13 +230,18 @@ def test_parameterized_actions_batch_like_single_envs() -> None:
         vector_kwargs={"autoreset_mode": SAME_STEP},
         action_format="parameterized",
     )
+    sharded = ShardedHFOVectorEnv("HFO/Keeper-v0", num_envs, 2, action_format="parameterized")
     batch.action_space.seed(5)
     for mine, theirs in zip(batch.reset(seed=1), sync.reset(seed=1), strict=True):
         _assert_same(mine, theirs, "reset")
+    sharded.reset(seed=1)
     for _ in range(120):
         actions = batch.action_space.sample()
-        for a, b in zip(batch.step(actions), sync.step(actions), strict=True):
-            _assert_same(a, b)
+        expected = sync.step(actions)
+        for a, b, c in zip(batch.step(actions), sharded.step(actions), expected, strict=True):
+            _assert_same(a, c)
+            _assert_same(b, c)
+    sharded.close()
     with pytest.raises(ValueError, match="game 2: parameterized action kind must be 0"):
         kinds, dash, turn, kick = batch.action_space.sample()
         kinds[2] = 7
@@ -375,7 +385,7 @@ def test_workers_leave_when_their_parent_dies() -> None:
         import os, signal
         from hfo2d.vector import ShardedHFOVectorEnv
         if __name__ == "__main__":
-            env = ShardedHFOVectorEnv("HFO/EmptyGoal-v0", 4, 2)
+            env = ShardedHFOVectorEnv("HFO/EmptyGoal-v0", 4, 2, in_process_shard=False)
             env.reset(seed=0)
             print(" ".join(str(process.pid) for process in env._processes), flush=True)
             os.kill(os.getpid(), signal.SIGKILL)
