@@ -478,8 +478,7 @@ class HFOVectorEnv(gym.vector.VectorEnv):
         any_ended = ended.any()
         observation_list: list[np.ndarray] = []
         rewards: list[float] = []
-        terminations: list[bool] = []
-        truncations: list[bool] = []
+        ends: list[tuple[int, bool, bool]] = []
         infos: list[dict[str, Any]] = []
         for index, (step, action) in enumerate(zip(self._game_steps, rows, strict=False)):
             if any_ended and ended[index]:  # NEXT_STEP: this step resets the game; its action is ignored
@@ -498,13 +497,16 @@ class HFOVectorEnv(gym.vector.VectorEnv):
                         ended[index] = True
             observation_list.append(observation)
             rewards.append(reward)
-            terminations.append(terminated)
-            truncations.append(truncated)
+            if terminated or truncated:  # (rare: the flags are cleared below and these set afterwards)
+                ends.append((index, terminated, truncated))
             infos.append(info)
         np.concatenate(observation_list, out=self._flat_observations)
         self._rewards[:] = rewards
-        self._terminations[:] = terminations
-        self._truncations[:] = truncations
+        self._terminations.fill(False)
+        self._truncations.fill(False)
+        for index, terminated, truncated in ends:
+            self._terminations[index] = terminated
+            self._truncations[index] = truncated
         return infos
 
     def _game_actions(self, actions: Any) -> Any:

@@ -3,8 +3,8 @@
 ``make_hfo_vec_env("HFO/Keeper-v1", 16, seed=0)`` is the fast counterpart of SB3's
 ``make_vec_env("HFO/Keeper-v1", 16, seed=0)``: the same games (game i seeded with seed + i, bit for bit the same
 observations, rewards, dones and infos as a ``DummyVecEnv`` of ``gym.make(id)`` seeded alike), stepped by one batch
-in this process (``num_workers=1``) or by one batch per worker process (``num_workers=2`` on two cores), without
-SB3's per-env wrappers and info copies.
+in this process (``num_workers=1``) or split into shards stepped in parallel (``num_workers=2`` on two cores: this
+process and one worker process), without SB3's per-env wrappers and info copies.
 """
 
 from __future__ import annotations
@@ -159,8 +159,10 @@ def make_hfo_vec_env(
         env_id: ``"HFO/EmptyGoal-v0"``, ``"HFO/StaticKeeper-v0"``, ``"HFO/Keeper-v0"`` or ``"HFO/Keeper-v1"``.
         n_envs: the number of games.
         seed: game i's first episode is seeded with ``seed + i`` (None: unseeded).
-        num_workers: 1 steps every game in this process; more shards them over that many worker processes (one
-            per core pays off; a worker costs a process start, ~1 s, and ~40 MiB).
+        num_workers: 1 steps every game in this process; more splits them into that many shards stepped in
+            parallel, one by this process and one by each of ``num_workers - 1`` worker processes
+            (:class:`hfo2d.vector.ShardedHFOVectorEnv`; one shard per core pays off; a worker costs a process
+            start, ~1 s, and ~40 MiB).
         monitor: wrap in SB3's ``VecMonitor`` (episode returns and lengths in ``info["episode"]`` and the
             logger's ``rollout/ep_rew_mean``), as ``make_vec_env`` wraps each env in ``Monitor``.
         **env_kwargs: :class:`hfo2d.HFOEnv`'s arguments beyond the id's own, with ``gym.make``'s rules (e.g.
