@@ -3,6 +3,10 @@ a DummyVecEnv of gym.make(id) seeded alike, in one process and sharded; PPO, Vec
 
 from __future__ import annotations
 
+import json
+import subprocess
+import sys
+from pathlib import Path
 from typing import Any
 
 import gymnasium as gym
@@ -15,6 +19,8 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecMonitor, VecNormali
 import hfo2d  # noqa: F401  (registers the ids)
 from hfo2d.vector import HFOVectorEnv
 from sb3_hfo.common.vec_env import HFOVecEnv, make_hfo_vec_env
+
+REPO = Path(__file__).resolve().parents[2]
 
 
 def _assert_same(mine: Any, theirs: Any, where: str) -> None:
@@ -119,3 +125,15 @@ def test_images_from_rgb_array_games() -> None:
     assert len(images) == 2 and images[0].ndim == 3 and images[0].dtype == np.uint8
     assert env.render().ndim == 3  # SB3 tiles them
     env.close()
+
+
+def test_vector_throughput_benchmark_smoke(tmp_path: Path) -> None:
+    """benchmarks/vector_throughput.py runs every contestant and writes its ratios (a tiny run)."""
+    out = tmp_path / "vector.json"
+    command = [sys.executable, str(REPO / "benchmarks" / "vector_throughput.py"), "--ids", "HFO/EmptyGoal-v0"]
+    command += ["--steps", "64", "--rounds", "1", "--num-envs", "4", "--out", str(out)]
+    subprocess.run(command, check=True, capture_output=True, timeout=300)
+    rows = json.loads(out.read_text())["results"][0]["rows"]
+    names = [row["contestant"] for row in rows]
+    assert names[0] == "single" and "batch x4" in names and "sb3 sharded x4/2" in names
+    assert all(row["steps_per_s_median"] > 0 and row["ratio_to_single_median"] > 0 for row in rows)
