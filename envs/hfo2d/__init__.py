@@ -1,6 +1,8 @@
 """hfo2d: a fast 2D RoboCup Half Field Offense simulator with Gymnasium environments.
 
-Importing the package registers these environments (no TimeLimit wrapper; episodes end by HFO's own rules):
+Importing the package registers these environments (no TimeLimit wrapper; episodes end by HFO's own rules); the
+simulator's four also batch N games in one process with ``gym.make_vec(id, N,
+vectorization_mode="vector_entry_point")`` (:mod:`hfo2d.vector`, which also shards a batch over processes):
 
 * ``HFO/EmptyGoal-v0``: one striker, empty goal (58 features);
 * ``HFO/StaticKeeper-v0``: a goalie that stands on the goal line (66 features);
@@ -24,7 +26,15 @@ from hfo2d.heuristic import heuristic
 from hfo2d.hfo_env import HFOEnv
 from hfo2d.physics import ServerParams, World
 
-__all__ = ["ENV_IDS", "HFOEnv", "RegisteredEnvCreator", "ServerParams", "World", "heuristic"]
+__all__ = [
+    "ENV_IDS",
+    "HFOEnv",
+    "RegisteredEnvCreator",
+    "RegisteredVectorEnvCreator",
+    "ServerParams",
+    "World",
+    "heuristic",
+]
 
 ENV_IDS: dict[str, str] = {
     "HFO/EmptyGoal-v0": "empty_goal",
@@ -60,6 +70,11 @@ class RegisteredEnvCreator:
         self.fixed = _defining_kwargs(env_id)
 
     def __call__(self, **kwargs: Any) -> HFOEnv:
+        return HFOEnv(**self.game_kwargs(**kwargs))
+
+    def game_kwargs(self, **kwargs: Any) -> dict[str, Any]:
+        """:class:`HFOEnv`'s kwargs for this id: ``kwargs`` with the id's own (task, goalie); a kwarg that would
+        make another environment is a ValueError."""
         for key, value in self.fixed.items():
             given = kwargs.get(key, value)
             if given != value:
@@ -69,10 +84,32 @@ class RegisteredEnvCreator:
                 raise ValueError(
                     f"{self.env_id} is {key}={value!r}; {key}={given!r} would make another environment: {instead}"
                 )
-        return HFOEnv(**kwargs)
+        return {**kwargs, **self.fixed}
 
     def __repr__(self) -> str:
         return f"hfo2d.RegisteredEnvCreator({self.env_id!r})"
+
+
+class RegisteredVectorEnvCreator:
+    """What ``gym.make_vec(id, num_envs, vectorization_mode="vector_entry_point")`` calls for a registered HFO id:
+    an :class:`hfo2d.vector.HFOVectorEnv` of ``num_envs`` games of the id, with :class:`RegisteredEnvCreator`'s
+    keyword rules; ``autoreset_mode`` (``AutoresetMode.SAME_STEP``, the default, or ``NEXT_STEP``) goes to the
+    batch, every other kwarg to each game's :class:`HFOEnv`.
+    """
+
+    def __init__(self, env_id: str) -> None:
+        self.env_id = env_id
+        self.game_creator = RegisteredEnvCreator(env_id)
+
+    def __call__(self, num_envs: int = 1, autoreset_mode: Any = None, **kwargs: Any) -> Any:
+        from hfo2d.vector import HFOVectorEnv
+
+        batch_kwargs = {} if autoreset_mode is None else {"autoreset_mode": autoreset_mode}
+        game_kwargs = self.game_creator.game_kwargs(**kwargs)
+        return HFOVectorEnv(num_envs, env_id=self.env_id, **batch_kwargs, **game_kwargs)
+
+    def __repr__(self) -> str:
+        return f"hfo2d.RegisteredVectorEnvCreator({self.env_id!r})"
 
 
 # A re-import (importlib.reload, a second interpreter path) must not warn about re-registration.
@@ -81,6 +118,7 @@ for _env_id, _task in ENV_IDS.items():
         gymnasium.register(
             id=_env_id,
             entry_point=RegisteredEnvCreator(_env_id),
+            vector_entry_point=RegisteredVectorEnvCreator(_env_id),
             kwargs={"task": _task, **ENV_EXTRA_KWARGS.get(_env_id, {})},
         )
 
