@@ -7,7 +7,8 @@ action spaces, its action mapping and its rewards are hfo2d's, so a model traine
 
 Nothing is imported from the HFO build until an env is made, and this module needs neither torch nor a build to be
 imported. A build is the directory holding ``bin/HFO`` and ``hfo/libhfo_c.so`` (``hfo_dir``, else the environment
-variable ``HFO_DIR``); the error raised without one says how to build it.
+variable ``HFO_DIR``); the error raised without one says how to build it (``tools/real_hfo/build.sh``, guide:
+docs/real_hfo.md).
 
 Process model (one HFO session per env, started lazily by the first ``reset``):
 
@@ -30,7 +31,15 @@ they also receive SIGTERM when the thread that made the env dies. A session that
 dead worker, no answer) ends the episode (truncated, ``info["status"] == "SERVER_DOWN"``) with a warning, and the
 next ``reset`` starts a new session.
 
-Run real servers in a network namespace with only loopback (HFO's players talk UDP on ``port`` .. ``port + 2``).
+Run real servers in a network namespace with only loopback (HFO's players talk UDP on ``port`` .. ``port + 2``):
+``tools/real_hfo/loopback.sh python ...``.
+
+Seeds (rcssserver 15.2.2's src/stadium.cpp, src/referee.cpp; HFO's bin/HFO): HFO's ``--seed`` is rcssserver's
+``server::random_seed``. It seeds both the referee's start positions and the simulator's noise generator, but the
+latter at server start: every cycle before kick-off draws from it, and how many such cycles pass while the players
+connect depends on the wall clock. A stock server therefore repeats the start positions of a seed, not its noise
+(:attr:`RealHFOEnv.noise_seeded` is False). ``tools/real_hfo/build.sh`` patches rcssserver to restart the noise
+generator from the seed at the first kick-off; with that build two sessions of one seed play identical episodes.
 
 Episode timing (HFO's src/HFO.cpp and rcssserver's HFORef, src/referee.cpp):
 
@@ -200,11 +209,13 @@ class HFOSessionError(RuntimeError):
 
 BUILD_HINT = (
     "Build the real HFO (LARG/HFO with its rcssserver and librcsc forks, about 3 minutes on 2 cores) with the "
-    "project's shared build script: `bash build.sh DEST HFO_GIT RCSSSERVER_GIT LIBRCSC_GIT` "
-    "(shared/real_hfo/build.sh), where the three git directories are local clones of github.com/LARG/HFO, "
-    "github.com/mhauskn/rcssserver and github.com/mhauskn/librcsc; then pass hfo_dir=DEST/HFO or set "
-    f"{HFO_DIR_ENV}=DEST/HFO."
+    "repository's script `tools/real_hfo/build.sh DEST` (it clones github.com/LARG/HFO, mhauskn/rcssserver and "
+    "mhauskn/librcsc; --help shows how to build from local clones), then pass hfo_dir=DEST/HFO or set "
+    f"{HFO_DIR_ENV}=DEST/HFO; run the servers under tools/real_hfo/loopback.sh. Guide: docs/real_hfo.md."
 )
+#: A line that rcssserver, as patched by tools/real_hfo/build.sh (rcssserver-seeded-noise.patch), prints when it
+#: restarts its noise generator from server::random_seed at the first kick-off; the text is in its binary.
+SEEDED_NOISE_MARKER = b"HFORef reseeded the simulator's noise"
 
 
 def find_hfo_dir(hfo_dir: str | os.PathLike[str] | None = None) -> Path:
@@ -230,12 +241,22 @@ def find_hfo_dir(hfo_dir: str | os.PathLike[str] | None = None) -> Path:
 
 
 def in_loopback_namespace() -> bool:
-    """True when this process's network namespace has no interface but loopback (as under shared/netns.sh)."""
+    """True when this process's network namespace has no interface but loopback (as under
+    tools/real_hfo/loopback.sh)."""
     try:
         names = [name for _, name in socket.if_nameindex()]
     except OSError:
         return False
     return names == ["lo"]
+
+
+def server_seeds_noise(hfo_dir: str | os.PathLike[str]) -> bool:
+    """True when the build's rcssserver restarts its noise generator from the seed at the first kick-off (the patch
+    tools/real_hfo/build.sh applies), so that sessions of one seed repeat their noise; False for a stock server."""
+    try:
+        return SEEDED_NOISE_MARKER in (Path(hfo_dir) / "bin" / "rcssserver").read_bytes()
+    except OSError:
+        return False
 
 
 def hfo_command(kind: int, power: float, direction: float) -> tuple[int, float, float]:
@@ -710,9 +731,12 @@ class RealHFOEnv(gym.Env):
     Episodes: HFO's referee ends them (GOAL, CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME after
     ``untouched_time`` untouched cycles: ``terminated``; OUT_OF_TIME at ``frames_per_trial``: ``truncated``). HFO
     places the players itself; ``seed`` (or the seed given to ``reset``, which starts a new session when it differs
-    from the running one's) is HFO's ``--seed``, which fixes the sequence of start positions, not the noise nor the
-    NPCs. ``reset(options=...)`` is not supported. A ``reset`` in the middle of an episode plays NOOPs until HFO ends
-    it. See the module docstring for the timing of first and last observations.
+    from the running one's) is HFO's ``--seed`` (rcssserver's ``server::random_seed``). It fixes the sequence of
+    start positions; it fixes the noise too, and so whole episodes (agent2d's NPCs draw nothing at random), only
+    with a server built by ``tools/real_hfo/build.sh``, which restarts the noise from the seed at kick-off
+    (``noise_seeded``; see the module docstring). ``reset(options=...)`` is not supported. A ``reset`` in the
+    middle of an episode plays NOOPs until HFO ends it. See the module docstring for the timing of first and last
+    observations.
 
     Info: ``status`` (hfo2d's names, or ``"SERVER_DOWN"``), ``is_success``, ``kickable``, ``player``, ``ball`` and
     ``keeper`` (global state recovered from the features, :func:`state_from_hfo_features`), ``player_on_ball``
@@ -727,7 +751,8 @@ class RealHFOEnv(gym.Env):
         action_format: "flat" or "parameterized".
         reward: one of hfo2d's REWARD_NAMES.
         noise: False runs HFO ``--deterministic`` (no player, ball, kick or wind noise).
-        seed: HFO's ``--seed`` (start positions), an int in [0, 2**31 - 1]; None: the seed of the first
+        seed: HFO's ``--seed`` (start positions; noise too when ``noise_seeded``), an int in [0, 2**31 - 1];
+            None: the seed of the first
             ``reset(seed=...)``, else HFO's own (time).
         frames_per_trial: HFO's ``--frames-per-trial``.
         untouched_time: HFO's ``--untouched-time``.
@@ -795,6 +820,8 @@ class RealHFOEnv(gym.Env):
         self.port = None if port is None else int(port)
         self.log_dir = None if log_dir is None else Path(log_dir).expanduser().absolute()
         self.fullstate = bool(fullstate)
+        #: whether a seed fixes whole episodes: no noise at all, or a server that restarts its noise from the seed
+        self.noise_seeded = not self.noise or server_seeds_noise(self.hfo_dir)
         self.has_keeper = task != "empty_goal"
         self.num_opponents = DEFENSE_NPCS[task] + DEFENSE_AGENTS[task]
         self._reward_fn = make_reward(reward)
