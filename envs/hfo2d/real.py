@@ -34,12 +34,19 @@ next ``reset`` starts a new session.
 Run real servers in a network namespace with only loopback (HFO's players talk UDP on ``port`` .. ``port + 2``):
 ``tools/real_hfo/loopback.sh python ...``.
 
-Seeds (rcssserver 15.2.2's src/stadium.cpp, src/referee.cpp; HFO's bin/HFO): HFO's ``--seed`` is rcssserver's
-``server::random_seed``. It seeds both the referee's start positions and the simulator's noise generator, but the
-latter at server start: every cycle before kick-off draws from it, and how many such cycles pass while the players
-connect depends on the wall clock. A stock server therefore repeats the start positions of a seed, not its noise
-(:attr:`RealHFOEnv.noise_seeded` is False). ``tools/real_hfo/build.sh`` patches rcssserver to restart the noise
-generator from the seed at the first kick-off; with that build two sessions of one seed play identical episodes.
+Seeds (rcssserver 15.2.2's src/stadium.cpp and src/referee.cpp, HFO's bin/HFO). HFO's ``--seed`` becomes
+rcssserver's ``server::random_seed``, which seeds two generators:
+
+* the referee's: the start positions, from the first kick-off on;
+* the simulator's noise: seeded at server start.
+
+How many cycles the server runs before kick-off, while the players connect, depends on the wall clock. Each of
+them draws from the noise generator (Stadium::turnMovableObjects shuffles the objects) and lets the players turn.
+So the noise and the players' body and neck angles at kick-off differ from run to run (seen in rcssserver's game
+logs): two sessions of one seed repeat the start positions, not the episodes. Re-seeding the noise at kick-off (a
+one-line rcssserver change, tried) does not fix this, since the goalie's first command still differs; without noise
+(``noise=False``) it happens less often (3 of 6 measured pairs of sessions differed from their first observation).
+A real-HFO figure is therefore one sample: docs/real_hfo.md gives the spread and how to pool runs.
 
 Episode timing (HFO's src/HFO.cpp and rcssserver's HFORef, src/referee.cpp):
 
@@ -213,9 +220,6 @@ BUILD_HINT = (
     "mhauskn/librcsc; --help shows how to build from local clones), then pass hfo_dir=DEST/HFO or set "
     f"{HFO_DIR_ENV}=DEST/HFO; run the servers under tools/real_hfo/loopback.sh. Guide: docs/real_hfo.md."
 )
-#: A line that rcssserver, as patched by tools/real_hfo/build.sh (rcssserver-seeded-noise.patch), prints when it
-#: restarts its noise generator from server::random_seed at the first kick-off; the text is in its binary.
-SEEDED_NOISE_MARKER = b"HFORef reseeded the simulator's noise"
 
 
 def find_hfo_dir(hfo_dir: str | os.PathLike[str] | None = None) -> Path:
@@ -248,15 +252,6 @@ def in_loopback_namespace() -> bool:
     except OSError:
         return False
     return names == ["lo"]
-
-
-def server_seeds_noise(hfo_dir: str | os.PathLike[str]) -> bool:
-    """True when the build's rcssserver restarts its noise generator from the seed at the first kick-off (the patch
-    tools/real_hfo/build.sh applies), so that sessions of one seed repeat their noise; False for a stock server."""
-    try:
-        return SEEDED_NOISE_MARKER in (Path(hfo_dir) / "bin" / "rcssserver").read_bytes()
-    except OSError:
-        return False
 
 
 def hfo_command(kind: int, power: float, direction: float) -> tuple[int, float, float]:
@@ -732,11 +727,10 @@ class RealHFOEnv(gym.Env):
     ``untouched_time`` untouched cycles: ``terminated``; OUT_OF_TIME at ``frames_per_trial``: ``truncated``). HFO
     places the players itself; ``seed`` (or the seed given to ``reset``, which starts a new session when it differs
     from the running one's) is HFO's ``--seed`` (rcssserver's ``server::random_seed``). It fixes the sequence of
-    start positions; it fixes the noise too, and so whole episodes (agent2d's NPCs draw nothing at random), only
-    with a server built by ``tools/real_hfo/build.sh``, which restarts the noise from the seed at kick-off
-    (``noise_seeded``; see the module docstring). ``reset(options=...)`` is not supported. A ``reset`` in the
-    middle of an episode plays NOOPs until HFO ends it. See the module docstring for the timing of first and last
-    observations.
+    start positions, not the noise nor the state of the players at kick-off, so two runs of one seed are two
+    samples (see the module docstring).
+    ``reset(options=...)`` is not supported. A ``reset`` in the middle of an episode plays NOOPs until HFO ends it.
+    See the module docstring for the timing of first and last observations.
 
     Info: ``status`` (hfo2d's names, or ``"SERVER_DOWN"``), ``is_success``, ``kickable``, ``player``, ``ball`` and
     ``keeper`` (global state recovered from the features, :func:`state_from_hfo_features`), ``player_on_ball``
@@ -751,8 +745,7 @@ class RealHFOEnv(gym.Env):
         action_format: "flat" or "parameterized".
         reward: one of hfo2d's REWARD_NAMES.
         noise: False runs HFO ``--deterministic`` (no player, ball, kick or wind noise).
-        seed: HFO's ``--seed`` (start positions; noise too when ``noise_seeded``), an int in [0, 2**31 - 1];
-            None: the seed of the first
+        seed: HFO's ``--seed`` (start positions), an int in [0, 2**31 - 1]; None: the seed of the first
             ``reset(seed=...)``, else HFO's own (time).
         frames_per_trial: HFO's ``--frames-per-trial``.
         untouched_time: HFO's ``--untouched-time``.
@@ -820,8 +813,6 @@ class RealHFOEnv(gym.Env):
         self.port = None if port is None else int(port)
         self.log_dir = None if log_dir is None else Path(log_dir).expanduser().absolute()
         self.fullstate = bool(fullstate)
-        #: whether a seed fixes whole episodes: no noise at all, or a server that restarts its noise from the seed
-        self.noise_seeded = not self.noise or server_seeds_noise(self.hfo_dir)
         self.has_keeper = task != "empty_goal"
         self.num_opponents = DEFENSE_NPCS[task] + DEFENSE_AGENTS[task]
         self._reward_fn = make_reward(reward)

@@ -11,7 +11,6 @@
 #   --hfo-rev REV           commit of HFO to build        (default b8b2a1d)
 #   --rcssserver-rev REV    commit of rcssserver to build (default 82212ee)
 #   --librcsc-rev REV       commit of librcsc to build    (default d222758)
-#   --stock-rcssserver      build rcssserver as it is, without rcssserver-seeded-noise.patch (see below)
 #   --jobs N                parallel compile jobs (default: $JOBS, else the number of CPUs)
 #   --skip-apt              do not install the Debian/Ubuntu packages below (install them yourself)
 #   -h, --help              print this help
@@ -20,13 +19,6 @@
 # Debian/Ubuntu packages installed with apt-get unless --skip-apt (root or sudo needed):
 #   build-essential cmake git flex bison libboost-system-dev libboost-filesystem-dev zlib1g-dev
 #   python3 iproute2 util-linux   (the last two: `ip` and `unshare` for tools/real_hfo/loopback.sh)
-#
-# Seeded noise: rcssserver seeds its noise generator from server::random_seed (HFO's --seed) at start-up, but the
-# cycles it runs before kick-off, while the players connect, draw from it, and their number depends on the wall
-# clock; so two runs of one seed play different noise. rcssserver-seeded-noise.patch (beside this script, applied
-# by default as a local commit on the chosen rcssserver commit) restarts the generator from the seed at the first
-# kick-off, which makes runs of one seed repeat episode for episode. hfo2d.real.RealHFOEnv.noise_seeded tells
-# which kind of server a build has.
 #
 # Result (checked at the end): DEST/HFO/bin/HFO (HFO's launcher), DEST/HFO/bin/rcssserver, the agent2d NPCs in
 # DEST/HFO/bin/teams/base, and the ctypes binding DEST/HFO/hfo/hfo.py with DEST/HFO/hfo/libhfo_c.so.
@@ -45,14 +37,12 @@ rcssserver_rev=82212ee
 librcsc_rev=d222758
 jobs=${JOBS:-$(nproc 2>/dev/null || echo 2)}
 skip_apt=0
-seeded_noise=1
 dest=""
 
 while [ $# -gt 0 ]; do
   case "$1" in
     -h|--help) usage; exit 0 ;;
     --skip-apt) skip_apt=1; shift ;;
-    --stock-rcssserver) seeded_noise=0; shift ;;
     --hfo-git|--rcssserver-git|--librcsc-git|--hfo-rev|--rcssserver-rev|--librcsc-rev|--jobs)
       [ $# -ge 2 ] || die "$1 needs a value"
       value=$2
@@ -74,8 +64,6 @@ done
 case "$jobs" in ''|*[!0-9]*|0) die "--jobs must be a positive integer, got '$jobs'" ;; esac
 
 start_s=$(date +%s)
-noise_patch=$(cd "$(dirname "$0")" && pwd)/rcssserver-seeded-noise.patch
-[ "$seeded_noise" = 0 ] || [ -f "$noise_patch" ] || die "$noise_patch is missing"
 mkdir -p "$dest"
 dest=$(cd "$dest" && pwd)
 
@@ -110,18 +98,6 @@ checkout() {
 hfo_commit=$(checkout HFO "$hfo_git" "$hfo_rev")
 rcssserver_commit=$(checkout rcssserver "$rcssserver_git" "$rcssserver_rev")
 librcsc_commit=$(checkout librcsc "$librcsc_git" "$librcsc_rev")
-rcssserver_built=$rcssserver_commit
-if [ "$seeded_noise" = 1 ]; then
-  git -C "$dest/rcssserver" apply --check "$noise_patch" 2>/dev/null \
-    || die "rcssserver-seeded-noise.patch does not apply to rcssserver ${rcssserver_commit:0:7}; use --stock-rcssserver"
-  git -C "$dest/rcssserver" apply "$noise_patch"
-  # a local commit, because HFO's CMake checks rcssserver out by commit; fixed names and dates give the same
-  # commit id on every run
-  GIT_AUTHOR_DATE="2000-01-01T00:00:00Z" GIT_COMMITTER_DATE="2000-01-01T00:00:00Z" \
-    git -C "$dest/rcssserver" -c user.name=build.sh -c user.email=build.sh@localhost \
-    commit -q -a -m "Restart the noise generator from server::random_seed at the first kick-off (sb3-hfo)"
-  rcssserver_built=$(git -C "$dest/rcssserver" rev-parse HEAD)
-fi
 
 # HFO's CMakeLists.txt downloads rcssserver and librcsc itself (CMake ExternalProject, GIT_REPOSITORY on GitHub,
 # GIT_TAG "master"). Point both at the clones made above and at the chosen commits, so that the build uses
@@ -131,13 +107,13 @@ grep -q 'https://github.com/mhauskn/rcssserver.git' "$cmakelists" \
   && grep -q 'https://github.com/mhauskn/librcsc.git' "$cmakelists" \
   || die "HFO $hfo_commit: CMakeLists.txt does not fetch rcssserver and librcsc as expected; pick another --hfo-rev"
 sed -i \
-  -e "\\#GIT_REPOSITORY \"https://github.com/mhauskn/rcssserver.git\"#{s#\"https://[^\"]*\"#\"$dest/rcssserver\"#;n;s#GIT_TAG \"[^\"]*\"#GIT_TAG \"$rcssserver_built\"#}" \
+  -e "\\#GIT_REPOSITORY \"https://github.com/mhauskn/rcssserver.git\"#{s#\"https://[^\"]*\"#\"$dest/rcssserver\"#;n;s#GIT_TAG \"[^\"]*\"#GIT_TAG \"$rcssserver_commit\"#}" \
   -e "\\#GIT_REPOSITORY \"https://github.com/mhauskn/librcsc.git\"#{s#\"https://[^\"]*\"#\"$dest/librcsc\"#;n;s#GIT_TAG \"[^\"]*\"#GIT_TAG \"$librcsc_commit\"#}" \
   "$cmakelists"
-grep -q "GIT_TAG \"$rcssserver_built\"" "$cmakelists" && grep -q "GIT_TAG \"$librcsc_commit\"" "$cmakelists" \
+grep -q "GIT_TAG \"$rcssserver_commit\"" "$cmakelists" && grep -q "GIT_TAG \"$librcsc_commit\"" "$cmakelists" \
   || die "could not pin rcssserver and librcsc in $cmakelists"
 
-echo "== cmake + make -j$jobs (HFO ${hfo_commit:0:7}, rcssserver ${rcssserver_built:0:7}, librcsc ${librcsc_commit:0:7})"
+echo "== cmake + make -j$jobs (HFO ${hfo_commit:0:7}, rcssserver ${rcssserver_commit:0:7}, librcsc ${librcsc_commit:0:7})"
 mkdir -p "$dest/HFO/build"
 cd "$dest/HFO/build"
 # no soccerwindow2 (needs Qt4) and no extra team binaries (downloaded from GitHub)
@@ -151,16 +127,9 @@ hfo_dir=$dest/HFO
 for file in bin/HFO bin/rcssserver bin/teams/base/agent bin/teams/base/sample_player hfo/hfo.py hfo/libhfo_c.so; do
   [ -e "$hfo_dir/$file" ] || die "the build lacks $hfo_dir/$file"
 done
-if [ "$seeded_noise" = 1 ]; then
-  grep -q "HFORef reseeded the simulator's noise" "$hfo_dir/bin/rcssserver" \
-    || die "$hfo_dir/bin/rcssserver lacks the seeded-noise patch (an old build tree? remove $dest/HFO/build)"
-  server_note="rcssserver ${rcssserver_commit:0:7} + seeded-noise patch"
-else
-  server_note="rcssserver ${rcssserver_commit:0:7} (stock)"
-fi
 # the binding loads libhfo_c.so when imported
 (cd / && PYTHONPATH="$hfo_dir" python3 -c "import hfo; hfo.HFOEnvironment()") \
   || die "the Python binding in $hfo_dir/hfo does not load"
 
-echo "== built in $(( $(date +%s) - start_s )) s: HFO ${hfo_commit:0:7}, $server_note, librcsc ${librcsc_commit:0:7}"
+echo "== built in $(( $(date +%s) - start_s )) s: HFO ${hfo_commit:0:7}, rcssserver ${rcssserver_commit:0:7}, librcsc ${librcsc_commit:0:7}"
 echo "export HFO_DIR=$hfo_dir"
