@@ -215,7 +215,7 @@ class HFOSessionError(RuntimeError):
 
 
 BUILD_HINT = (
-    "Build the real HFO (LARG/HFO with its rcssserver and librcsc forks, about 3 minutes on 2 cores) with the "
+    "Build the real HFO (LARG/HFO with its rcssserver and librcsc forks, about 7 CPU-minutes) with the "
     "repository's script `tools/real_hfo/build.sh DEST` (it clones github.com/LARG/HFO, mhauskn/rcssserver and "
     "mhauskn/librcsc; --help shows how to build from local clones), then pass hfo_dir=DEST/HFO or set "
     f"{HFO_DIR_ENV}=DEST/HFO; run the servers under tools/real_hfo/loopback.sh. Guide: docs/real_hfo.md."

@@ -22,8 +22,8 @@
 #
 # Result (checked at the end): DEST/HFO/bin/HFO (HFO's launcher), DEST/HFO/bin/rcssserver, the agent2d NPCs in
 # DEST/HFO/bin/teams/base, and the ctypes binding DEST/HFO/hfo/hfo.py with DEST/HFO/hfo/libhfo_c.so.
-# About 3 minutes on 2 cores once the packages are in. Running it again over the same DEST reuses the clones and
-# rebuilds only what changed.
+# About 7 CPU-minutes once the packages are in (3-4 minutes with 2 idle cores). Running it again over the same DEST
+# reuses the clones and rebuilds only what changed.
 set -euo pipefail
 
 usage() { sed -n '2,/^set -euo/p' "$0" | sed -e '$d' -e 's/^# \{0,1\}//'; }
