@@ -30,9 +30,11 @@ done). To continue a run, build the model, environments and callbacks as the fir
         checkpoint.resume(model)  # restores everything into model, its envs and the callbacks
     model.learn(remaining_timesteps(model, total), callback=[*callbacks, checkpoint], reset_num_timesteps=False)
 
-``learn`` resets the action noise and re-runs the callbacks' ``on_training_start`` (which would restart, e.g., a
-noise-decay ramp); the callback puts their saved state back once more when the first rollout starts. A run so
-resumed gives the same weights, replay buffer and counters as an unbroken one (``tests/sb3_hfo/test_resume.py``).
+``learn``'s set-up resets the action noise, re-runs the callbacks' ``on_training_start`` (which would restart,
+e.g., a noise-decay ramp) and, with ``reset_num_timesteps=True``, the counters and the envs; the callback restores
+all of it again once ``learn`` has set up, so ``learn(total)`` as the first run called it (what rl-zoo3 does) works
+as well. A run so resumed gives the same weights, replay buffer and counters as an unbroken one
+(``tests/sb3_hfo/test_resume.py``).
 
 Checkpoints are pickles (like SB3's replay buffers): load only files you trust. Only ``DummyVecEnv`` is supported
 (a ``SubprocVecEnv``'s envs live in other processes). SB3's ``csv`` / ``json`` / ``log`` logger outputs restart
@@ -45,6 +47,7 @@ import io
 import os
 import random
 import sys
+import time
 from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 from typing import Any
@@ -86,7 +89,8 @@ FORMAT_VERSION = 1
 _VEC_ENV_ATTRIBUTES = ("_seeds", "_options", "reset_infos", "buf_obs", "buf_dones", "buf_rews", "buf_infos")
 # Model attributes that stay as built: the spaces keep their identity with the env's (their generators are
 # restored), and the policy is rebuilt from policy_kwargs only by SB3's load, not here.
-_MODEL_KEYS_KEPT = ("observation_space", "action_space", "policy_class", "policy_kwargs")
+# start_time: fps counts from the resume.
+_MODEL_KEYS_KEPT = ("observation_space", "action_space", "policy_class", "policy_kwargs", "start_time")
 # Callback attributes that are links, not state: the model, SB3's step locals, the parent, a progress bar.
 _CALLBACK_LINKS = ("model", "locals", "globals", "parent", "pbar")
 
@@ -130,24 +134,40 @@ def save_training_state(
 
 
 class TrainingState:
-    """A checkpoint read by :func:`load_training_state`: what it restored, and the means to restore its light part
-    (environments, random generators, action noise, callbacks) again after ``learn`` has set up."""
+    """A checkpoint read by :func:`load_training_state`: its ``run_info``, and the means to restore it again, all
+    but the weights, optimizers and replay buffer, once ``learn`` has set up (which resets counters, the action
+    noise, the envs and the callbacks' ramps)."""
 
-    def __init__(self, path: Path, state: dict[str, Any]) -> None:
+    def __init__(self, path: Path, state: dict[str, Any], model_data: bytes) -> None:
         self.path = path
         self._state = state
+        self._model_data = (
+            model_data  # pickled, so that every restore starts from the checkpoint's own values
+        )
 
     @property
     def run_info(self) -> dict[str, Any]:
         """The ``run_info`` given to :func:`save_training_state`."""
         return dict(self._state["run_info"])
 
-    def restore_light_state(self, model: BaseAlgorithm, callbacks: Sequence[BaseCallback]) -> None:
-        """Put back the environments, the action noise, the callbacks' counters and the random generators (in that
-        order: restoring an env may draw nothing, but the generators must be last)."""
-        data = self._state["model_data"]
-        if "action_noise" in data:
-            model.action_noise = cloudpickle.loads(cloudpickle.dumps(data["action_noise"]))
+    @property
+    def num_timesteps(self) -> int:
+        """The checkpointed run's ``num_timesteps``."""
+        return int(self._state["num_timesteps"])
+
+    def restore(self, model: BaseAlgorithm, callbacks: Sequence[BaseCallback]) -> None:
+        """Put back the model's attributes (counters, schedules' progress, last observation, action noise, episode
+        buffers), its replay buffer, the environments, the callbacks' state and the random generators (last, so
+        that nothing restored before draws from them)."""
+        for key, value in cloudpickle.loads(self._model_data).items():
+            setattr(model, key, value)
+        # fps counts from here (SB3 logs (num_timesteps - _num_timesteps_at_start) / time since start_time).
+        model._num_timesteps_at_start = model.num_timesteps
+        model.start_time = time.time_ns()
+        for name, tensor in self._state["extra_tensors"].items():
+            _get_attribute(model, name).copy_(tensor)
+        if self._state["replay_buffer"] is not None:
+            model.replay_buffer = self._state["replay_buffer"]
         vec_env = model.get_env()
         assert vec_env is not None
         _restore_vec_env(vec_env, self._state["env"])
@@ -192,17 +212,11 @@ def load_training_state(
     model.set_parameters(params, exact_match=True, device=model.device)
     for name, tensor in (torch_variables or {}).items():
         _get_attribute(model, name).data.copy_(tensor.data)
-    for key, value in data.items():
-        if key not in _MODEL_KEYS_KEPT:
-            setattr(model, key, value)
-    for name, tensor in state["extra_tensors"].items():
-        _get_attribute(model, name).copy_(tensor)
-    if state["replay_buffer"] is not None:
-        model.replay_buffer = state["replay_buffer"]
+    state["num_timesteps"] = data["num_timesteps"]
+    model_data = {key: value for key, value in data.items() if key not in _MODEL_KEYS_KEPT}
+    loaded = TrainingState(path, state, cloudpickle.dumps(model_data, protocol=5))
+    loaded.restore(model, callbacks)
     _restore_logger(model, state["logger"])
-    state["model_data"] = {"action_noise": data["action_noise"]} if "action_noise" in data else {}
-    loaded = TrainingState(path, state)
-    loaded.restore_light_state(model, callbacks)
     return loaded
 
 
@@ -245,7 +259,10 @@ class TrainingCheckpointCallback(BaseCallback):
 
     def resume(self, model: BaseAlgorithm) -> TrainingState:
         """Restore the checkpoint at :attr:`path` into ``model``, its envs and the tracked callbacks (see
-        :func:`load_training_state`); their light state is restored again when ``learn``'s first rollout starts."""
+        :func:`load_training_state`); all but the weights are restored again when ``learn`` starts (after its
+        set-up, which resets them) and when its first rollout starts. So ``learn`` may be called either as
+        ``learn(remaining_timesteps(model, total), reset_num_timesteps=False)`` or as the first run called it,
+        ``learn(total)`` (what rl-zoo3 does); this callback must be in its callbacks."""
         self._resumed = load_training_state(self.path, model, self.tracked_callbacks)
         return self._resumed
 
@@ -257,12 +274,14 @@ class TrainingCheckpointCallback(BaseCallback):
             print(f"Training checkpoint at {self.model.num_timesteps} steps: {self.path}")
 
     def _on_training_start(self) -> None:
+        if self._resumed is not None:  # learn's set-up has reset what resume() restored
+            self._resumed.restore(self.model, self.tracked_callbacks)
         self._next_save = (self.model.num_timesteps // self.save_freq + 1) * self.save_freq
 
     def _on_rollout_start(self) -> None:
         # Here SB3's loop is between two iterations: the last transition stored, the last update done.
-        if self._resumed is not None:
-            self._resumed.restore_light_state(self.model, self.tracked_callbacks)
+        if self._resumed is not None:  # once more: callbacks after this one in the list started after it
+            self._resumed.restore(self.model, self.tracked_callbacks)
             self._resumed = None
         if self.model.num_timesteps >= self._next_save:
             self.save()

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import io
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -80,20 +81,27 @@ class _FirstCheckpointOnly(TrainingCheckpointCallback):
             super().save()
 
 
-def train(checkpoint: Path | None, resume: bool, final: Path, tensorboard_log: str | None = None) -> None:
-    """Train to :data:`TOTAL_STEPS` (from ``checkpoint`` when ``resume``, else writing it at
-    :data:`CHECKPOINT_STEPS`), then save the final training state to ``final``."""
+def train(checkpoint: Path | None, resume: str, final: Path, tensorboard_log: str | None = None) -> None:
+    """Train to :data:`TOTAL_STEPS`, then save the final training state to ``final``.
+
+    :param resume: ``"no"``: a new run (writing ``checkpoint``, when given, at :data:`CHECKPOINT_STEPS`);
+        ``"continue"``: from ``checkpoint`` with ``learn(remaining, reset_num_timesteps=False)``; ``"restart"``: from
+        ``checkpoint`` with ``learn(TOTAL_STEPS)`` as the first run called it (rl-zoo3's way).
+    """
     model, callbacks = build_run(tensorboard_log)
     all_callbacks = list(callbacks)
     if checkpoint is not None:
         saver = _FirstCheckpointOnly(checkpoint, save_freq=CHECKPOINT_STEPS, callbacks=callbacks)
-        if resume:
+        if resume != "no":
             saver.resume(model)
             saver._last_saved = CHECKPOINT_STEPS  # the resumed half writes no checkpoint of its own
         all_callbacks.append(saver)
-    model.learn(
-        remaining_timesteps(model, TOTAL_STEPS), callback=all_callbacks, reset_num_timesteps=not resume
-    )
+    if resume == "continue":
+        model.learn(
+            remaining_timesteps(model, TOTAL_STEPS), callback=all_callbacks, reset_num_timesteps=False
+        )
+    else:
+        model.learn(TOTAL_STEPS, callback=all_callbacks)
     save_training_state(final, model, callbacks)
 
 
@@ -181,27 +189,44 @@ def assert_same_training_state(left_path: Path, right_path: Path) -> dict[str, A
     return left_data
 
 
-def test_a_resumed_run_in_a_fresh_process_equals_an_unbroken_one(tmp_path: Path) -> None:
+@pytest.fixture(scope="module")
+def stopped_run(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """A folder with the unbroken run's final state and the checkpoint (and final state) of the same run writing a
+    checkpoint at :data:`CHECKPOINT_STEPS`."""
+    folder = tmp_path_factory.mktemp("stopped_run")
     # Unbroken, with no checkpoint callback at all.
-    train(None, resume=False, final=tmp_path / "unbroken.pkl")
-    # The same run writing a checkpoint half-way (writing it must change nothing) ...
-    checkpoint = tmp_path / "run" / "checkpoint.pkl"
-    train(checkpoint, resume=False, final=tmp_path / "checkpointed.pkl", tensorboard_log=str(tmp_path / "tb"))
-    saved = _read(checkpoint)
-    saved_data, _, _ = load_from_zip_file(io.BytesIO(saved["model_zip"]))
-    assert saved_data["num_timesteps"] == CHECKPOINT_STEPS
-    # ... and continued from that checkpoint in a fresh process.
-    _fresh_process("resume", str(checkpoint), str(tmp_path / "resumed.pkl"), str(tmp_path / "tb"))
+    train(None, resume="no", final=folder / "unbroken.pkl")
+    # The same run writing a checkpoint half-way (writing it must change nothing).
+    train(
+        folder / "checkpoint.pkl",
+        resume="no",
+        final=folder / "checkpointed.pkl",
+        tensorboard_log=str(folder / "tb"),
+    )
+    return folder
 
-    data = assert_same_training_state(tmp_path / "unbroken.pkl", tmp_path / "checkpointed.pkl")
-    assert_same_training_state(tmp_path / "unbroken.pkl", tmp_path / "resumed.pkl")
+
+@pytest.mark.parametrize("resume", ["continue", "restart"])
+def test_a_resumed_run_in_a_fresh_process_equals_an_unbroken_one(
+    stopped_run: Path, tmp_path: Path, resume: str
+) -> None:
+    saved_data, _, _ = load_from_zip_file(io.BytesIO(_read(stopped_run / "checkpoint.pkl")["model_zip"]))
+    assert saved_data["num_timesteps"] == CHECKPOINT_STEPS
+    tensorboard_log = tmp_path / "tb"
+    shutil.copytree(stopped_run / "tb", tensorboard_log)
+    _fresh_process(
+        resume, str(stopped_run / "checkpoint.pkl"), str(tmp_path / "resumed.pkl"), str(tensorboard_log)
+    )
+
+    data = assert_same_training_state(stopped_run / "unbroken.pkl", stopped_run / "checkpointed.pkl")
+    assert_same_training_state(stopped_run / "unbroken.pkl", tmp_path / "resumed.pkl")
     # The short run is long enough to test something: updates after the checkpoint, episodes, a wrapped buffer.
     assert data["num_timesteps"] == TOTAL_STEPS
     assert data["_n_updates"] > CHECKPOINT_STEPS // N_ENVS
     assert data["_episode_num"] >= 2
     assert _read(tmp_path / "resumed.pkl")["replay_buffer"].full
     # TensorBoard continued in the same run folder.
-    assert sorted(path.name for path in (tmp_path / "tb").iterdir()) == ["SkillDDPG_1"]
+    assert sorted(path.name for path in tensorboard_log.iterdir()) == ["SkillDDPG_1"]
 
 
 def test_resuming_restores_counters_into_a_fresh_model(tmp_path: Path) -> None:
@@ -280,10 +305,10 @@ def test_a_checkpoint_killed_mid_write_leaves_the_previous_one_usable(tmp_path: 
 
 def _worker(argv: list[str]) -> None:
     mode = argv[0]
-    if mode == "resume":
+    if mode in ("continue", "restart"):
         checkpoint, final, tensorboard_log = argv[1:]
         th.set_num_threads(1)
-        train(Path(checkpoint), resume=True, final=Path(final), tensorboard_log=tensorboard_log)
+        train(Path(checkpoint), resume=mode, final=Path(final), tensorboard_log=tensorboard_log)
     elif mode == "kill-mid-write":
         checkpoint, signal_file = argv[1:]
         model, callbacks = build_run()
