@@ -472,9 +472,10 @@ def _cut_monitor_file(monitor: Monitor, saved_name: str, saved_size: int) -> Non
     writer.file_handler.flush()
     name = writer.file_handler.name
     size = os.path.getsize(name)
-    if os.path.realpath(name) != os.path.realpath(saved_name) or size < saved_size:
+    if size < saved_size:
         raise ValueError(
-            f"the monitor file {name} ({size} bytes) is not the checkpoint's {saved_name} ({saved_size} bytes): "
+            f"the monitor file {name} ({size} bytes) is shorter than the checkpoint's {saved_name} ({saved_size} "
+            "bytes): "
             "a resumed run's Monitor must append to its file (Monitor(..., override_existing=False))"
         )
     if size > saved_size:
@@ -556,33 +557,38 @@ def _logger_state(model: BaseAlgorithm) -> dict[str, Any] | None:
     if logger is None:
         return None
     formats = [name for name in map(_format_name, logger.output_formats) if name is not None]
+    folder = logger.get_dir()
     return {
-        "folder": logger.get_dir(),
+        # absolute: a resumed process may start in another working directory
+        "folder": None if folder is None else os.path.abspath(folder),
         "formats": formats,
         "custom": bool(getattr(model, "_custom_logger", False)),
     }
 
 
+class _ResumedTensorBoardOutput(TensorBoardOutputFormat):
+    """SB3's TensorBoard output, writing to a run folder again from ``purge_step`` on: TensorBoard discards the
+    events at steps >= ``purge_step`` from the folder's earlier event files (those logged after the checkpoint by
+    the process that was stopped), so the curves show each step once."""
+
+    def __init__(
+        self, folder: str, purge_step: int
+    ) -> None:  # not SB3's __init__: one writer, with purge_step
+        from torch.utils.tensorboard import SummaryWriter
+
+        self.writer = SummaryWriter(log_dir=folder, purge_step=purge_step)
+        self._is_closed = False
+
+
 def _restore_logger(model: BaseAlgorithm, saved: dict[str, Any] | None) -> None:
-    """Log to the checkpointed run's folder again; TensorBoard drops what was logged there after the checkpoint.
+    """Log to the checkpointed run's folder and outputs again, TensorBoard from the step after the checkpoint.
 
     Without this, SB3's ``learn(reset_num_timesteps=False)`` would pick the newest ``<tb_log_name>_<n>`` folder of
     ``tensorboard_log``, which is another run's when two runs share it.
     """
     if saved is None or saved["folder"] is None:
         return
-    logger = configure(saved["folder"], saved["formats"])
-    for index, output in enumerate(logger.output_formats):
-        if isinstance(output, TensorBoardOutputFormat):
-            from torch.utils.tensorboard import SummaryWriter
-
-            output.writer.close()
-            # purge_step: TensorBoard discards the events at steps >= it from the run's earlier event files
-            # (those logged after the checkpoint by the process that was stopped).
-            replacement = TensorBoardOutputFormat.__new__(TensorBoardOutputFormat)
-            replacement.writer = SummaryWriter(
-                log_dir=saved["folder"], purge_step=int(model.num_timesteps) + 1
-            )
-            replacement._is_closed = False
-            logger.output_formats[index] = replacement
+    logger = configure(saved["folder"], [name for name in saved["formats"] if name != "tensorboard"])
+    if "tensorboard" in saved["formats"]:
+        logger.output_formats.append(_ResumedTensorBoardOutput(saved["folder"], int(model.num_timesteps) + 1))
     model.set_logger(logger)

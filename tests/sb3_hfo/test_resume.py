@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import io
 import os
-import shutil
 import signal
 import subprocess
 import sys
@@ -212,8 +211,8 @@ def test_a_resumed_run_in_a_fresh_process_equals_an_unbroken_one(
 ) -> None:
     saved_data, _, _ = load_from_zip_file(io.BytesIO(_read(stopped_run / "checkpoint.pkl")["model_zip"]))
     assert saved_data["num_timesteps"] == CHECKPOINT_STEPS
-    tensorboard_log = tmp_path / "tb"
-    shutil.copytree(stopped_run / "tb", tensorboard_log)
+    tensorboard_log = stopped_run / "tb"  # where the checkpoint's logger writes
+    event_files = len(list((tensorboard_log / "SkillDDPG_1").iterdir()))
     _fresh_process(
         resume, str(stopped_run / "checkpoint.pkl"), str(tmp_path / "resumed.pkl"), str(tensorboard_log)
     )
@@ -227,6 +226,7 @@ def test_a_resumed_run_in_a_fresh_process_equals_an_unbroken_one(
     assert _read(tmp_path / "resumed.pkl")["replay_buffer"].full
     # TensorBoard continued in the same run folder.
     assert sorted(path.name for path in tensorboard_log.iterdir()) == ["SkillDDPG_1"]
+    assert len(list((tensorboard_log / "SkillDDPG_1").iterdir())) == event_files + 1  # the resumed process's
 
 
 def test_resuming_restores_counters_into_a_fresh_model(tmp_path: Path) -> None:
