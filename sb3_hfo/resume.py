@@ -20,7 +20,8 @@
 The file is written atomically (a temporary file in the same folder, flushed to disk, then ``os.replace``): a
 process killed at any moment leaves either the previous checkpoint or the new one, never a partial file.
 
-:class:`TrainingCheckpointCallback` writes a checkpoint every ``save_freq`` environment steps, at the one point of
+:class:`TrainingCheckpointCallback` writes a checkpoint every ``save_freq`` environment steps (or ``save_minutes``
+of wall-clock time), at the one point of
 SB3's loop where the state is consistent (the start of a rollout: the last transition stored, the last update
 done). To continue a run, build the model, environments and callbacks as the first run did, then::
 
@@ -228,11 +229,16 @@ def remaining_timesteps(model: BaseAlgorithm, total_timesteps: int) -> int:
 
 class TrainingCheckpointCallback(BaseCallback):
     """Write the training state (:func:`save_training_state`) to ``path`` every ``save_freq`` environment steps
-    (``num_timesteps``, all envs' steps) and when ``learn`` ends its budget, atomically; resume from it with
-    :meth:`resume`.
+    (``num_timesteps``, all envs' steps) or every ``save_minutes`` of wall-clock time, and when ``learn`` ends its
+    budget, atomically; resume from it with :meth:`resume`.
+
+    Writing a checkpoint changes nothing in the run, so a wall-clock interval keeps runs reproducible too (it
+    only decides where a resumed run restarts from).
 
     :param path: the checkpoint file (one file, replaced at each save).
-    :param save_freq: environment steps between checkpoints (> 0).
+    :param save_freq: environment steps between checkpoints (> 0), or ``None``.
+    :param save_minutes: minutes of wall-clock time between checkpoints (> 0), or ``None``; at least one of the
+        two.
     :param callbacks: the run's other callbacks whose state the checkpoint keeps (give them in the same order on
         resume).
     :param run_info: what identifies the run (see :func:`save_training_state`).
@@ -241,21 +247,34 @@ class TrainingCheckpointCallback(BaseCallback):
     def __init__(
         self,
         path: str | os.PathLike[str],
-        save_freq: int,
+        save_freq: int | None = None,
         callbacks: Sequence[BaseCallback] = (),
         run_info: dict[str, Any] | None = None,
         verbose: int = 0,
+        save_minutes: float | None = None,
     ) -> None:
         super().__init__(verbose)
-        if isinstance(save_freq, bool) or not isinstance(save_freq, (int, np.integer)) or save_freq < 1:
+        if save_freq is not None and (
+            isinstance(save_freq, bool) or not isinstance(save_freq, (int, np.integer)) or save_freq < 1
+        ):
             raise ValueError(f"save_freq must be a positive integer (environment steps), got {save_freq!r}")
+        if save_minutes is not None and not (
+            isinstance(save_minutes, (int, float)) and 0 < save_minutes < np.inf
+        ):
+            raise ValueError(f"save_minutes must be a positive number, got {save_minutes!r}")
+        if save_freq is None and save_minutes is None:
+            raise ValueError(
+                "give save_freq (environment steps) or save_minutes (wall-clock) between checkpoints"
+            )
         self.path = Path(path)
-        self.save_freq = int(save_freq)
+        self.save_freq = None if save_freq is None else int(save_freq)
+        self.save_minutes = None if save_minutes is None else float(save_minutes)
         self.tracked_callbacks = list(callbacks)
         self.run_info = dict(run_info or {})
         self._resumed: TrainingState | None = None
         self._next_save = 0
         self._last_saved = -1
+        self._last_save_time = time.monotonic()
 
     def resume(self, model: BaseAlgorithm) -> TrainingState:
         """Restore the checkpoint at :attr:`path` into ``model``, its envs and the tracked callbacks (see
@@ -270,22 +289,36 @@ class TrainingCheckpointCallback(BaseCallback):
         """Write a checkpoint of the current state now."""
         save_training_state(self.path, self.model, self.tracked_callbacks, self.run_info)
         self._last_saved = self.model.num_timesteps
+        self._last_save_time = time.monotonic()
         if self.verbose >= 1:
             print(f"Training checkpoint at {self.model.num_timesteps} steps: {self.path}")
 
     def _on_training_start(self) -> None:
         if self._resumed is not None:  # learn's set-up has reset what resume() restored
             self._resumed.restore(self.model, self.tracked_callbacks)
-        self._next_save = (self.model.num_timesteps // self.save_freq + 1) * self.save_freq
+        self._schedule_next_save()
+        self._last_save_time = time.monotonic()
+
+    def _schedule_next_save(self) -> None:
+        if self.save_freq is not None:
+            self._next_save = (self.model.num_timesteps // self.save_freq + 1) * self.save_freq
+
+    def _save_due(self) -> bool:
+        if self.save_freq is not None and self.model.num_timesteps >= self._next_save:
+            return True
+        return (
+            self.save_minutes is not None
+            and time.monotonic() - self._last_save_time >= 60 * self.save_minutes
+        )
 
     def _on_rollout_start(self) -> None:
         # Here SB3's loop is between two iterations: the last transition stored, the last update done.
         if self._resumed is not None:  # once more: callbacks after this one in the list started after it
             self._resumed.restore(self.model, self.tracked_callbacks)
             self._resumed = None
-        if self.model.num_timesteps >= self._next_save:
+        if self._save_due():
             self.save()
-            self._next_save = (self.model.num_timesteps // self.save_freq + 1) * self.save_freq
+            self._schedule_next_save()
 
     def _on_step(self) -> bool:
         return True

@@ -3,7 +3,7 @@
 Every rl-zoo3 ``train.py`` option works (``-n``, ``--seed``, ``--hyperparams``, ``--eval-freq``,
 ``--tensorboard-log``, ``-P``, ``-optimize``, ``--storage``, ``--study-name``, ...; see ``--help``), and two of
 its own: ``--checkpoint-freq N`` writes the whole training state (:mod:`sb3_hfo.resume`) to the run folder's
-``training_checkpoint.pkl`` every ``N`` steps, and ``--resume RUN_DIR`` with the run's command line continues that
+``training_checkpoint.pkl`` every ``N`` steps (``10min``: every 10 minutes), and ``--resume RUN_DIR`` with the run's command line continues that
 run from it as if never stopped (same folder, budget and TensorBoard run). The wrapper
 exists because rl-zoo3 builds its ``--algo`` choices before importing ``--gym-packages``: it registers
 ``skill_ddpg`` (and its Optuna sampler) and the HFO environments first, defaults ``--algo`` to ``skill_ddpg``

@@ -98,11 +98,17 @@ def parse_schedule(value: Any) -> Any:
 
 @dataclass(frozen=True)
 class CheckpointOptions:
-    """``python -m sb3_hfo.train``'s own options: ``--checkpoint-freq`` (environment steps between checkpoints) and
-    ``--resume`` (the run folder to continue)."""
+    """``python -m sb3_hfo.train``'s own options: ``--checkpoint-freq`` (environment steps, or minutes of wall-clock
+    time, between checkpoints) and ``--resume`` (the run folder to continue)."""
 
     freq: int | None = None
     resume: Path | None = None
+    minutes: float | None = None
+
+    @property
+    def checkpointing(self) -> bool:
+        """Whether ``--checkpoint-freq`` was given."""
+        return self.freq is not None or self.minutes is not None
 
 
 class ResumeError(ValueError):
@@ -121,13 +127,17 @@ def split_checkpoint_options(argv: Sequence[str]) -> tuple[list[str], Checkpoint
     parser.add_argument("--checkpoint-freq", type=str, default=None)
     parser.add_argument("--resume", type=str, default=None)
     known, rest = parser.parse_known_args(list(argv))
-    freq = None
-    if known.checkpoint_freq is not None:
-        if not known.checkpoint_freq.isdigit() or int(known.checkpoint_freq) < 1:
+    freq, minutes = None, None
+    value = known.checkpoint_freq
+    if value is not None:
+        if value.isdigit() and int(value) > 0:
+            freq = int(value)
+        elif value.endswith("min") and value[:-3].replace(".", "", 1).isdigit() and float(value[:-3]) > 0:
+            minutes = float(value[:-3])
+        else:
             raise ValueError(
-                f"--checkpoint-freq must be a positive number of steps, got {known.checkpoint_freq!r}"
+                f"--checkpoint-freq must be a positive number of steps (50000) or of minutes (10min), got {value!r}"
             )
-        freq = int(known.checkpoint_freq)
     resume = None
     if known.resume is not None:
         resume = Path(known.resume)
@@ -137,7 +147,7 @@ def split_checkpoint_options(argv: Sequence[str]) -> tuple[list[str], Checkpoint
             )
         if _has_option(rest, "-optimize", "--optimize-hyperparameters"):
             raise ValueError("--resume continues a training run; it does not apply to -optimize")
-    return rest, CheckpointOptions(freq, resume)
+    return rest, CheckpointOptions(freq, resume, minutes)
 
 
 def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) -> type:
@@ -176,23 +186,25 @@ def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) ->
                 super()._save_config(saved_hyperparams)
 
         def learn(self, model: Any) -> None:
-            if options.freq is None and options.resume is None:
+            if not options.checkpointing and options.resume is None:
                 return super().learn(model)
             from sb3_hfo.resume import CHECKPOINT_NAME, TrainingCheckpointCallback
 
-            run_info = {**self._run_info, "checkpoint_freq": options.freq}
             path = Path(self.save_path) / CHECKPOINT_NAME
+            # Without --checkpoint-freq a resumed run keeps its own interval (set below).
+            freq, minutes = (options.freq, options.minutes) if options.checkpointing else (None, 10.0)
             saver = TrainingCheckpointCallback(
-                path, options.freq or 1, list(self.callbacks), run_info, self.verbose
+                path, freq, list(self.callbacks), verbose=self.verbose, save_minutes=minutes
             )
             if options.resume is not None:
                 saved = saver.resume(model).run_info
                 differs = sorted(key for key in self._run_info if saved.get(key) != self._run_info[key])
                 if differs:
                     raise ResumeError(f"--resume {options.resume}: its run had other {', '.join(differs)}")
-                saver.save_freq = options.freq or saved["checkpoint_freq"]
-                saver.run_info["checkpoint_freq"] = saver.save_freq
+                if not options.checkpointing:
+                    saver.save_freq, saver.save_minutes = saved["checkpoint_interval"]
                 print(f"Resuming {self.save_path} at {model.num_timesteps} steps")
+            saver.run_info = {**self._run_info, "checkpoint_interval": (saver.save_freq, saver.save_minutes)}
             self.callbacks.append(saver)
             return super().learn(model)
 

@@ -123,6 +123,7 @@ def _tensors(state: object) -> list[th.Tensor]:
     ("extra", "message"),
     [
         (("--checkpoint-freq", "0"), "--checkpoint-freq must be a positive number"),
+        (("--checkpoint-freq", "ten"), "or of minutes (10min)"),
         (("--resume", "nowhere"), "no training_checkpoint.pkl"),
     ],
 )

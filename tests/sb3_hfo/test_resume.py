@@ -263,6 +263,28 @@ def test_a_checkpoint_of_another_run_is_refused_and_changes_nothing(tmp_path: Pa
 def test_save_freq_must_be_positive() -> None:
     with pytest.raises(ValueError, match="save_freq"):
         TrainingCheckpointCallback("x.pkl", save_freq=0)
+    with pytest.raises(ValueError, match="save_minutes"):
+        TrainingCheckpointCallback("x.pkl", save_minutes=-1.0)
+    with pytest.raises(ValueError, match="give save_freq"):
+        TrainingCheckpointCallback("x.pkl")
+
+
+class _CountingSaves(TrainingCheckpointCallback):
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.saved_at: list[int] = []
+
+    def save(self) -> None:
+        super().save()
+        self.saved_at.append(self.model.num_timesteps)
+
+
+def test_checkpoints_on_a_wall_clock_interval(tmp_path: Path) -> None:
+    model, callbacks = build_run()
+    # An interval of 60 ns: every rollout of this run takes longer, so every one ends with a checkpoint.
+    saver = _CountingSaves(tmp_path / "checkpoint.pkl", callbacks=callbacks, save_minutes=1e-9)
+    model.learn(40, callback=[*callbacks, saver])
+    assert saver.saved_at == list(range(0, 42, 2))  # each rollout (2 envs) and the end of the budget
 
 
 class _HangWhenPickled:
