@@ -591,6 +591,19 @@ class HFOEnv(gym.Env):
             self._renderer.close()
             self._renderer = None
 
+    def __getstate__(self) -> dict[str, Any]:
+        """The env's state for pickle (resumable training checkpoints it mid-episode): everything but the
+        observation packer (a ``struct.Struct``, which does not pickle; rebuilt from the observation space) and the
+        render window (a new one opens at the next ``render()``)."""
+        state = dict(self.__dict__)
+        del state["_observation_packer"]
+        state["_renderer"] = None
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self._observation_packer = struct.Struct(f"={self.observation_space.shape[0]}f")
+
     # ------------------------------------------------------------------------------------------------------------
     # Internals
     # ------------------------------------------------------------------------------------------------------------

@@ -15,6 +15,9 @@ Four rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimen
   ``policy_kwargs`` are merged on top of the config's instead.
 * ``-i`` (warm start) loads a committed model, which is stored stripped (:mod:`sb3_hfo.models`), through its
   rebuilt full zip.
+* ``--checkpoint-freq N`` / ``--resume RUN_DIR`` (options of ``python -m sb3_hfo.train``, not rl-zoo3's): a
+  checkpoint of the whole training state (:mod:`sb3_hfo.resume`) every ``N`` steps in the run folder, and a run
+  continued from its folder's checkpoint (same folder, budget and TensorBoard run; the hyperparameters must match).
 * rl-zoo3 (2.9) hands a config's ``env_kwargs`` (e.g. ``reward: shaped_gap``) to the training envs but builds the
   evaluation env with the command line's ``--env-kwargs`` only, so ``--eval-freq`` evaluations would report a
   different reward and pick ``best_model.zip`` by it. Unless ``--eval-env-kwargs`` is given, the evaluation env
@@ -27,11 +30,13 @@ the paper's figures are plotted against episodes). The training goal rate is SB3
 
 from __future__ import annotations
 
+import argparse
 import contextlib
 import shutil
 import sys
 import tempfile
 from collections.abc import Callable, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -93,13 +98,117 @@ def parse_schedule(value: Any) -> Any:
     raise ValueError(f"invalid learning rate {value!r}")
 
 
-def _experiment_manager_class() -> type:
+@dataclass(frozen=True)
+class CheckpointOptions:
+    """``python -m sb3_hfo.train``'s own options: ``--checkpoint-freq`` (environment steps, or minutes of wall-clock
+    time, between checkpoints) and ``--resume`` (the run folder to continue)."""
+
+    freq: int | None = None
+    resume: Path | None = None
+    minutes: float | None = None
+
+    @property
+    def checkpointing(self) -> bool:
+        """Whether ``--checkpoint-freq`` was given."""
+        return self.freq is not None or self.minutes is not None
+
+
+class ResumeError(ValueError):
+    """``--resume`` cannot continue that run folder (its checkpoint is of other hyperparameters)."""
+
+
+def split_checkpoint_options(argv: Sequence[str]) -> tuple[list[str], CheckpointOptions]:
+    """Take ``--checkpoint-freq N`` and ``--resume RUN_DIR`` out of ``argv`` (the rest goes to rl-zoo3).
+
+    :raises ValueError: a frequency that is not a positive integer, a run folder without a checkpoint, or
+        ``--resume`` with ``-optimize``.
+    """
+    from sb3_hfo.resume import CHECKPOINT_NAME
+
+    parser = argparse.ArgumentParser(add_help=False, allow_abbrev=False)
+    parser.add_argument("--checkpoint-freq", type=str, default=None)
+    parser.add_argument("--resume", type=str, default=None)
+    known, rest = parser.parse_known_args(list(argv))
+    freq, minutes = None, None
+    value = known.checkpoint_freq
+    if value is not None:
+        if value.isdigit() and int(value) > 0:
+            freq = int(value)
+        elif value.endswith("min") and value[:-3].replace(".", "", 1).isdigit() and float(value[:-3]) > 0:
+            minutes = float(value[:-3])
+        else:
+            raise ValueError(
+                f"--checkpoint-freq must be a positive number of steps (50000) or of minutes (10min), got {value!r}"
+            )
+    resume = None
+    if known.resume is not None:
+        resume = Path(known.resume)
+        if not (resume / CHECKPOINT_NAME).is_file():
+            raise ValueError(
+                f"--resume {resume}: no {CHECKPOINT_NAME} in that folder (a run of --checkpoint-freq)"
+            )
+        if _has_option(rest, "-optimize", "--optimize-hyperparameters"):
+            raise ValueError("--resume continues a training run; it does not apply to -optimize")
+    return rest, CheckpointOptions(freq, resume, minutes)
+
+
+def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) -> type:
     """Build :class:`HFOExperimentManager` lazily (rl_zoo3.exp_manager imports optuna, torch, ...)."""
     from rl_zoo3.exp_manager import ExperimentManager
     from rl_zoo3.hyperparams_opt import HYPERPARAMS_SAMPLER
 
+    options = checkpointing or CheckpointOptions()
+
     class HFOExperimentManager(ExperimentManager):
-        """rl-zoo3's ExperimentManager with SkillDDPG's two learning rates, policy_kwargs merging and eval env_kwargs."""
+        """rl-zoo3's ExperimentManager with SkillDDPG's two learning rates, policy_kwargs merging, eval env_kwargs
+        and resumable runs."""
+
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            super().__init__(*args, **kwargs)
+            self._run_info: dict[str, Any] = {}
+            if options.resume is not None:  # continue that run folder instead of numbering a new one
+                self.save_path = str(options.resume)
+                self.params_path = f"{self.save_path}/{self.env_name}"
+
+        def create_envs(self, n_envs: int, eval_env: bool = False, no_log: bool = False) -> Any:
+            if options.resume is not None and not eval_env:  # append to the run's monitor.csv (cut at resume)
+                self.monitor_kwargs = {**self.monitor_kwargs, "override_existing": False}
+            return super().create_envs(n_envs, eval_env=eval_env, no_log=no_log)
+
+        def _save_config(self, saved_hyperparams: dict[str, Any]) -> None:
+            # What a resume must match (the seed only built what the checkpoint replaces).
+            self._run_info = {
+                "algo": self.algo,
+                "env": str(self.env_name),
+                "n_envs": self.n_envs,
+                "n_timesteps": self.n_timesteps,
+                "hyperparams": dict(saved_hyperparams),
+            }
+            if options.resume is None:  # a resumed run keeps its first command line and config files
+                super()._save_config(saved_hyperparams)
+
+        def learn(self, model: Any) -> None:
+            if not options.checkpointing and options.resume is None:
+                return super().learn(model)
+            from sb3_hfo.resume import CHECKPOINT_NAME, TrainingCheckpointCallback
+
+            path = Path(self.save_path) / CHECKPOINT_NAME
+            # Without --checkpoint-freq a resumed run keeps its own interval (set below).
+            freq, minutes = (options.freq, options.minutes) if options.checkpointing else (None, 10.0)
+            saver = TrainingCheckpointCallback(
+                path, freq, list(self.callbacks), verbose=self.verbose, save_minutes=minutes
+            )
+            if options.resume is not None:
+                saved = saver.resume(model).run_info
+                differs = sorted(key for key in self._run_info if saved.get(key) != self._run_info[key])
+                if differs:
+                    raise ResumeError(f"--resume {options.resume}: its run had other {', '.join(differs)}")
+                if not options.checkpointing:
+                    saver.save_freq, saver.save_minutes = saved["checkpoint_interval"]
+                print(f"Resuming {self.save_path} at {model.num_timesteps} steps")
+            saver.run_info = {**self._run_info, "checkpoint_interval": (saver.save_freq, saver.save_minutes)}
+            self.callbacks.append(saver)
+            return super().learn(model)
 
         def setup_experiment(self) -> Any:
             # A run that fails while it is set up (a bad value in the config, an env that cannot be made) leaves
@@ -190,7 +299,7 @@ def callbacks_need_action_noise(callbacks: Any) -> bool:
 
 def require_action_noise(sampler: Callable[..., dict[str, Any]]) -> Callable[..., dict[str, Any]]:
     """Wrap an Optuna sampler of :mod:`sb3_hfo.hyperparams_opt` so that it never draws ``noise_type: none``."""
-    from sb3_hfo.hyperparams_opt import NOISE_REQUIRED_ARG
+    from sb3_hfo.cli.hyperparams_opt import NOISE_REQUIRED_ARG
 
     def noisy_sampler(
         trial: Any, n_actions: int, n_envs: int, additional_args: dict[str, Any]
@@ -223,10 +332,11 @@ def _playback_class(algo_class: type) -> type:
     return PlaybackModel
 
 
-def register_with_rl_zoo(playback: bool = False) -> None:
+def register_with_rl_zoo(playback: bool = False, checkpointing: CheckpointOptions | None = None) -> None:
     """Make rl-zoo3 know SkillDDPG, SkillPDQN and the HFO environments. Idempotent.
 
     :param playback: register a variant whose ``load`` uses a 1-transition replay buffer (enjoy, record_video).
+    :param checkpointing: ``train``'s checkpoint / resume options.
     """
     import rl_zoo3.exp_manager
     import rl_zoo3.hyperparams_opt
@@ -248,7 +358,7 @@ def register_with_rl_zoo(playback: bool = False) -> None:
         # The sampler's raw values map onto constructor arguments the same way for both.
         rl_zoo3.hyperparams_opt.HYPERPARAMS_CONVERTER[name] = convert_skill_ddpg_params
     # train() looks ExperimentManager up in its module namespace at call time.
-    rl_zoo3.train.ExperimentManager = _experiment_manager_class()  # type: ignore[misc]
+    rl_zoo3.train.ExperimentManager = _experiment_manager_class(checkpointing)  # type: ignore[misc]
 
 
 def _has_option(argv: Sequence[str], *names: str) -> bool:
@@ -271,11 +381,15 @@ def default_algo_argv(argv: Sequence[str], single_thread: bool = False) -> list[
 
 
 def run_rl_zoo_entry_point(
-    entry_point: Callable[[], None], argv: Sequence[str], playback: bool, single_thread: bool = False
+    entry_point: Callable[[], None],
+    argv: Sequence[str],
+    playback: bool,
+    single_thread: bool = False,
+    checkpointing: CheckpointOptions | None = None,
 ) -> None:
     """Register SkillDDPG, default ``--algo`` to it (see :func:`default_algo_argv`) and run an rl-zoo3 entry
     point with ``argv``."""
-    register_with_rl_zoo(playback=playback)
+    register_with_rl_zoo(playback=playback, checkpointing=checkpointing)
     sys.argv = [sys.argv[0], *default_algo_argv(argv, single_thread=single_thread)]
     entry_point()
 
