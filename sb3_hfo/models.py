@@ -141,7 +141,9 @@ def full_model_buffer(path: str | Path) -> io.BytesIO:
 
 
 #: Policy modules whose models load with another algorithm than SkillDDPG: module -> (algorithm module, class).
-POLICY_ALGORITHMS: dict[str, tuple[str, str]] = {"sb3_hfo.hybrid_ppo.policies": ("sb3_hfo.hybrid_ppo", "HybridPPO")}
+POLICY_ALGORITHMS: dict[str, tuple[str, str]] = {
+    "sb3_hfo.hybrid_ppo.policies": ("sb3_hfo.hybrid_ppo", "HybridPPO")
+}
 
 
 def saved_algo_class(path: str | Path) -> type | None:

@@ -200,8 +200,11 @@ def register_with_rl_zoo(playback: bool = False) -> None:
     for name, algo_class in algo_classes().items():
         if name == HYBRID_PPO_ALGO_NAME:  # on-policy: no replay buffer to shrink; rl-zoo3's PPO search space
             rl_zoo3.utils.ALGOS[name] = algo_class
-            rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER[name] = rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER["ppo"]
-            rl_zoo3.hyperparams_opt.HYPERPARAMS_CONVERTER[name] = rl_zoo3.hyperparams_opt.HYPERPARAMS_CONVERTER["ppo"]
+            for table in (
+                rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER,
+                rl_zoo3.hyperparams_opt.HYPERPARAMS_CONVERTER,
+            ):
+                table[name] = table["ppo"]
             continue
         # rl_zoo3.ALGOS, rl_zoo3.utils.ALGOS and the names imported by train/enjoy/record_video are one dict object.
         rl_zoo3.utils.ALGOS[name] = _playback_class(algo_class) if playback else algo_class

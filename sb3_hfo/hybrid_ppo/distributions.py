@@ -48,7 +48,9 @@ class HybridDistribution:
     :param parameter_mask: ``(K, P)`` float or bool, 1 where discrete action ``k`` reads parameter ``j``.
     """
 
-    def __init__(self, logits: th.Tensor, mean: th.Tensor, log_std: th.Tensor, parameter_mask: th.Tensor) -> None:
+    def __init__(
+        self, logits: th.Tensor, mean: th.Tensor, log_std: th.Tensor, parameter_mask: th.Tensor
+    ) -> None:
         self.log_pi = th.log_softmax(logits, dim=-1)
         self.mean = mean
         self.log_std = log_std.expand_as(mean)

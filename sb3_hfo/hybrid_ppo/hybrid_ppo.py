@@ -95,9 +95,13 @@ class HybridPPO(OnPolicyAlgorithm):
             supported_action_spaces=None,  # the adapter checks the space and names it in a ValueError
         )
         if batch_size < 2 and normalize_advantage:
-            raise ValueError("batch_size must be > 1 with normalize_advantage (advantages are normalised per batch)")
+            raise ValueError(
+                "batch_size must be > 1 with normalize_advantage (advantages are normalised per batch)"
+            )
         if n_steps < 1 or n_epochs < 1 or batch_size < 1:
-            raise ValueError(f"n_steps, batch_size and n_epochs must be >= 1, got {n_steps}, {batch_size}, {n_epochs}")
+            raise ValueError(
+                f"n_steps, batch_size and n_epochs must be >= 1, got {n_steps}, {batch_size}, {n_epochs}"
+            )
         self.batch_size = batch_size
         self.n_epochs = n_epochs
         self.clip_range = clip_range
@@ -152,7 +156,8 @@ class HybridPPO(OnPolicyAlgorithm):
                 actions_t, values, log_probs = self.policy(obs_tensor)
                 if self.policy.n_skills > 1:
                     skill_counts += np.bincount(
-                        self.policy.skills_of(obs_tensor, actions_t).cpu().numpy(), minlength=self.policy.n_skills
+                        self.policy.skills_of(obs_tensor, actions_t).cpu().numpy(),
+                        minlength=self.policy.n_skills,
                     )
             actions = actions_t.cpu().numpy()
             discrete_counts += np.bincount(actions[:, 0].astype(np.int64), minlength=adapter.n_discrete)
@@ -167,7 +172,9 @@ class HybridPPO(OnPolicyAlgorithm):
                 terminal_obs = infos[index].get("terminal_observation")
                 if done and terminal_obs is not None and infos[index].get("TimeLimit.truncated", False):
                     with th.no_grad():
-                        terminal_value = self.policy.predict_values(self.policy.obs_to_tensor(terminal_obs)[0])[0]
+                        terminal_value = self.policy.predict_values(
+                            self.policy.obs_to_tensor(terminal_obs)[0]
+                        )[0]
                     rewards[index] += self.gamma * terminal_value.item()
             rollout_buffer.add(self._last_obs, actions, rewards, self._last_episode_starts, values, log_probs)  # type: ignore[arg-type]
             self._last_obs = new_obs  # type: ignore[assignment]
@@ -190,7 +197,9 @@ class HybridPPO(OnPolicyAlgorithm):
         self.policy.set_training_mode(True)
         self._update_learning_rate(self.policy.optimizers)
         clip_range = self.clip_range(self._current_progress_remaining)  # type: ignore[operator]
-        clip_range_vf = None if self.clip_range_vf is None else self.clip_range_vf(self._current_progress_remaining)  # type: ignore[operator]
+        clip_range_vf = (
+            None if self.clip_range_vf is None else self.clip_range_vf(self._current_progress_remaining)
+        )  # type: ignore[operator]
         entropy_losses, pg_losses, value_losses, clip_fractions, approx_kls = [], [], [], [], []
         continue_training = True
         for _epoch in range(self.n_epochs):
@@ -202,11 +211,15 @@ class HybridPPO(OnPolicyAlgorithm):
                     advantages = (advantages - advantages.mean()) / (advantages.std() + 1e-8)
                 # Clipped surrogate objective
                 ratio = th.exp(log_prob - batch.old_log_prob)
-                surrogate = th.min(advantages * ratio, advantages * th.clamp(ratio, 1 - clip_range, 1 + clip_range))
+                surrogate = th.min(
+                    advantages * ratio, advantages * th.clamp(ratio, 1 - clip_range, 1 + clip_range)
+                )
                 policy_loss = -surrogate.mean()
                 # Value loss, optionally clipped around the rollout's values
                 if clip_range_vf is not None:
-                    values = batch.old_values + th.clamp(values - batch.old_values, -clip_range_vf, clip_range_vf)
+                    values = batch.old_values + th.clamp(
+                        values - batch.old_values, -clip_range_vf, clip_range_vf
+                    )
                 value_loss = th.nn.functional.mse_loss(batch.returns, values)
                 entropy_loss = -entropy.mean()
                 loss = policy_loss + self.ent_coef * entropy_loss + self.vf_coef * value_loss

@@ -59,7 +59,9 @@ def _mask_from_sizes(sizes: Sequence[int], n_parameters: int) -> np.ndarray:
     return mask
 
 
-def _check_sizes(parameter_sizes: Sequence[int], n_discrete: int, n_parameters: int, space: Any) -> tuple[int, ...]:
+def _check_sizes(
+    parameter_sizes: Sequence[int], n_discrete: int, n_parameters: int, space: Any
+) -> tuple[int, ...]:
     sizes = tuple(parameter_sizes)
     if (
         len(sizes) != n_discrete
@@ -115,7 +117,11 @@ class ActionAdapter:
             cls._no_sizes(parameter_sizes, space)
             names = tuple(f"action_{k}" for k in range(int(space.n)))
             return cls(space, "discrete", names, np.zeros((int(space.n), 0), bool), np.zeros(0), np.zeros(0))
-        if isinstance(space, spaces.Tuple) and len(space.spaces) >= 2 and isinstance(space.spaces[0], spaces.Discrete):
+        if (
+            isinstance(space, spaces.Tuple)
+            and len(space.spaces) >= 2
+            and isinstance(space.spaces[0], spaces.Discrete)
+        ):
             return cls._from_tuple(space, parameter_sizes)
         raise ValueError(
             f"HybridPPO does not support the action space {space!r}: use a Box (with or without a hybrid 'layout'), "
@@ -131,7 +137,9 @@ class ActionAdapter:
             )
 
     @classmethod
-    def _from_layout_box(cls, space: spaces.Box, layout: Any, parameter_sizes: Sequence[int] | None) -> ActionAdapter:
+    def _from_layout_box(
+        cls, space: spaces.Box, layout: Any, parameter_sizes: Sequence[int] | None
+    ) -> ActionAdapter:
         box = _finite_box(space, "a hybrid layout Box")
         try:
             names = tuple(layout.names)
@@ -147,10 +155,17 @@ class ActionAdapter:
                 f"flat action space {space!r} (expected shape ({n_discrete + sum(sizes)},))"
             )
         if parameter_sizes is not None and tuple(parameter_sizes) != sizes:
-            raise ValueError(f"HybridPPO: parameter_sizes {tuple(parameter_sizes)} differ from the env's layout {sizes}")
+            raise ValueError(
+                f"HybridPPO: parameter_sizes {tuple(parameter_sizes)} differ from the env's layout {sizes}"
+            )
         n_parameters = sum(sizes)
         return cls(
-            space, "layout_box", names, _mask_from_sizes(sizes, n_parameters), box.low[n_discrete:], box.high[n_discrete:]
+            space,
+            "layout_box",
+            names,
+            _mask_from_sizes(sizes, n_parameters),
+            box.low[n_discrete:],
+            box.high[n_discrete:],
         )
 
     @classmethod
@@ -168,7 +183,9 @@ class ActionAdapter:
             if parameter_sizes is None:  # every action may read every parameter (module docstring)
                 mask = np.ones((n_discrete, n_parameters), dtype=bool)
             else:
-                mask = _mask_from_sizes(_check_sizes(parameter_sizes, n_discrete, n_parameters, space), n_parameters)
+                mask = _mask_from_sizes(
+                    _check_sizes(parameter_sizes, n_discrete, n_parameters, space), n_parameters
+                )
             return cls(space, "tuple_shared", names, mask, box.low, box.high)
         kind = "tuple_per_action"
         if len(rest) == 1 and isinstance(rest[0], spaces.Tuple):
@@ -183,7 +200,9 @@ class ActionAdapter:
             raise ValueError(f"HybridPPO: every parameter Box of {space!r} must be 1-D")
         sizes = tuple(int(box.shape[0]) for box in boxes)
         if parameter_sizes is not None and tuple(parameter_sizes) != sizes:
-            raise ValueError(f"HybridPPO: parameter_sizes {tuple(parameter_sizes)} differ from the space's {sizes}")
+            raise ValueError(
+                f"HybridPPO: parameter_sizes {tuple(parameter_sizes)} differ from the space's {sizes}"
+            )
         low = np.concatenate([box.low for box in boxes]) if boxes else np.zeros(0)
         high = np.concatenate([box.high for box in boxes]) if boxes else np.zeros(0)
         return cls(space, kind, names, _mask_from_sizes(sizes, sum(sizes)), low, high)
@@ -220,7 +239,9 @@ class ActionAdapter:
         or Discrete space, a list of ``n`` tuples for a Tuple space (what SB3's VecEnvs step with)."""
         internal = np.asarray(internal)
         if internal.ndim != 2 or internal.shape[1] != self.internal_size:
-            raise ValueError(f"internal actions must have shape (n, {self.internal_size}), got {internal.shape}")
+            raise ValueError(
+                f"internal actions must have shape (n, {self.internal_size}), got {internal.shape}"
+            )
         discrete = internal[:, 0].astype(np.int64)
         parameters = self.scale(internal[:, 1:])
         if self.kind == "discrete":
@@ -230,7 +251,9 @@ class ActionAdapter:
         if self.kind == "layout_box":
             n_discrete = self.n_discrete
             preferences = np.where(
-                np.arange(n_discrete) == discrete[:, None], self.space.high[:n_discrete], self.space.low[:n_discrete]
+                np.arange(n_discrete) == discrete[:, None],
+                self.space.high[:n_discrete],
+                self.space.low[:n_discrete],
             )
             return np.concatenate([preferences, parameters], axis=1).astype(self.space.dtype)
         if self.kind == "tuple_shared":

@@ -163,8 +163,16 @@ def test_flat_layout_sends_a_one_hot_preference_the_env_plays() -> None:
     ("space", "kwargs", "message"),
     [
         (spaces.MultiDiscrete([2, 3]), {}, "MultiDiscrete"),
-        (spaces.Tuple((spaces.Discrete(3), spaces.Box(0, 1, (2,)))), {"parameter_sizes": (1, 0, 0)}, "summing to 2"),
-        (spaces.Tuple((spaces.Discrete(3), spaces.Box(0, 1, (2,)), spaces.Box(0, 1, (2,)))), {}, "one Box per"),
+        (
+            spaces.Tuple((spaces.Discrete(3), spaces.Box(0, 1, (2,)))),
+            {"parameter_sizes": (1, 0, 0)},
+            "summing to 2",
+        ),
+        (
+            spaces.Tuple((spaces.Discrete(3), spaces.Box(0, 1, (2,)), spaces.Box(0, 1, (2,)))),
+            {},
+            "one Box per",
+        ),
         (spaces.Box(-np.inf, np.inf, (2,)), {}, "infinite bounds"),
         (spaces.Box(0, 1, (2,)), {"parameter_sizes": (2,)}, "only for Tuple"),
         (spaces.Dict({"a": spaces.Discrete(2)}), {}, "Dict"),
@@ -269,7 +277,9 @@ def test_predict_is_argmax_and_mean() -> None:
         latent = model.policy.actor_trunk(th.as_tensor(obs))
         logits, mean = model.policy.heads[0](latent)
     actions, _ = model.predict(obs, deterministic=True)
-    expected = model.policy.adapter.to_env(np.concatenate([logits.argmax(1, keepdim=True).numpy(), mean.numpy()], 1))
+    expected = model.policy.adapter.to_env(
+        np.concatenate([logits.argmax(1, keepdim=True).numpy(), mean.numpy()], 1)
+    )
     np.testing.assert_array_equal(actions, expected)
     single, _ = model.predict(obs[0], deterministic=True)
     np.testing.assert_array_equal(single, expected[0])
@@ -289,7 +299,9 @@ class _Recorder(gym.Wrapper):
 
 def test_buffer_keeps_unclipped_parameters_and_the_env_gets_its_format() -> None:
     recorder = _Recorder(gym.make("HFO/EmptyGoal-v0", action_format="parameterized"))
-    model = HybridPPO("MlpPolicy", recorder, n_steps=64, batch_size=64, seed=0, policy_kwargs={"log_std_init": 1.0})
+    model = HybridPPO(
+        "MlpPolicy", recorder, n_steps=64, batch_size=64, seed=0, policy_kwargs={"log_std_init": 1.0}
+    )
     model.learn(64)
     buffer_actions = model.rollout_buffer.actions.reshape(-1, 6)
     assert np.abs(buffer_actions[:, 1:]).max() > 1.0  # sampled beyond the bounds, kept so for the update
@@ -306,7 +318,9 @@ def test_save_load_round_trip(tmp_path: Any) -> None:
     model.save(tmp_path / "model.zip")
     loaded = HybridPPO.load(tmp_path / "model.zip", device="cpu")
     obs = np.stack([env.observation_space.sample() for _ in range(8)])
-    for got, want in zip(loaded.predict(obs, deterministic=True)[0], model.predict(obs, deterministic=True)[0], strict=True):
+    for got, want in zip(
+        loaded.predict(obs, deterministic=True)[0], model.predict(obs, deterministic=True)[0], strict=True
+    ):
         assert got[0] == want[0] and all(np.array_equal(a, b) for a, b in zip(got[1:], want[1:], strict=True))
     for name in model.policy.optimizer_names:
         saved = getattr(model.policy, name).state_dict()["state"]
@@ -349,7 +363,9 @@ class _FarHalfToy(HybridTargetEnv):
 
 
 def test_field_half_skills_route_to_their_head() -> None:
-    model = HybridPPO("MlpPolicy", HybridTargetEnv(), seed=0, policy_kwargs={"skills": 2, "router": "field_half"})
+    model = HybridPPO(
+        "MlpPolicy", HybridTargetEnv(), seed=0, policy_kwargs={"skills": 2, "router": "field_half"}
+    )
     policy = model.policy
     obs = np.zeros((4, 58), np.float32)
     obs[:, SELF_X] = [0.5, -0.5, 0.2, -0.9]  # far, near, far, near
@@ -388,7 +404,9 @@ def test_each_skill_optimizer_updates_only_its_head() -> None:
 def test_learned_router_learns_to_avoid_a_useless_skill() -> None:
     """Skill 1's head is frozen at wide noise: the router should learn to send (almost) everything to skill 0."""
     env = make_vec_env(HybridTargetEnv, n_envs=8, seed=0)
-    model = HybridPPO("MlpPolicy", env, seed=0, **TOY_HYPERPARAMS, policy_kwargs={"skills": 2, "router": "learned"})
+    model = HybridPPO(
+        "MlpPolicy", env, seed=0, **TOY_HYPERPARAMS, policy_kwargs={"skills": 2, "router": "learned"}
+    )
     policy = model.policy
     with th.no_grad():
         policy.heads[1].log_std.fill_(2.0)
