@@ -332,7 +332,9 @@ def test_save_load_round_trip(tmp_path: Any) -> None:
     loaded.learn(64)  # trains on after loading
 
 
-def test_logs_action_fractions() -> None:
+def test_logs_action_fractions_to_tensorboard(tmp_path: Any) -> None:
+    from tensorboard.backend.event_processing.event_accumulator import EventAccumulator
+
     seen: dict[str, float] = {}
 
     class Grab(BaseCallback):
@@ -342,10 +344,17 @@ def test_logs_action_fractions() -> None:
         def _on_rollout_end(self) -> None:
             seen.update(self.logger.name_to_value)
 
-    model = HybridPPO("MlpPolicy", make_vec_env(HybridTargetEnv, n_envs=2, seed=0), n_steps=50, batch_size=50)
-    model.learn(100, callback=Grab())
+    env = make_vec_env(HybridTargetEnv, n_envs=2, seed=0)
+    model = HybridPPO("MlpPolicy", env, n_steps=50, batch_size=50, tensorboard_log=str(tmp_path))
+    model.learn(200, callback=Grab(), progress_bar=True)  # train/ logs are written at the next iteration
     fractions = [seen[f"rollout/action_{name}_fraction"] for name in HFO_FLAT_ACTION_LAYOUT.names]
     assert sum(fractions) == pytest.approx(1.0) and all(0.1 < f < 0.6 for f in fractions)
+    (run,) = tmp_path.iterdir()
+    events = EventAccumulator(str(run))
+    events.Reload()
+    tags = set(events.Tags()["scalars"])
+    assert {f"rollout/action_{name}_fraction" for name in HFO_FLAT_ACTION_LAYOUT.names} <= tags
+    assert {"train/approx_kl", "train/entropy_loss", "train/std"} <= tags
 
 
 # --------------------------------------------------------------------------------------------------------------
