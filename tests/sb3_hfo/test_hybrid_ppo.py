@@ -453,3 +453,21 @@ def test_rl_zoo_name_and_load_model(tmp_path: Any) -> None:
     assert type(loaded) is HybridPPO
     result = evaluate(str(tmp_path / "m.zip"), env_id="HFO/EmptyGoal-v0", episodes=2, seed=0)
     assert result.episodes == 2
+
+
+def test_hybrid_ppo_modules_do_not_import_hfo2d() -> None:
+    """Issue 33, item 6: the algorithm reads the env's layout by duck typing; no module of it imports hfo2d."""
+    import ast
+    from pathlib import Path
+
+    import sb3_hfo.hybrid_ppo
+
+    for path in Path(sb3_hfo.hybrid_ppo.__file__).parent.glob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, ast.Import):
+                names = [alias.name for alias in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                names = [node.module or ""]
+            else:
+                continue
+            assert not any(name.split(".")[0] == "hfo2d" for name in names), (path.name, names)
