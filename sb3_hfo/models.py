@@ -140,9 +140,33 @@ def full_model_buffer(path: str | Path) -> io.BytesIO:
     return buffer
 
 
+#: Policy modules whose models load with another algorithm than SkillDDPG: module -> (algorithm module, class).
+POLICY_ALGORITHMS: dict[str, tuple[str, str]] = {
+    "sb3_hfo.hybrid_ppo.policies": ("sb3_hfo.hybrid_ppo", "HybridPPO")
+}
+
+
+def saved_algo_class(path: str | Path) -> type | None:
+    """The algorithm a saved zip needs when its policy's module says so (:data:`POLICY_ALGORITHMS`: a HybridPPO
+    zip), else ``None``. SB3 zips record the policy class, not the algorithm; its module is read from ``data``."""
+    import importlib
+
+    try:
+        with zipfile.ZipFile(path) as archive:
+            data = json.loads(archive.read("data"))
+        module = data["policy_class"]["__module__"]
+    except (KeyError, TypeError, ValueError, zipfile.BadZipFile, OSError):
+        return None
+    if module not in POLICY_ALGORITHMS:
+        return None
+    algo_module, name = POLICY_ALGORITHMS[module]
+    return getattr(importlib.import_module(algo_module), name)
+
+
 def load_model(path: str | Path, algo_class: type | None = None, **kwargs: Any) -> Any:
     """Load a SkillDDPG model from a full or a stripped zip, or a committed model by its manifest name (``"e1"``),
-    with ``algo_class.load`` (default SkillDDPG).
+    with ``algo_class.load`` (default SkillDDPG). A zip that needs another algorithm (:func:`saved_algo_class`:
+    a HybridPPO zip) loads with that one whatever ``algo_class`` says, without ``buffer_size``.
 
     ``kwargs`` go to ``load`` (e.g. ``device="cpu"``, ``buffer_size=1``, ``env=...``).
     """
@@ -154,6 +178,10 @@ def load_model(path: str | Path, algo_class: type | None = None, **kwargs: Any) 
             raise UserError(unknown_name_message(str(path)))
         path = model_file(entry)
     algo_class = algo_class or skill_ddpg_class()
+    saved_class = saved_algo_class(path)
+    if saved_class is not None and not issubclass(algo_class, saved_class):
+        algo_class = saved_class
+        kwargs.pop("buffer_size", None)  # an on-policy model has no replay buffer
     source: Any = full_model_buffer(path) if is_stripped(path) else str(path)
     if module_missing("rl_zoo3"):
         # Models trained through rl-zoo3 may pickle its schedules; without the [zoo] extra they load as equals.

@@ -48,6 +48,8 @@ from stable_baselines3.common.callbacks import BaseCallback
 ALGO_NAME = "skill_ddpg"
 #: Name under which SkillPDQN, SkillDDPG's preset with the best recipe, appears in rl-zoo3 (``--algo skill_pdqn``).
 PRESET_ALGO_NAME = "skill_pdqn"
+#: Name under which HybridPPO (PPO over hybrid actions, :mod:`sb3_hfo.hybrid_ppo`) appears in rl-zoo3.
+HYBRID_PPO_ALGO_NAME = "hybrid_ppo"
 
 #: Hyperparameters holding a learning rate that rl-zoo3 style strings (``"lin_1e-3"``) or floats may describe.
 SCHEDULE_KEYS: tuple[str, ...] = ("learning_rate", "learning_rate_actor", "learning_rate_critic")
@@ -71,9 +73,10 @@ def skill_ddpg_class() -> type:
 
 def algo_classes() -> dict[str, type]:
     """The algorithms registered with rl-zoo3, by ``--algo`` name (imported lazily)."""
+    from sb3_hfo.hybrid_ppo import HybridPPO
     from sb3_hfo.skill_ddpg import SkillDDPG, SkillPDQN
 
-    return {ALGO_NAME: SkillDDPG, PRESET_ALGO_NAME: SkillPDQN}
+    return {ALGO_NAME: SkillDDPG, PRESET_ALGO_NAME: SkillPDQN, HYBRID_PPO_ALGO_NAME: HybridPPO}
 
 
 def parse_schedule(value: Any) -> Any:
@@ -352,6 +355,14 @@ def register_with_rl_zoo(playback: bool = False, checkpointing: CheckpointOption
 
     samplers = {ALGO_NAME: sample_skill_ddpg_params, PRESET_ALGO_NAME: sample_skill_pdqn_params}
     for name, algo_class in algo_classes().items():
+        if name == HYBRID_PPO_ALGO_NAME:  # on-policy: no replay buffer to shrink; rl-zoo3's PPO search space
+            rl_zoo3.utils.ALGOS[name] = algo_class
+            for table in (
+                rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER,
+                rl_zoo3.hyperparams_opt.HYPERPARAMS_CONVERTER,
+            ):
+                table[name] = table["ppo"]
+            continue
         # rl_zoo3.ALGOS, rl_zoo3.utils.ALGOS and the names imported by train/enjoy/record_video are one dict object.
         rl_zoo3.utils.ALGOS[name] = _playback_class(algo_class) if playback else algo_class
         rl_zoo3.hyperparams_opt.HYPERPARAMS_SAMPLER[name] = samplers[name]

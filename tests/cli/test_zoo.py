@@ -49,8 +49,14 @@ def _load_config(path: Path) -> tuple[str, dict[str, Any]]:
 
 
 def _algo(config: Path) -> str:
-    """The ``--algo`` a config's header command names: SkillPDQN (the preset) for the best configs."""
-    return "skill_pdqn" if "--algo skill_pdqn " in config.read_text() else "skill_ddpg"
+    """The ``--algo`` a config's header command names (SkillPDQN, the preset, for the best configs; HybridPPO's
+    configs say ``hybrid_ppo``); ``skill_ddpg`` when it names none."""
+    named = re.search(r"--algo (\w+) ", config.read_text())
+    return named.group(1) if named else "skill_ddpg"
+
+
+#: Configs of HybridPPO (on-policy): no replay buffer, SkillDDPG's keys do not apply.
+HYBRID_PPO_CONFIGS = [config for config in CONFIGS if _algo(config) == "hybrid_ppo"]
 
 
 def _env_dir(env_id: str) -> str:
@@ -98,8 +104,11 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
         "--num-threads",
         "1",
         "--hyperparams",
-        "learning_starts:100",
-        "buffer_size:2000",
+        *(
+            ["n_steps:64", "batch_size:64"]
+            if config in HYBRID_PPO_CONFIGS
+            else ["learning_starts:100", "buffer_size:2000"]
+        ),
         f"policy_kwargs:{policy_kwargs!r}",
     ]
     # A scripted striker's episodes before training cost minutes at a config's size: a few are enough here.
@@ -185,7 +194,9 @@ def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
     for config in manifest_configs:
         assert (REPO / config).is_file(), config
     for config in CONFIGS:
-        if config.stem.startswith(EXPERIMENTS):
+        if (
+            config.stem.startswith(EXPERIMENTS) or config in HYBRID_PPO_CONFIGS
+        ):  # HybridPPO: no model committed yet
             continue
         assert f"zoo_configs/{config.name}" in manifest_configs, config.name
     assert RESEARCH_CONFIGS, "research/zoo_configs/ is empty"
@@ -200,6 +211,17 @@ def test_config_is_valid_and_documents_its_command(config: Path) -> None:
 
     env_id, hyperparams = _load_config(config)
     assert env_id in hfo2d.ENV_IDS
+    if config in HYBRID_PPO_CONFIGS:
+        for key in ("gamma", "batch_size", "n_steps", "n_epochs", "n_timesteps"):
+            assert isinstance(hyperparams[key], (int, float)), f"{key} = {hyperparams[key]!r}"
+        learning_rate = hyperparams["learning_rate"]
+        assert isinstance(learning_rate, (int, float)) or re.fullmatch(r"lin_[0-9.]+", learning_rate)
+        conf_file = config.relative_to(REPO).as_posix()
+        assert (
+            f"python -m sb3_hfo.train --algo hybrid_ppo --env {env_id} --conf-file {conf_file} --seed 0"
+            in config.read_text()
+        )
+        return
     for key in ("tau", "gamma", "batch_size", "buffer_size", "n_timesteps"):
         # PyYAML reads "1e-4" (no dot) as a string; every number must really be a number.
         assert isinstance(hyperparams[key], (int, float)), f"{key} = {hyperparams[key]!r}"
