@@ -55,7 +55,7 @@ HEURISTIC = "hfo2d.heuristic"
 
 
 def wilson(goals: int, episodes: int) -> tuple[float, float]:
-    from sb3_hfo.cli.evaluate import wilson_interval  # no torch at import
+    from sb3_hfo.evaluation import wilson_interval  # no torch at import
 
     return wilson_interval(goals, episodes)
 
@@ -135,7 +135,7 @@ def model_rates(
     model: str, env_id: str, env_kwargs: dict[str, Any], episodes: int, seed: int
 ) -> dict[str, Any]:
     """A SkillDDPG model's greedy evaluation (sb3_hfo.evaluate) over ``episodes`` episodes of ``env_id``."""
-    from sb3_hfo.cli.evaluate import evaluate
+    from sb3_hfo.evaluation import evaluate
 
     start = time.perf_counter()
     result = evaluate(model, env_id=env_id, episodes=episodes, seed=seed, env_kwargs=env_kwargs)
@@ -148,7 +148,7 @@ def model_rates(
 
 def model_task(model: str) -> str:
     """The task a model plays, from its observation size (58: empty goal, 66: keeper)."""
-    from sb3_hfo.cli.evaluate import resolve_model
+    from sb3_hfo.evaluation import resolve_model
     from sb3_hfo.models import load_model
 
     path = resolve_model(model).path

@@ -41,7 +41,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         fail(error)
     import rl_zoo3.enjoy
 
-    from sb3_hfo.models import playback_argv
+    from sb3_hfo.cli.models import playback_argv
 
     with tempfile.TemporaryDirectory(prefix="sb3_hfo_enjoy_") as run_root:
         if not any(arg in ("-h", "--help") for arg in args):

@@ -19,6 +19,8 @@ import numpy as np
 import optuna
 from stable_baselines3.common.noise import NormalActionNoise, OrnsteinUhlenbeckActionNoise
 
+from sb3_hfo.common.schedules import parse_schedule
+
 #: Hidden layer sizes an Optuna trial may choose; "paper" is the seed paper's 400-300-200 (Method section).
 NET_ARCHS: dict[str, list[int]] = {
     "tiny": [64, 64],
@@ -71,8 +73,6 @@ def sample_skill_ddpg_params(
     :param additional_args: rl-zoo3's extra arguments (HER settings; unused here).
     :return: constructor keyword arguments; learning rates as floats or schedules, action noise as an object.
     """
-    from sb3_hfo.cli.zoo import parse_schedule
-
     sampled = {
         "one_minus_gamma": trial.suggest_float("one_minus_gamma", 1e-3, 5e-2, log=True),
         "batch_size_pow": trial.suggest_int("batch_size_pow", 5, 8),  # 32 (paper) .. 256

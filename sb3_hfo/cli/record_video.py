@@ -54,7 +54,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     except UserError as error:
         fail(error)
 
-    from sb3_hfo.models import playback_argv
+    from sb3_hfo.cli.models import playback_argv
 
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     # rl-zoo3's record_video has no --num-threads; small networks run fastest on one torch thread.

@@ -50,7 +50,7 @@ def test_the_results_page_is_what_the_manifest_gives() -> None:
 
 
 def _entry(goals: int, episodes: int = 1000, real: tuple[int, int] | None = None) -> dict:
-    from sb3_hfo.cli.evaluate import wilson_interval
+    from sb3_hfo.evaluation import wilson_interval
 
     def rate(goals: int, episodes: int) -> dict:
         return {

@@ -11,7 +11,7 @@ import torch as th
 import yaml
 
 from sb3_hfo import SkillDDPG, SkillPDQN
-from sb3_hfo.cli.zoo import SCHEDULE_KEYS, parse_schedule
+from sb3_hfo.common.schedules import SCHEDULE_KEYS, parse_schedule
 from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask
 from sb3_hfo.skill_ddpg.skill_pdqn import PRESET_ALGORITHM_DEFAULTS, PRESET_POLICY_DEFAULTS

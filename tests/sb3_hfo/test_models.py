@@ -18,18 +18,17 @@ import torch
 import hfo2d  # noqa: F401  (registers the HFO/* ids)
 from sb3_hfo import SkillDDPG
 from sb3_hfo.cli.errors import UsageExit, UserError
-from sb3_hfo.cli.evaluate import evaluate, wilson_interval
+from sb3_hfo.cli.models import build_parser, playback_argv
+from sb3_hfo.evaluation import evaluate, wilson_interval
 from sb3_hfo.models import (
     MANIFEST_PATH,
     MAX_MODEL_BYTES,
     MODELS_DIR,
     POLICY_ENTRY,
     STRIPPED_ENTRY,
-    build_parser,
     full_model_buffer,
     is_stripped,
     load_model,
-    playback_argv,
     read_manifest,
     strip_model,
 )
@@ -113,7 +112,7 @@ def test_a_stripped_zip_holds_no_target_network_and_no_optimizer_state(tmp_path:
 
 
 def test_add_strips_checks_evaluates_and_writes_the_manifest_entry(tmp_path: Path) -> None:
-    from sb3_hfo.models import add
+    from sb3_hfo.cli.models import add
 
     full_path = _trained_model(tmp_path)
     manifest = tmp_path / "models" / "manifest.json"
@@ -139,7 +138,7 @@ def test_add_strips_checks_evaluates_and_writes_the_manifest_entry(tmp_path: Pat
     assert real["goals"] == 2 and real["scoring_rate_ci95"] == list(wilson_interval(2, 4))
 
     # a real-HFO evaluate --json of that file replaces the figure, with its end counts; other files are refused
-    from sb3_hfo.models import record_real_hfo
+    from sb3_hfo.cli.models import record_real_hfo
 
     measured = {"model": str(model), "env_id": "HFO/RealEmptyGoal-v0", "goals": 3, "episodes": 5}
     measured["status_counts"] = {"GOAL": 3, "OUT_OF_TIME": 2}
@@ -180,7 +179,7 @@ def test_add_strips_checks_evaluates_and_writes_the_manifest_entry(tmp_path: Pat
 def test_add_names_a_bad_input_in_one_line(
     argv: list[str], message: str, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    from sb3_hfo.models import main
+    from sb3_hfo.cli.models import main
 
     with pytest.raises(UsageExit) as raised:
         main(argv)
