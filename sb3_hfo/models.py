@@ -17,6 +17,7 @@ accept a manifest name wherever they accept a model. The command line that lists
 
 from __future__ import annotations
 
+import copy
 import io
 import json
 import zipfile
@@ -26,6 +27,7 @@ from typing import Any
 
 import numpy as np
 import torch
+from stable_baselines3.common.noise import ActionNoise, VectorizedActionNoise
 
 from sb3_hfo.common.schedules import rl_zoo3_free_custom_objects
 from sb3_hfo.errors import UserError, module_missing, one_line
@@ -151,7 +153,10 @@ def load_model(path: str | Path, algo_class: type | None = None, **kwargs: Any) 
     """Load a SkillDDPG model from a full or a stripped zip, or a committed model by its manifest name (``"e1"``),
     with ``algo_class.load`` (default SkillDDPG).
 
-    ``kwargs`` go to ``load`` (e.g. ``device="cpu"``, ``buffer_size=1``, ``env=...``).
+    ``kwargs`` go to ``load`` (e.g. ``device="cpu"``, ``buffer_size=1``, ``env=...``). The model continues training
+    with ``model.learn`` on ``env``, whatever its number of envs: the saved action noise (one per training env) is
+    fitted to it (:func:`fit_action_noise`). TensorBoard logs go where ``tensorboard_log`` says, and nowhere when it
+    is not given (the saved value is the training run's folder, relative to wherever that ran).
     """
     if not Path(path).is_file() and looks_like_name(str(path)):
         entry = manifest_entry(str(path))
@@ -163,7 +168,26 @@ def load_model(path: str | Path, algo_class: type | None = None, **kwargs: Any) 
     if module_missing("rl_zoo3"):
         # Models trained through rl-zoo3 may pickle its schedules; without the [zoo] extra they load as equals.
         kwargs["custom_objects"] = {**rl_zoo3_free_custom_objects(source), **kwargs.get("custom_objects", {})}
-    return algo_class.load(source, **kwargs)
+    kwargs.setdefault("tensorboard_log", None)  # load() sets kwargs over the saved attributes
+    model = algo_class.load(source, **kwargs)
+    if model.get_env() is not None:
+        model.action_noise = fit_action_noise(model.action_noise, model.n_envs)
+    return model
+
+
+def fit_action_noise(noise: ActionNoise | None, n_envs: int) -> ActionNoise | None:
+    """``noise`` (as saved: one noise, or SB3's VectorizedActionNoise of one per training env) for ``n_envs`` envs.
+
+    SB3 wraps a single noise for several envs itself but keeps a vectorised one as it is, whose samples then have
+    the training run's env count (a reshape or broadcast error). A vectorised noise of another count is rebuilt
+    from its first env's noise, which keeps its kind and current scale (sigma, as ActionNoiseDecayCallback left
+    it), reset; a single env gets that noise alone.
+    """
+    if not isinstance(noise, VectorizedActionNoise) or noise.n_envs == n_envs:
+        return noise
+    template = copy.deepcopy(noise.noises[0])
+    template.reset()
+    return template if n_envs == 1 else VectorizedActionNoise(template, n_envs)
 
 
 # --------------------------------------------------------------------------------------------------------------
