@@ -3,7 +3,7 @@
 One command adds (or replaces) a model::
 
     python -m sb3_hfo.cli.models add e1 logs/skill_ddpg/HFO-EmptyGoal-v0_1/best_model.zip \\
-        --config zoo_configs/x5_empty_goal_max_target_kickable_fast.yml --seed 1 --env HFO/EmptyGoal-v0
+        --config zoo_configs/empty_goal_skill_pdqn_fast.yml --seed 1 --env HFO/EmptyGoal-v0
 
 It strips the model into ``sb3_hfo/pretrained/<name>.zip``, checks that the stripped model's actions equal the
 full one's, evaluates it over 1,000 episodes (``--episodes``, ``--eval-seed``) and writes the manifest entry. A

@@ -193,6 +193,25 @@ def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
 
 
 @pytest.mark.parametrize(
+    "config", [c for c in CONFIGS if not c.stem.startswith(EXPERIMENTS)], ids=lambda c: c.stem
+)
+def test_a_committed_model_s_config_is_named_by_task_with_its_lineage(config: Path) -> None:
+    """Named by its task, not by the research diary's id; its header's lineage names the research config it was
+    and the public config it descends from (one of the paper's, or a sibling's whose lineage goes on)."""
+    import re
+
+    assert not re.match(r"x\d+_", config.name), config.name
+    _, found, rest = config.read_text().partition("\n# Lineage: ")
+    assert found, f"{config.name}: no '# Lineage:' line in its header"
+    lineage = rest.split("\n#\n", 1)[0]
+    assert re.match(r"research config x\d+ \(this file was zoo_configs/x\d+_[a-z0-9_]+\.yml", lineage), (
+        lineage
+    )
+    ancestors = set(re.findall(r"(?<![/\w])([a-z][a-z0-9_]*\.yml)", lineage)) - {config.name}
+    assert ancestors and all((CONFIG_DIR / name).is_file() for name in ancestors), ancestors
+
+
+@pytest.mark.parametrize(
     "config", CONFIGS + RESEARCH_CONFIGS, ids=[str(c.relative_to(REPO)) for c in CONFIGS + RESEARCH_CONFIGS]
 )
 def test_config_is_valid_and_documents_its_command(config: Path) -> None:

@@ -343,7 +343,7 @@ def test_enjoy_and_record_video_play_a_committed_model_by_name(tmp_path: Path) -
 
 
 def test_train_warm_starts_from_a_committed_model(tmp_path: Path) -> None:
-    config = REPO / "zoo_configs" / "x5_empty_goal_max_target_kickable_fast.yml"
+    config = REPO / "zoo_configs" / "empty_goal_skill_pdqn_fast.yml"
     command = ["sb3_hfo.train", "--env", "HFO/EmptyGoal-v0", "--conf-file", str(config), "-n", "64"]
     command += ["--seed", "0", "-f", "logs", "--eval-freq", "-1", "-i", str(MODELS_DIR / "e1.zip")]
     completed = _run_tool(command, tmp_path)
