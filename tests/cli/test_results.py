@@ -1,4 +1,4 @@
-"""The results table (sb3_hfo.results) is generated from the manifest's evaluations and cannot drift."""
+"""The results table (devtools/results_page.py) is generated from the manifest's evaluations and cannot drift."""
 
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ results_page = results.results_page
 table = results.table
 with_readme_block = results.with_readme_block
 
-REGENERATE = "run python -m sb3_hfo.results to regenerate it from models/manifest.json"
+REGENERATE = "run python devtools/results_page.py to regenerate it from sb3_hfo/pretrained/manifest.json"
 
 
 def test_the_readme_table_is_what_the_manifest_gives() -> None:
@@ -94,3 +94,13 @@ def test_the_readme_block_needs_both_markers() -> None:
         with_readme_block("# a readme\n", "table\n")
     text = f"a\n{BEGIN_MARKER}\nold\n{END_MARKER}\nb\n"
     assert with_readme_block(text, "new\n") == f"a\n{BEGIN_MARKER}\nnew\n{END_MARKER}\nb\n"
+
+
+def test_the_script_checks_the_checkout_from_its_command_line(tmp_path: Path) -> None:
+    """``python devtools/results_page.py --check`` from another folder: the checkout's files are up to date."""
+    import subprocess
+
+    completed = subprocess.run(
+        [sys.executable, str(RESULTS_PAGE_SCRIPT), "--check"], cwd=tmp_path, capture_output=True, text=True
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
