@@ -48,7 +48,7 @@ class ActionNoiseDecayCallback(BaseCallback):
     SB3's ``action_noise`` keeps its ``sigma`` fixed, and rl-zoo3's ``noise_std`` sets it once. Wide noise early on
     shows the critic many kicks; late in training the same noise spoils aimed kicks, and the behaviour policy (whose
     returns ``mc_mixing`` mixes into the targets) stays far worse than the greedy one; annealing the noise and
-    epsilon together helps (docs/results.md, "Methods"). This callback moves every noise's ``sigma`` from its value at the start of
+    epsilon together helps (docs/findings.md, "Annealed exploration"). This callback moves every noise's ``sigma`` from its value at the start of
     each ``learn`` call to ``final_std`` over the first ``decay_fraction`` of that call (the schedule of SB3's
     epsilon), then holds it, and logs it as ``rollout/action_noise_std``.
 
