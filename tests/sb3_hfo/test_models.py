@@ -15,7 +15,7 @@ import torch
 
 import hfo2d  # noqa: F401  (registers the HFO/* ids)
 from sb3_hfo import SkillDDPG
-from sb3_hfo.cli.errors import UserError
+from sb3_hfo.errors import UserError
 from sb3_hfo.evaluation import evaluate, wilson_interval
 from sb3_hfo.models import (
     MANIFEST_PATH,
