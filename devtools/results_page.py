@@ -71,7 +71,7 @@ def _config_stem(entry: dict[str, Any]) -> str:
 
 
 def _model_text(name: str, entry: dict[str, Any]) -> str:
-    config_id = _config_stem(entry).split("_")[0]
+    config_id = _config_stem(entry)  # zoo_configs/<task>_....yml, named by its task
     method = f"; {entry['method']}" if entry.get("method") else ""
     return f"`{name}` ({config_id}, seed {entry['seed']}{method})"
 

@@ -61,7 +61,7 @@ def _entry(goals: int, episodes: int = 1000, real: tuple[int, int] | None = None
         }
 
     return {
-        "config": "zoo_configs/x9_some_config.yml",
+        "config": "zoo_configs/empty_goal_skill_pdqn_fast.yml",
         "seed": 4,
         "evaluation": rate(goals, episodes),
         "real_hfo": {**rate(*real), "env_id": "HFO/RealKeeper-v0"} if real else None,
@@ -74,7 +74,11 @@ def test_each_task_gets_one_row_with_its_evaluation() -> None:
     rows = lines[2:]
     assert len(rows) == len(TASKS) + 1  # every task, then the model no task names
     e1 = next(row for row in rows if row.startswith("| E1 "))
-    assert "**98.8 % [97.9, 99.3]**" in e1 and "`e1` (x9, seed 4)" in e1 and e1.endswith("| not measured |")
+    assert (
+        "**98.8 % [97.9, 99.3]**" in e1
+        and "`e1` (empty_goal_skill_pdqn_fast, seed 4)" in e1
+        and e1.endswith("| not measured |")
+    )
     e6 = next(row for row in rows if "`e6`" in row)
     assert "34.8 % [31.9, 37.8]" in e6 and "30.0 % [27.2, 32.9] (against agent2d's goalie)" in e6
     assert sum("no committed model yet" in row for row in rows) == len(TASKS) - 2
