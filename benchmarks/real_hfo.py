@@ -8,7 +8,7 @@ For each task (1v0 ``empty_goal``, 1v1 ``keeper``) it measures, on hfo2d's envs 
   ratio hfo2d / real;
 * ``rates``: the goal rate with its Wilson 95 % interval, the end-status counts and the mean steps to a goal, over
   ``--episodes`` episodes, of the scripted striker :func:`hfo2d.heuristic.heuristic` and of every ``--model`` (a
-  SkillDDPG ``.zip`` or rl-zoo3 run folder, played greedily by :func:`sb3_hfo.evaluate.evaluate` with its saved
+  SkillDDPG ``.zip`` or rl-zoo3 run folder, played greedily by :func:`sb3_hfo.evaluation.evaluate` with its saved
   acting options, on the task its observation size names: 58 features empty goal, 66 keeper), and per pair the
   difference hfo2d - real (in points).
 

@@ -4,7 +4,7 @@ Repository upkeep, not part of the package: ``python devtools/results_page.py`` 
 importable, e.g. ``pip install -e .``) writes the table into README.md (between the ``<!-- results:begin -->`` and
 ``<!-- results:end -->`` lines) and writes docs/results.md (the table with each model's details and the methods);
 ``--check`` only reports, with exit code 1, whether either file differs from what the manifest gives. Every figure
-in them comes from the manifest, which ``python -m sb3_hfo.models add`` fills from an evaluation; the paper's
+in them comes from the manifest, which ``python -m sb3_hfo.cli.models add`` fills from an evaluation; the paper's
 figures are the paper's own.
 """
 

@@ -278,7 +278,7 @@ def _read_run_settings(run_folder: Path) -> tuple[str | None, dict[str, Any]]:
 
 
 def resolve_model(model: str) -> ResolvedModel:
-    """Find the ``.zip`` for MODEL: a committed model's name (``models/manifest.json``, e.g. ``e1``), a file, a file
+    """Find the ``.zip`` for MODEL: a committed model's name (:mod:`sb3_hfo.models`, e.g. ``e1``), a file, a file
     without its suffix, an rl-zoo3 run folder, or a folder of runs (the newest).
 
     Raises:

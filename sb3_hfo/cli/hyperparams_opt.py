@@ -4,11 +4,11 @@ rl-zoo3 calls ``HYPERPARAMS_SAMPLER[algo](trial, n_actions, n_envs, additional_a
 the returned dict straight to the algorithm's constructor (on top of the config file's values); with
 ``--trial-id`` it rebuilds the hyperparameters of a stored trial through ``HYPERPARAMS_CONVERTER[algo](params)``,
 where ``params`` are the raw Optuna values. So the sampler suggests raw values and the converter maps them onto
-constructor arguments. :func:`sb3_hfo.zoo.register_with_rl_zoo` installs them under ``"skill_ddpg"`` and, with
+constructor arguments. :func:`sb3_hfo.cli.zoo.register_with_rl_zoo` installs them under ``"skill_ddpg"`` and, with
 :func:`sample_skill_pdqn_params`, under ``"skill_pdqn"``.
 
 The experiment-defining policy keys (``n_skills``, ``skill_router``, ``inverting_gradients``) come from the
-config file and are never sampled; only ``net_arch`` is (see ``sb3_hfo.zoo.merge_policy_kwargs``).
+config file and are never sampled; only ``net_arch`` is (see ``sb3_hfo.cli.zoo.merge_policy_kwargs``).
 """
 
 from __future__ import annotations

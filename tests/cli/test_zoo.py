@@ -177,7 +177,7 @@ def test_every_experiment_has_a_paper_and_a_fast_config() -> None:
 
 
 def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
-    """zoo_configs/ holds the paper's experiments and the configs of the committed models (models/manifest.json);
+    """zoo_configs/ holds the paper's experiments and the configs of the committed models (sb3_hfo/pretrained/manifest.json);
     the rest is in research/zoo_configs/."""
     from sb3_hfo.models import read_manifest
 
