@@ -14,6 +14,17 @@ import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
+from sb3_hfo.cli.errors import (
+    UserError,
+    check_installed,
+    check_playback_args,
+    check_render_extra,
+    fail,
+    one_line_argparse_errors,
+)
+from sb3_hfo.cli.models import playback_argv
+from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
+
 PROG = "python -m sb3_hfo.enjoy"
 
 
@@ -23,16 +34,6 @@ def main(argv: Sequence[str] | None = None) -> None:
     User errors (no or unknown ``--env``, no ``-f``, no model there or a damaged one, bad ``--env-kwargs``, a
     negative ``--seed``, a bad option) exit with one line on stderr and code 2.
     """
-    from sb3_hfo.cli.errors import (
-        UserError,
-        check_installed,
-        check_playback_args,
-        check_render_extra,
-        fail,
-        one_line_argparse_errors,
-    )
-    from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
-
     args = list(sys.argv[1:] if argv is None else argv)
     try:
         # rl_zoo3.enjoy imports its Hugging Face download helper, which needs `requests`.
@@ -40,8 +41,6 @@ def main(argv: Sequence[str] | None = None) -> None:
     except UserError as error:
         fail(error)
     import rl_zoo3.enjoy
-
-    from sb3_hfo.cli.models import playback_argv
 
     with tempfile.TemporaryDirectory(prefix="sb3_hfo_enjoy_") as run_root:
         if not any(arg in ("-h", "--help") for arg in args):

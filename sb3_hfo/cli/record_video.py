@@ -20,6 +20,20 @@ import tempfile
 from collections.abc import Sequence
 from pathlib import Path
 
+import torch
+
+from sb3_hfo.cli.errors import (
+    UserError,
+    check_installed,
+    check_playback_args,
+    check_render_extra,
+    fail,
+    one_line_argparse_errors,
+    option_value,
+)
+from sb3_hfo.cli.models import playback_argv
+from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
+
 
 def _run_rl_zoo_record_video() -> None:
     runpy.run_module("rl_zoo3.record_video", run_name="__main__", alter_sys=True)
@@ -35,26 +49,11 @@ def main(argv: Sequence[str] | None = None) -> None:
 
     User errors (as for :mod:`sb3_hfo.enjoy`) exit with one line on stderr and code 2.
     """
-    import torch
-
-    from sb3_hfo.cli.errors import (
-        UserError,
-        check_installed,
-        check_playback_args,
-        check_render_extra,
-        fail,
-        one_line_argparse_errors,
-        option_value,
-    )
-    from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
-
     args = list(sys.argv[1:] if argv is None else argv)
     try:
         check_installed("zoo", ("rl_zoo3", "requests"), PROG)
     except UserError as error:
         fail(error)
-
-    from sb3_hfo.cli.models import playback_argv
 
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     # rl-zoo3's record_video has no --num-threads; small networks run fastest on one torch thread.
