@@ -539,7 +539,7 @@ class HFOEnv(gym.Env):
     def set_keeper_skill(self, skill: float) -> None:
         """Change the scripted goalie's quality (task "keeper" only), in [0, 1]; effective from the next reset.
 
-        For training curricula (``sb3_hfo.zoo.KeeperSkillCurriculumCallback`` calls it through the VecEnv's
+        For training curricula (``sb3_hfo.callbacks.KeeperSkillCurriculumCallback`` calls it through the VecEnv's
         ``env_method``); an episode in progress keeps the keeper it started with.
         """
         if self.task != "keeper":

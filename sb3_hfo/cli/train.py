@@ -17,6 +17,15 @@ from __future__ import annotations
 import sys
 from collections.abc import Sequence
 
+from sb3_hfo.cli.errors import (
+    UserError,
+    check_installed,
+    check_train_args,
+    fail,
+    one_line_argparse_errors,
+)
+from sb3_hfo.cli.zoo import ResumeError, run_rl_zoo_entry_point, split_checkpoint_options
+
 PROG = "python -m sb3_hfo.train"
 
 
@@ -25,15 +34,6 @@ def main(argv: Sequence[str] | None = None) -> None:
 
     User errors (see :func:`sb3_hfo.cli.errors.check_train_args`) exit with one line on stderr and code 2.
     """
-    from sb3_hfo.cli.errors import (
-        UserError,
-        check_installed,
-        check_train_args,
-        fail,
-        one_line_argparse_errors,
-    )
-    from sb3_hfo.cli.zoo import ResumeError, split_checkpoint_options
-
     args = list(sys.argv[1:] if argv is None else argv)
     try:
         args, checkpointing = split_checkpoint_options(args)
@@ -50,8 +50,6 @@ def main(argv: Sequence[str] | None = None) -> None:
             fail(error)
 
     import rl_zoo3.train
-
-    from sb3_hfo.cli.zoo import run_rl_zoo_entry_point
 
     with one_line_argparse_errors(PROG):
         try:

@@ -33,7 +33,7 @@ from sb3_hfo.resume import (
     save_training_state,
 )
 from sb3_hfo.skill_ddpg import SkillDDPG
-from sb3_hfo.zoo import ActionNoiseDecayCallback, HFOEpisodeStatsCallback
+from sb3_hfo.callbacks import ActionNoiseDecayCallback, HFOEpisodeStatsCallback
 
 #: Environment steps of the short run (2 envs) and where the stopped run's checkpoint is taken.
 TOTAL_STEPS = 600
