@@ -7,7 +7,7 @@ every id:
 * ``batch xN``: ``gym.make_vec(id, N, vectorization_mode="vector_entry_point")``, Gymnasium's ``step`` (the vector
   info dict is built only when read, and this loop does not read it);
 * ``batch xN, info read``: the same, reading ``info["status"]`` every step (builds the whole vector info);
-* ``sb3 xN``: ``sb3_hfo.common.vec_env.make_hfo_vec_env(id, N, monitor=False)``, SB3's ``step`` (infos with
+* ``sb3 xN``: ``sb3_hfo.vec_env.make_hfo_vec_env(id, N, monitor=False)``, SB3's ``step`` (infos with
   ``terminal_observation`` and ``TimeLimit.truncated``);
 * ``sharded xN/W``: ``hfo2d.vector.ShardedHFOVectorEnv(id, N, W)`` (W shards: this process steps one, W - 1
   worker processes the others); ``, all in workers``: the same with ``in_process_shard=False`` (W workers);
@@ -115,7 +115,7 @@ def time_vector(
 
 def contestants(env_id: str, num_envs: int, workers: list[int], dummy: bool) -> dict[str, Callable[..., Any]]:
     """name -> a maker of (run(steps, seed) -> (wall, cpu), close())."""
-    from sb3_hfo.common.vec_env import make_hfo_vec_env
+    from sb3_hfo.vec_env import make_hfo_vec_env
 
     def vector(make: Callable[[], Any], **kwargs: Any) -> Callable[[], Any]:
         def maker() -> Any:

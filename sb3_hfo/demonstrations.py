@@ -23,7 +23,7 @@ from tqdm.auto import tqdm
 
 from hfo2d.strikers import STRIKERS, make_striker
 from sb3_hfo.skill_ddpg.acting import CriticChoice, format_acting
-from sb3_hfo.skill_ddpg.policies import HFO_ACTION_PARAMETER_SIZES, HFO_KICK_ACTION, HFO_N_DISCRETE_ACTIONS
+from sb3_hfo.hfo import HFO_ACTION_PARAMETER_SIZES, HFO_KICK_ACTION, HFO_N_DISCRETE_ACTIONS
 
 
 class DemonstrationPrefillCallback(BaseCallback):

@@ -31,7 +31,7 @@ Speed: the games are the single env's ``step`` and ``reset`` unchanged; the batc
 the buffers, the copies returned) is about 13 µs per step of 16 stand-in games that cost nothing. The figures
 against the single env are in ``benchmarks/README.md`` (``benchmarks/vector_throughput.py``).
 
-Only numpy and gymnasium (and hfo2d) are imported: no torch, no SB3 (their adapter is ``sb3_hfo.common.vec_env``).
+Only numpy and gymnasium (and hfo2d) are imported: no torch, no SB3 (their adapter is ``sb3_hfo.vec_env``).
 """
 
 from __future__ import annotations

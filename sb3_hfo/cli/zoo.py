@@ -18,6 +18,9 @@ Four rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimen
 * ``--checkpoint-freq N`` / ``--resume RUN_DIR`` (options of ``python -m sb3_hfo.train``, not rl-zoo3's): a
   checkpoint of the whole training state (:mod:`sb3_hfo.resume`) every ``N`` steps in the run folder, and a run
   continued from its folder's checkpoint (same folder, budget and TensorBoard run; the hyperparameters must match).
+* The algorithms know no task (:mod:`sb3_hfo.common.domain`): on an HFO env id a config's ``policy_kwargs`` get
+  ``domain: hfo`` unless they name a domain, so that its ``skill_router: field_half``, ``acting: kick_mask`` and
+  ``relative_to`` landmarks read HFO's columns.
 * rl-zoo3 (2.9) hands a config's ``env_kwargs`` (e.g. ``reward: shaped_gap``) to the training envs but builds the
   evaluation env with the command line's ``--env-kwargs`` only, so ``--eval-freq`` evaluations would report a
   different reward and pick ``best_model.zip`` by it. Unless ``--eval-env-kwargs`` is given, the evaluation env
@@ -38,7 +41,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import hfo2d  # noqa: F401  (registers the HFO/* Gymnasium ids)
+import hfo2d  # registers the HFO/* Gymnasium ids
 from sb3_hfo.common.schedules import SCHEDULE_KEYS, parse_schedule
 from sb3_hfo.hybrid_ppo import HybridPPO
 from sb3_hfo.models import full_model_buffer, is_stripped
@@ -194,6 +197,10 @@ def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) ->
             processed = super()._preprocess_hyperparams(hyperparams)
             if self._eval_env_kwargs_args is None:
                 self.eval_env_kwargs = dict(self.env_kwargs)
+            if self.algo in algo_classes():
+                processed[0]["policy_kwargs"] = with_hfo_domain(
+                    processed[0].get("policy_kwargs"), self.env_name.gym_id
+                )
             return processed
 
         @staticmethod
@@ -230,6 +237,17 @@ def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) ->
                 HYPERPARAMS_SAMPLER[self.algo] = original_sampler
 
     return HFOExperimentManager
+
+
+#: The domain adapter the HFO env ids get (:data:`sb3_hfo.hfo.HFO_DOMAIN`).
+HFO_DOMAIN_NAME = "hfo"
+
+
+def with_hfo_domain(policy_kwargs: dict[str, Any] | None, env_id: str) -> dict[str, Any] | None:
+    """``policy_kwargs`` with ``domain="hfo"`` added for an HFO env id (a config's own ``domain`` is kept)."""
+    if env_id not in hfo2d.ENV_IDS:
+        return policy_kwargs
+    return {"domain": HFO_DOMAIN_NAME, **(policy_kwargs or {})}
 
 
 def merge_policy_kwargs(

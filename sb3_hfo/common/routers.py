@@ -14,7 +14,8 @@ A router is a plain (picklable) object with an ``n_skills`` attribute and ``__ca
 Routers must be vectorised (no Python loop over the batch): they run on every training minibatch. The policy
 checks their output on every call (:func:`check_skills`: type, shape and range), when acting and in every update.
 Routers can be named by string in ``HFOPolicy(skill_router=...)`` so that YAML configs can select them; see
-:data:`ROUTERS` and :func:`make_router`.
+:data:`ROUTERS` and :func:`make_router`. ``"field_half"`` reads its column from the policy's domain adapter
+(:class:`~sb3_hfo.common.domain.DomainAdapter`: this module knows no task).
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from typing import Any
 import numpy as np
 import torch as th
 
-from hfo2d.features import SELF_X
+from sb3_hfo.common.domain import DomainAdapter, DomainSpec, resolve_domain
 
 __all__ = [
     "ROUTERS",
@@ -32,15 +33,10 @@ __all__ = [
     "SingleSkillRouter",
     "SkillRouter",
     "check_skills",
+    "field_half_router",
     "make_router",
     "validate_skills",
 ]
-
-#: Column of the agent's own x-position feature in HFO's low-level features (hfo2d.features owns the layout):
-#: ``1 - 2 * min(x / 52.5, 1)`` (the paper-era out-of-bounds normaliser), positive exactly when ``x < 26.25`` m, i.e.
-#: the agent stands in the half of the attacked half-field away from the goal.
-SELF_X_FEATURE_INDEX = SELF_X
-
 
 class SkillRouter:
     """Base class of skill routers (see the module docstring for the calling convention).
@@ -88,18 +84,21 @@ class SingleSkillRouter(SkillRouter):
 class FieldHalfRouter(SkillRouter):
     """The paper's two skills: split the attacked half-field in half along x.
 
-    * skill 0 ("approach and dribble"): the agent is in the half away from the goal, ``obs[:, feature_index] > 0``
-      (with HFO's features: agent x < 26.25 m);
-    * skill 1 ("shoot"): the agent is in the half near the goal (x >= 26.25 m).
+    * skill 0 ("approach and dribble"): the agent is in the half away from the goal,
+      ``obs[:, feature_index] > threshold``;
+    * skill 1 ("shoot"): the agent is in the half near the goal.
 
-    :param feature_index: column of ``obs`` holding the agent's normalised x-position feature (default
-        :data:`SELF_X_FEATURE_INDEX`, HFO's ``1 - 2 * min(x / 52.5, 1)``; positive away from goal).
-    :param threshold: feature value at the dividing line (0.0 is x = 26.25 m with HFO's normalisation).
+    The domain adapter says which column and threshold (``DomainAdapter.field_half_router``; HFO's:
+    :data:`sb3_hfo.hfo.HFO_DOMAIN`, the self-x feature at 0.0, x = 26.25 m).
+
+    :param feature_index: column of ``obs`` holding the agent's normalised x-position feature (positive away from
+        the goal).
+    :param threshold: feature value at the dividing line.
     """
 
     n_skills = 2
 
-    def __init__(self, feature_index: int = SELF_X_FEATURE_INDEX, threshold: float = 0.0) -> None:
+    def __init__(self, feature_index: int, threshold: float = 0.0) -> None:
         if not isinstance(feature_index, (int, np.integer)) or feature_index < 0:
             raise ValueError(
                 f"FieldHalfRouter: feature_index must be a non-negative int, got {feature_index!r}"
@@ -111,7 +110,7 @@ class FieldHalfRouter(SkillRouter):
         if obs.shape[-1] <= self.feature_index:
             raise ValueError(
                 f"FieldHalfRouter reads obs[..., {self.feature_index}] but the observation has only "
-                f"{obs.shape[-1]} features (is this an HFO environment?)"
+                f"{obs.shape[-1]} features (is this the domain the router was made for?)"
             )
         x_feature = obs[..., self.feature_index]
         if isinstance(x_feature, th.Tensor):
@@ -126,14 +125,29 @@ ROUTERS: dict[str, type[SkillRouter]] = {
 }
 
 
-def make_router(skill_router: SkillRouter | str | None, n_skills: int) -> SkillRouter:
+def field_half_router(domain: DomainAdapter) -> FieldHalfRouter:
+    """The paper's field-half router on ``domain``'s column and threshold.
+
+    :raises ValueError: the domain names no field-half column.
+    """
+    if domain.field_half_column is None:
+        raise ValueError(
+            f"the 'field_half' skill router needs a domain that names the column to split on; the {domain.name} "
+            "domain does not (pass domain='hfo' for the HFO envs, or a SkillRouter object)"
+        )
+    return FieldHalfRouter(domain.field_half_column, domain.field_half_threshold)
+
+
+def make_router(
+    skill_router: SkillRouter | str | None, n_skills: int, domain: DomainSpec = None
+) -> SkillRouter:
     """Resolve ``skill_router`` (an object, a name from :data:`ROUTERS` or ``None``) and check it against ``n_skills``.
 
     ``None`` picks the paper's defaults: ``"single"`` for one skill, ``"field_half"`` for two; more skills need an
-    explicit router.
+    explicit router. ``"field_half"`` takes its column from ``domain`` (:mod:`sb3_hfo.common.domain`).
 
-    :raises ValueError: unknown name, ``n_skills < 1``, a router without ``__call__``, or a router whose
-        ``n_skills`` differs from ``n_skills``.
+    :raises ValueError: unknown name, ``n_skills < 1``, a router without ``__call__``, a router whose
+        ``n_skills`` differs from ``n_skills``, or ``"field_half"`` with a domain that names no column for it.
     """
     if isinstance(n_skills, bool) or not isinstance(n_skills, (int, np.integer)) or n_skills < 1:
         raise ValueError(f"n_skills must be an integer >= 1, got {n_skills!r}")
@@ -150,7 +164,11 @@ def make_router(skill_router: SkillRouter | str | None, n_skills: int) -> SkillR
     if isinstance(skill_router, str):
         if skill_router not in ROUTERS:
             raise ValueError(f"Unknown skill_router {skill_router!r}; known routers: {sorted(ROUTERS)}")
-        router: Any = ROUTERS[skill_router]()
+        router: Any = (
+            field_half_router(resolve_domain(domain))
+            if ROUTERS[skill_router] is FieldHalfRouter
+            else ROUTERS[skill_router]()
+        )
     else:
         router = skill_router
     if not callable(router):

@@ -10,7 +10,7 @@ features, the rest are zeros:
   (KICK), in the action's [0, 1] scale.
 
 Action: ``Box(0, 1, (8,))`` like ``HFO/*-v0`` (``[pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir,
-kick_power, kick_dir]``, :data:`~hfo2d.action_layout.HFO_FLAT_ACTION_LAYOUT`), decoded by its rule. Reward: ``1 - 2 |p -
+kick_power, kick_dir]``, hfo2d's ``HFO_FLAT_ACTION_LAYOUT``), decoded by its rule. Reward: ``1 - 2 |p -
 target|`` (in [0.2, 1]) for the right discrete action, ``-1`` otherwise. ``info["status"]`` is ``"GOAL"`` when the
 discrete action is right and ``|p - target| < 0.1``, ``"OUT_OF_TIME"`` otherwise, and ``info["is_success"]`` is true
 at a ``"GOAL"`` (as in HFO: SB3 logs it as ``rollout/success_rate``).
@@ -25,8 +25,7 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 
-from hfo2d.action_layout import DASH, HFO_FLAT_ACTION_LAYOUT, KICK, hfo_flat_action_space
-from hfo2d.features import SELF_X
+from sb3_hfo.hfo import DASH, HFO_DOMAIN, HFO_FLAT_ACTION_LAYOUT, KICK, hfo_flat_action_space
 
 __all__ = ["HybridTargetEnv"]
 
@@ -41,13 +40,16 @@ class HybridTargetEnv(gym.Env[np.ndarray, np.ndarray]):
     """One-step "pick the right discrete action and set its power" task (see the module docstring).
 
     :param obs_dim: observation size (default 58 like ``HFO/EmptyGoal-v0``).
-    :param region_index: column of the region feature (default HFO's self-x feature, which the field-half router
-        reads); the target feature sits at ``region_index + 1``.
+    :param region_index: column of the region feature (default the column HFO's field-half router reads,
+        :data:`sb3_hfo.hfo.HFO_DOMAIN`); the target feature sits at ``region_index + 1``.
     """
 
     metadata: dict[str, Any] = {"render_modes": []}
 
-    def __init__(self, obs_dim: int = 58, region_index: int = SELF_X) -> None:
+    def __init__(self, obs_dim: int = 58, region_index: int | None = None) -> None:
+        if region_index is None:
+            assert HFO_DOMAIN.field_half_column is not None
+            region_index = HFO_DOMAIN.field_half_column
         if not 0 <= region_index < obs_dim - 1:
             raise ValueError(
                 f"region_index must lie in [0, obs_dim - 1) = [0, {obs_dim - 1}), got {region_index}"

@@ -93,7 +93,10 @@ class HybridActorCriticPolicy(BasePolicy):
     :param ortho_init: SB3's orthogonal initialisation (gains sqrt(2) hidden, 0.01 heads, 1 value).
     :param skills: number of actor heads.
     :param router: with ``skills > 1``: ``"learned"``, a router object or a name for
-        :func:`sb3_hfo.common.routers.make_router` (``None``: its default for the number of skills).
+        :func:`sb3_hfo.common.routers.make_router` (``None``: its default for the number of skills; ``"field_half"``
+        reads its column from ``domain``).
+    :param domain: what the policy knows of the task beyond its spaces (:mod:`sb3_hfo.common.domain`): a
+        ``DomainAdapter``, a domain's name (``"hfo"``) or ``None`` (default): nothing.
     :param parameter_sizes: for ``Tuple(Discrete(K), Box(P))`` action spaces, which parameters each action reads.
     :param use_sde: accepted for SB3's call signature; must be False.
     """
@@ -110,6 +113,7 @@ class HybridActorCriticPolicy(BasePolicy):
         skills: int = 1,
         router: Any = None,
         parameter_sizes: Sequence[int] | None = None,
+        domain: Any = None,
         use_sde: bool = False,
         features_extractor_class: type[BaseFeaturesExtractor] = FlattenExtractor,
         features_extractor_kwargs: dict[str, Any] | None = None,
@@ -138,13 +142,14 @@ class HybridActorCriticPolicy(BasePolicy):
             raise ValueError(f"skills must be an integer >= 1, got {skills!r}")
         self.n_skills = int(skills)
         self.router = router
+        self.domain = domain
         self.learned_router = router == LEARNED_ROUTER
         if self.n_skills == 1 and router not in (None, "single"):
             raise ValueError(f"router={router!r} needs skills > 1 (one skill needs no router)")
         if self.n_skills > 1 and not self.learned_router:
-            from sb3_hfo.common.routers import make_router  # resolves names; may import env specifics
+            from sb3_hfo.common.routers import make_router  # resolves names; "field_half" by the domain
 
-            self.skill_router: Any = make_router(router, self.n_skills)
+            self.skill_router: Any = make_router(router, self.n_skills, domain)
         elif self.learned_router:
             self.skill_router = LearnedRouterView(self)
         else:
@@ -219,6 +224,7 @@ class HybridActorCriticPolicy(BasePolicy):
             skills=self.n_skills,
             router=self.router,
             parameter_sizes=self.parameter_sizes,
+            domain=self.domain,
             lr_schedule=self._dummy_schedule,
             features_extractor_class=self.features_extractor_class,
             features_extractor_kwargs=self.features_extractor_kwargs,

@@ -21,35 +21,14 @@ import numpy as np
 import torch as th
 from torch import nn
 
-from hfo2d.action_layout import HybridActionLayout
-from hfo2d.features import (
-    GOAL_CENTER_COS,
-    GOAL_CENTER_SIN,
-    GOAL_POST_BOTTOM_COS,
-    GOAL_POST_BOTTOM_SIN,
-    GOAL_POST_TOP_COS,
-    GOAL_POST_TOP_SIN,
-    GOALIE_ANGLE_COS,
-    GOALIE_ANGLE_SIN,
-)
+from sb3_hfo.common.action_layout import ActionLayout
 
 __all__ = [
-    "KICK_REFERENCE_BEARINGS",
     "ActionEncoder",
     "ActionEncodingSpec",
     "DirectionFeatures",
     "parse_encoding",
 ]
-
-#: Landmarks the kick direction can be encoded relative to: name -> (sin, cos) columns of the landmark's bearing in
-#: HFO's low-level features (hfo2d owns the layout).
-KICK_REFERENCE_BEARINGS: dict[str, tuple[int, int]] = {
-    "goalie": (GOALIE_ANGLE_SIN, GOALIE_ANGLE_COS),
-    "goal_center": (GOAL_CENTER_SIN, GOAL_CENTER_COS),
-    "goal_post_top": (GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS),
-    "goal_post_bottom": (GOAL_POST_BOTTOM_SIN, GOAL_POST_BOTTOM_COS),
-}
-
 
 def _positive_frequencies(frequencies: object) -> tuple[float, ...]:
     if isinstance(frequencies, (str, bytes)) or not isinstance(frequencies, Iterable):
@@ -72,11 +51,8 @@ def _landmarks(names: object) -> tuple[str, ...]:
     if isinstance(names, (str, bytes)) or not isinstance(names, Iterable):
         raise ValueError(f"DirectionFeatures relative_to must be a sequence of landmark names, got {names!r}")
     values = tuple(names)
-    unknown = [name for name in values if name not in KICK_REFERENCE_BEARINGS]
-    if unknown:
-        raise ValueError(
-            f"DirectionFeatures relative_to: unknown landmark(s) {unknown}; choose from {tuple(KICK_REFERENCE_BEARINGS)}"
-        )
+    if not all(isinstance(name, str) and name for name in values):
+        raise ValueError(f"DirectionFeatures relative_to must name landmarks by non-empty strings, got {names!r}")
     if len(set(values)) != len(values):
         raise ValueError(f"DirectionFeatures relative_to names a landmark twice: {values}")
     return values
@@ -90,9 +66,10 @@ class DirectionFeatures:
     The actor is unchanged; dQ/da goes through the features by the chain rule.
 
     :param frequencies: the frequencies ``k`` (> 0), e.g. ``(1, 2, 4, 8, 16, 32)``.
-    :param relative_to: landmarks (:data:`KICK_REFERENCE_BEARINGS`: ``"goalie"``, ``"goal_center"``,
-        ``"goal_post_top"``, ``"goal_post_bottom"``) whose bearing, read from the observation's (sin, cos) pair, the
-        kick direction is also encoded relative to (both angles are relative to the body); ``()``: none.
+    :param relative_to: landmarks of the policy's domain (``DomainAdapter.bearings``; HFO's:
+        ``"goalie"``, ``"goal_center"``, ``"goal_post_top"``, ``"goal_post_bottom"``) whose bearing, read from the
+        observation's (sin, cos) pair, the kick direction is also encoded relative to (both angles are relative to
+        the body); ``()``: none. The policy checks the names against its domain.
     """
 
     frequencies: tuple[float, ...]
@@ -143,6 +120,8 @@ class ActionEncoder(nn.Module):
     :param encoding: what to encode (``None``: nothing).
     :param layout: the action layout, which names the direction parameters and the kick.
     :param obs_dim: the observation's size (the landmarks' bearings must lie inside it).
+    :param bearings: landmark name -> (sin column, cos column) of its bearing in the observation (the domain
+        adapter's ``bearing_columns``); ``relative_to`` may name these only.
     :raises ValueError: an encoding the layout or the observation cannot give (the message says which).
     """
 
@@ -150,8 +129,9 @@ class ActionEncoder(nn.Module):
         self,
         action_dim: int,
         encoding: DirectionFeatures | None = None,
-        layout: HybridActionLayout | None = None,
+        layout: ActionLayout | None = None,
         obs_dim: int = 0,
+        bearings: Mapping[str, tuple[int, int]] | None = None,
     ) -> None:
         super().__init__()
         self.action_dim = action_dim
@@ -163,7 +143,7 @@ class ActionEncoder(nn.Module):
             frequencies = encoding.frequencies
             if layout is None or not layout.direction_indices:
                 raise ValueError(
-                    "critic_action_encoding needs an action layout with direction parameters (HFO's flat action), "
+                    "critic_action_encoding needs an action layout with direction parameters (e.g. HFO's flat action), "
                     f"got layout {layout}"
                 )
             directions = tuple(layout.direction_indices)
@@ -174,8 +154,15 @@ class ActionEncoder(nn.Module):
                 raise ValueError(
                     f"critic_action_encoding relative_to needs an action layout with a kick direction, got {layout}"
                 )
+            known = dict(bearings or {})
+            unknown = [name for name in encoding.relative_to if name not in known]
+            if unknown:
+                raise ValueError(
+                    f"critic_action_encoding relative_to: unknown landmark(s) {unknown}; the policy's domain knows "
+                    f"{tuple(known)}"
+                )
             for name in encoding.relative_to:
-                sin_column, cos_column = KICK_REFERENCE_BEARINGS[name]
+                sin_column, cos_column = known[name]
                 if max(sin_column, cos_column) >= obs_dim:
                     raise ValueError(
                         f"critic_action_encoding relative_to {name!r} needs observation column "

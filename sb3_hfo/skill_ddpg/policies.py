@@ -65,8 +65,8 @@ from stable_baselines3.common.type_aliases import PyTorchObs, Schedule
 from torch import nn
 from torch.nn import functional as F
 
-from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT, HybridActionLayout, action_layout
-from hfo2d.features import KICKABLE
+from sb3_hfo.common.action_layout import ActionLayout, space_layout
+from sb3_hfo.common.domain import DomainSpec, resolve_domain
 from sb3_hfo.common.mirror import Mirror, make_mirror
 from sb3_hfo.common.routers import SkillRouter, check_skills, make_router, validate_skills
 from sb3_hfo.skill_ddpg.acting import (
@@ -82,7 +82,6 @@ from sb3_hfo.skill_ddpg.encoding import ActionEncoder, ActionEncodingSpec, parse
 
 __all__ = [
     "DEFAULT_NET_ARCH",
-    "HFO_ACTION_PARAMETER_SIZES",
     "HFOActor",
     "HFOCritic",
     "HFOPolicy",
@@ -100,15 +99,6 @@ DEFAULT_NET_ARCH: dict[str, list[int]] = {"pi": [400, 300, 200], "qf": [400, 300
 LEAKY_RELU_SLOPE = 1e-2
 #: "Weights are initialized with a truncated normal distribution with a standard deviation 10^-2".
 WEIGHT_INIT_STD = 1e-2
-# HFO's flat action as hfo2d declares it (hfo2d.action_layout.HFO_FLAT_ACTION_LAYOUT), by the names other modules
-# import: the parameter count of DASH, TURN and KICK, their number, the action's size and KICK's index.
-HFO_ACTION_PARAMETER_SIZES = HFO_FLAT_ACTION_LAYOUT.parameter_sizes
-HFO_N_DISCRETE_ACTIONS = HFO_FLAT_ACTION_LAYOUT.n_discrete
-HFO_FLAT_ACTION_DIM = HFO_FLAT_ACTION_LAYOUT.size
-HFO_KICK_ACTION = HFO_FLAT_ACTION_LAYOUT.ball_action
-#: Column of HFO's low-level features holding "able to kick" (+1 when the ball is kickable, -1 otherwise); hfo2d
-#: owns the layout (HFO's LowLevelFeatureExtractor).
-KICKABLE_FEATURE_INDEX = KICKABLE
 
 
 def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[list[int], list[int]]:
@@ -143,9 +133,9 @@ def parse_net_arch(net_arch: list[int] | dict[str, list[int]] | None) -> tuple[l
 
 
 def _resolve_layout(
-    space_layout: HybridActionLayout | None, mask_unused_parameters: object, action_dim: int
-) -> HybridActionLayout | None:
-    """The action layout the policy works with: the action space's (:func:`hfo2d.action_layout.action_layout`), or
+    declared: ActionLayout | None, mask_unused_parameters: object, action_dim: int
+) -> ActionLayout | None:
+    """The action layout the policy works with: the action space's (:func:`~sb3_hfo.common.action_layout.space_layout`), or
     one given by ``mask_unused_parameters`` as the parameter count of each discrete action; ``None`` (a plain
     ``Box``, no discrete actions) otherwise.
 
@@ -154,13 +144,13 @@ def _resolve_layout(
     """
     option = mask_unused_parameters
     if isinstance(option, (bool, np.bool_)) or option is None:
-        if option and space_layout is None:
+        if option and declared is None:
             raise ValueError(
-                f"mask_unused_parameters=True needs the action space's hybrid layout (hfo2d's HybridActionBox, as "
-                f"the HFO envs have), but the {action_dim}-entry action space declares none; pass the parameter "
+                f"mask_unused_parameters=True needs the action space's hybrid layout (a Box with a 'layout', as the "
+                f"HFO envs' HybridActionBox), but the {action_dim}-entry action space declares none; pass the parameter "
                 "count of each discrete action instead, e.g. (2, 1, 2)"
             )
-        return space_layout
+        return declared
     if isinstance(option, (str, bytes)) or not isinstance(option, (tuple, list)):
         raise ValueError(f"mask_unused_parameters must be a bool or a sequence of ints, got {option!r}")
     sizes = tuple(option)
@@ -173,14 +163,14 @@ def _resolve_layout(
             f"mask_unused_parameters={option!r} describes {len(sizes)} preferences + {sum(sizes)} parameters = "
             f"{len(sizes) + sum(sizes)} action entries, but the action has {action_dim}"
         )
-    if space_layout is not None:
-        if space_layout.parameter_sizes != tuple(int(n) for n in sizes):
+    if declared is not None:
+        if declared.parameter_sizes != tuple(int(n) for n in sizes):
             raise ValueError(
                 f"mask_unused_parameters={option!r} differs from the action space's layout "
-                f"{space_layout.parameter_sizes}"
+                f"{declared.parameter_sizes}"
             )
-        return space_layout
-    return HybridActionLayout.from_sizes(sizes)
+        return declared
+    return ActionLayout.from_sizes(sizes)
 
 
 def _make_activation(activation_fn: type[nn.Module]) -> nn.Module:
@@ -422,23 +412,28 @@ class HFOPolicy(BasePolicy):
         ``nn.Tanh``, whose derivatives the explicit backward pass of SkillDDPG knows (:class:`HiddenActivation`).
     :param n_skills: number of actor output layers (1 = the paper's plain agent).
     :param skill_router: a :class:`~sb3_hfo.common.routers.SkillRouter`, a router name (``"single"``,
-        ``"field_half"``) or ``None`` (``"single"`` for 1 skill, ``"field_half"`` for 2).
+        ``"field_half"``, which needs a ``domain`` that names its column) or ``None`` (``"single"`` for 1 skill,
+        ``"field_half"`` for 2).
     :param inverting_gradients: linear actor output + Hausknecht & Stone's inverting gradients (see module doc).
     :param mask_unused_parameters: the critic sees only the chosen discrete action's parameters (see module doc).
         ``False`` (default, the paper), ``True`` (by the action space's hybrid layout,
-        :func:`hfo2d.action_layout.action_layout`: the HFO envs declare theirs) or, for a plain ``Box``, the number
+        :func:`~sb3_hfo.common.action_layout.space_layout`: the HFO envs declare theirs) or, for a plain ``Box``, the number
         of parameters of each discrete action in order, e.g. ``(2, 1, 2)``: the action is then ``[one preference
         per discrete action, their parameters in the same order]``.
     :param acting: the acting strategies (:mod:`sb3_hfo.skill_ddpg.acting`): a tuple of
         :class:`~sb3_hfo.skill_ddpg.acting.CriticChoice`, :class:`~sb3_hfo.skill_ddpg.acting.KickMask` and
         :class:`~sb3_hfo.skill_ddpg.acting.MirrorChoice` objects or their text form (``"critic,kick_mask,mirror:0.1"``);
         ``None`` (default, the paper): none. The critic's choice needs an action layout (the action space's or
-        ``mask_unused_parameters`` given as sizes); the kick mask and the mirror choice need HFO's low-level features
-        and flat action. A mirror margin > 0 keeps its side in ``predict``'s ``state`` (see :meth:`predict`).
+        ``mask_unused_parameters`` given as sizes); the kick mask needs a layout with a ball action and a ``domain``
+        with a kickable column, the mirror choice a ``domain`` that knows its mirror (HFO's: ``domain="hfo"``). A
+        mirror margin > 0 keeps its side in ``predict``'s ``state`` (see :meth:`predict`).
     :param critic_action_encoding: how the critic sees the action (:mod:`sb3_hfo.skill_ddpg.encoding`): a
         :class:`~sb3_hfo.skill_ddpg.encoding.DirectionFeatures`, its dict form (``{"frequencies": [1, 2, 4],
         "relative_to": ["goalie"]}``) or ``None`` (default, the paper): the action as it is. Needs a layout with
-        direction parameters (HFO's).
+        direction parameters (HFO's); ``relative_to`` names landmarks of the ``domain``.
+    :param domain: what the policy knows of the task beyond its spaces (:mod:`sb3_hfo.common.domain`): a
+        :class:`~sb3_hfo.common.domain.DomainAdapter`, a domain's name (``"hfo"``: :data:`sb3_hfo.hfo.HFO_DOMAIN`) or
+        ``None`` (default): nothing, so the options above that need a domain fact are refused.
     :param weight_init_std: truncated-normal standard deviation for all weights (paper: 1e-2).
     :param optimizer_class: optimiser class for the critic and each skill (default Adam).
     :param optimizer_kwargs: extra optimiser arguments; with Adam and neither ``fused`` nor ``foreach`` given,
@@ -467,6 +462,7 @@ class HFOPolicy(BasePolicy):
         mask_unused_parameters: bool | tuple[int, ...] | list[int] = False,
         acting: ActingSpec = None,
         critic_action_encoding: ActionEncodingSpec = None,
+        domain: DomainSpec = None,
         weight_init_std: float = WEIGHT_INIT_STD,
         optimizer_class: type[th.optim.Optimizer] = th.optim.Adam,
         optimizer_kwargs: dict[str, Any] | None = None,
@@ -501,16 +497,19 @@ class HFOPolicy(BasePolicy):
         self.net_arch = net_arch
         self.actor_arch, self.critic_arch = parse_net_arch(net_arch)
         self.activation_fn = activation_fn
-        self.skill_router = make_router(skill_router, n_skills)
+        #: The domain argument as given (saved with the model) and the adapter it names.
+        self.domain_spec = domain
+        self.domain = resolve_domain(domain)
+        self.skill_router = make_router(skill_router, n_skills, self.domain)
         self.n_skills = int(n_skills)
         self.inverting_gradients = bool(inverting_gradients)
         self.weight_init_std = float(weight_init_std)
         self.obs_dim = get_flattened_obs_dim(observation_space)
         self.action_dim = get_action_dim(action_space)
         self.mask_unused_parameters = mask_unused_parameters
-        #: The hybrid action layout (hfo2d.action_layout), or None: a plain Box, acted on as DDPG does.
+        #: The hybrid action layout (the space's, read by duck typing), or None: a plain Box, acted on as DDPG does.
         self.action_layout = _resolve_layout(
-            action_layout(action_space), mask_unused_parameters, self.action_dim
+            space_layout(action_space), mask_unused_parameters, self.action_dim
         )
         #: Each discrete action's parameter count when the critic masks unused parameters, else None.
         self.action_parameter_sizes = (
@@ -571,7 +570,13 @@ class HFOPolicy(BasePolicy):
             setattr(self, f"actor_skill_{k}_optimizer", optimizer)
 
     def _make_action_encoder(self) -> ActionEncoder:
-        return ActionEncoder(self.action_dim, self.critic_action_encoding, self.action_layout, self.obs_dim)
+        return ActionEncoder(
+            self.action_dim,
+            self.critic_action_encoding,
+            self.action_layout,
+            self.obs_dim,
+            self.domain.bearing_columns,
+        )
 
     def _build_parameter_masks(self) -> None:
         """``parameter_masks (n_discrete, action_dim)``: row ``j`` is 1 on every preference and on discrete action
@@ -598,7 +603,7 @@ class HFOPolicy(BasePolicy):
     def parameter_mask(self, actions: th.Tensor) -> th.Tensor | None:
         """``(B, action_dim)`` mask of what the environment executes for ``actions (B, action_dim)``: the
         preferences and the parameters of their argmax (the first maximum on ties, the layout's rule:
-        :meth:`hfo2d.action_layout.HybridActionLayout.choose`); ``None`` when
+        the env's: HFO's ``hfo2d.action_layout.HybridActionLayout.choose``); ``None`` when
         ``mask_unused_parameters`` is off."""
         masks = self.parameter_masks
         if masks is None:
@@ -623,20 +628,27 @@ class HFOPolicy(BasePolicy):
                 "envs'), or mask_unused_parameters given as per-action parameter counts"
             )
         layout = self.action_layout
-        if kick_mask and (
-            layout is None or layout.ball_action is None or self.obs_dim <= KICKABLE_FEATURE_INDEX
-        ):
+        kickable = self.domain.kickable_column
+        if kick_mask and (layout is None or layout.ball_action is None):
             raise ValueError(
-                "acting KickMask needs an action layout with a kick (HFO's flat action) and HFO's low-level "
-                f"features (at least {KICKABLE_FEATURE_INDEX + 1}), got layout {layout} and {self.obs_dim} features"
+                f"acting KickMask needs an action layout with a ball action (HFO's KICK), got layout {layout}"
+            )
+        if kick_mask and (kickable is None or self.obs_dim <= kickable):
+            raise ValueError(
+                f"acting KickMask needs a domain with the observation column that says the ball is kickable (the "
+                f"{self.domain.name} domain names {kickable}; the observation has {self.obs_dim} features; the HFO "
+                "envs: domain='hfo')"
             )
         # validated before anything is set, so that a refused value changes nothing
         mirror = (
-            None if mirror_choice is None else make_mirror((self.obs_dim,), layout, "acting MirrorChoice")
+            None
+            if mirror_choice is None
+            else make_mirror((self.obs_dim,), layout, "acting MirrorChoice", self.domain)
         )
         self._acting = strategies
         self._critic_picks = critic_picks
         self._kick_mask = kick_mask
+        self._kickable_column = kickable
         self._mirror = mirror
         self._mirror_margin = 0.0 if mirror_choice is None else mirror_choice.margin
 
@@ -659,7 +671,7 @@ class HFOPolicy(BasePolicy):
         """``(B,)`` bool, True where KICK is left out (ball out of reach); ``None`` without the kick mask."""
         if not self._kick_mask:
             return None
-        return obs[:, KICKABLE_FEATURE_INDEX] < 0
+        return obs[:, self._kickable_column] < 0
 
     @property
     def n_discrete_actions(self) -> int:
@@ -751,6 +763,7 @@ class HFOPolicy(BasePolicy):
                 critic_action_encoding=None
                 if self.critic_action_encoding is None
                 else self.critic_action_encoding.as_dict(),
+                domain=self.domain_spec,
                 weight_init_std=self.weight_init_std,
                 lr_schedule=self._dummy_schedule,
                 optimizer_class=self.optimizer_class,

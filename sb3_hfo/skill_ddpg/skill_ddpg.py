@@ -32,7 +32,7 @@ updates per second with one skill); ``tests/test_skill_ddpg.py`` checks that bot
 
 Exploration (``_sample_action``): SB3's random warm-up (``learning_starts``) and ``action_noise`` as usual, then
 epsilon-greedy over the discrete actions of a parameterised flat action (the action space's hybrid layout,
-:mod:`hfo2d.action_layout`; HFO: DASH / TURN / KICK preferences first; Hausknecht & Stone anneal epsilon 1 -> 0.1): with probability epsilon the whole
+:mod:`sb3_hfo.common.action_layout`; HFO: DASH / TURN / KICK preferences first; Hausknecht & Stone anneal epsilon 1 -> 0.1): with probability epsilon the whole
 action is redrawn uniformly and one of the ``n_discrete_actions`` preferences, chosen uniformly, is set to the
 maximum (1 in the buffer scale) so that the environment's argmax picks it. Epsilon anneals linearly from
 ``exploration_initial_eps`` to ``exploration_final_eps`` over the first ``exploration_fraction`` of the
@@ -74,8 +74,9 @@ from stable_baselines3.common.utils import (
 )
 from torch.nn import functional as F
 
-from hfo2d.action_layout import action_layout, hfo_flat_action_space
+from sb3_hfo.common.action_layout import space_layout
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
+from sb3_hfo.common.domain import resolve_domain
 from sb3_hfo.skill_ddpg.acting import format_acting
 from sb3_hfo.skill_ddpg.fast_update import FastUpdate
 from sb3_hfo.skill_ddpg.legacy import translate_legacy_options
@@ -102,6 +103,9 @@ SelfSkillDDPG = TypeVar("SelfSkillDDPG", bound="SkillDDPG")
 REMOVED_OPTIONS: dict[str, object] = {"mirror_fraction": 0.0}
 #: The same for ``policy_kwargs`` (``n_critics=2``, TD3's clipped double Q, learned more slowly on E1).
 REMOVED_POLICY_OPTIONS: dict[str, object] = {"n_critics": 1}
+#: The domain of a model saved before the policy took a ``domain`` (a new model saves its own, None included): SkillDDPG
+#: was trained on the HFO envs only until then, and such a model's kick mask, field-half router and mirror are HFO's.
+LEGACY_DOMAIN = "hfo"
 
 # Layout of the running sums of training statistics (one row of a tensor, summed over updates).
 _STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3
@@ -204,7 +208,7 @@ class SkillDDPG(OffPolicyAlgorithm):
         training goal rate is logged under.
     :param tensorboard_log: TensorBoard log folder (``None``: no TensorBoard).
     :param policy_kwargs: :class:`HFOPolicy` arguments (``net_arch``, ``n_skills``, ``skill_router``,
-        ``inverting_gradients``, ...).
+        ``inverting_gradients``, ``domain``, ...). ``domain`` (default None: the spaces only) is saved with the model.
     :param verbose: 0 silent, 1 info, 2 debug.
     :param seed: seed of every random generator (Python, numpy, torch, action space, env).
     :param device: torch device (``"auto"``: CUDA when available).
@@ -292,6 +296,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.parameter_loss = parameter_loss
         # SB3's load builds the model with _init_setup_model=False, then sets the saved attributes.
         self._loading = not _init_setup_model
+        if _init_setup_model:  # saved explicitly, so that a model without it is known to predate it (LEGACY_DOMAIN)
+            self.policy_kwargs = {"domain": None, **self.policy_kwargs}
         self.fast_update = fast_update
         if _init_setup_model:
             self._setup_model()
@@ -373,16 +379,25 @@ class SkillDDPG(OffPolicyAlgorithm):
                     raise ValueError(f"{name}={value!r}: the option was removed (only {name}={off!r} loads)")
         self.policy_kwargs = policy_kwargs
 
-    def _adopt_hfo_layout_of_a_legacy_model(self) -> None:
-        """A model saved before the action layout contract (hfo2d.action_layout) holds HFO's flat action space as a
-        plain ``Box(0, 1, (8,))``: on load it gets its layout back, so that it acts and trains as it was saved."""
-        if self._loading and action_layout(self.action_space) is None:
-            hfo_space = hfo_flat_action_space()
-            if isinstance(self.action_space, spaces.Box) and self.action_space == hfo_space:
-                self.action_space = hfo_space
+    def _adopt_domain_of_a_legacy_model(self) -> None:
+        """A model saved before the policy took a ``domain`` gets :data:`LEGACY_DOMAIN`; one saved before spaces
+        declared their layout holds its domain's flat action space as a plain ``Box``: on load it gets the layout
+        back, so that it acts and trains as it was saved."""
+        if not self._loading:
+            return
+        if "domain" not in self.policy_kwargs:
+            self.policy_kwargs = {**self.policy_kwargs, "domain": LEGACY_DOMAIN}
+        flat_space = resolve_domain(self.policy_kwargs["domain"]).flat_action_space
+        if (
+            flat_space is not None
+            and space_layout(self.action_space) is None
+            and isinstance(self.action_space, spaces.Box)
+            and self.action_space == flat_space
+        ):
+            self.action_space = flat_space
 
     def _setup_model(self) -> None:
-        self._adopt_hfo_layout_of_a_legacy_model()
+        self._adopt_domain_of_a_legacy_model()
         self._drop_removed_options()
         # a saved model's single acting / encoding options (a user's were translated, with a warning, in __init__)
         self.policy_kwargs = translate_legacy_options(self.policy_kwargs, warn=False)

@@ -9,12 +9,13 @@ from Hausknecht & Stone (2016); ``SkillPDQN`` has them on by default:
 * the critic picks the discrete action when acting (:class:`~sb3_hfo.skill_ddpg.acting.CriticChoice`) and its TD target takes the best
   discrete action (``discrete_target="max"``);
 * the actor trains every discrete action's parameters by that action's value (``parameter_loss="each_action"``);
-* no KICK while the ball is out of reach (:class:`~sb3_hfo.skill_ddpg.acting.KickMask`);
+* no KICK while the ball is out of reach (:class:`~sb3_hfo.skill_ddpg.acting.KickMask`), where the policy's
+  ``domain`` names the kickable column (HFO's: ``domain="hfo"``);
 * a penalty on the actor's pre-``tanh`` outputs (``preactivation_penalty=1e-3``);
 * Monte-Carlo mixing of the critic target (``mc_mixing=0.2``);
 * epsilon-greedy exploration that keeps the actor's parameters (``exploration_keep_parameters``).
 
-It needs an action space with a hybrid layout (:mod:`hfo2d.action_layout`; the HFO envs have one). Every default
+It needs an action space with a hybrid layout (:mod:`sb3_hfo.common.action_layout`; the HFO envs have one). Every default
 can be overridden; the results behind them are on the results page (``docs/results.md``).
 """
 
@@ -24,6 +25,7 @@ from typing import Any, ClassVar, TypeVar
 
 from stable_baselines3.common.type_aliases import GymEnv, MaybeCallback
 
+from sb3_hfo.common.domain import resolve_domain
 from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask
 from sb3_hfo.skill_ddpg.policies import HFOPolicy
 from sb3_hfo.skill_ddpg.skill_ddpg import SkillDDPG
@@ -48,6 +50,15 @@ PRESET_POLICY_DEFAULTS: dict[str, Any] = {
 }
 
 
+def preset_policy_kwargs(policy_kwargs: dict[str, Any] | None) -> dict[str, Any]:
+    """``policy_kwargs`` over :data:`PRESET_POLICY_DEFAULTS`; the default acting drops the kick mask when the
+    ``domain`` names no kickable column (the mask reads it; a task without one has nothing to mask by)."""
+    merged = {**PRESET_POLICY_DEFAULTS, **(policy_kwargs or {})}
+    if "acting" not in (policy_kwargs or {}) and resolve_domain(merged.get("domain")).kickable_column is None:
+        merged["acting"] = tuple(s for s in PRESET_POLICY_DEFAULTS["acting"] if not isinstance(s, KickMask))
+    return merged
+
+
 class SkillPDQN(SkillDDPG):
     """SkillDDPG with P-DQN's discrete-action handling and the other measured improvements on by default (see the
     module docstring). The arguments are SkillDDPG's; only these defaults differ.
@@ -58,7 +69,7 @@ class SkillPDQN(SkillDDPG):
     :param discrete_target: default ``"max"``.
     :param parameter_loss: default ``"each_action"``.
     :param policy_kwargs: merged over :data:`PRESET_POLICY_DEFAULTS` (``mask_unused_parameters=True``,
-        ``acting=(CriticChoice(), KickMask())``).
+        ``acting=(CriticChoice(), KickMask())``; without ``KickMask`` where the ``domain`` names no kickable column).
     :param kwargs: any other :class:`~sb3_hfo.skill_ddpg.SkillDDPG` argument.
     """
 
@@ -84,7 +95,7 @@ class SkillPDQN(SkillDDPG):
             preactivation_penalty=preactivation_penalty,
             discrete_target=discrete_target,
             parameter_loss=parameter_loss,
-            policy_kwargs={**PRESET_POLICY_DEFAULTS, **(policy_kwargs or {})},
+            policy_kwargs=preset_policy_kwargs(policy_kwargs),
             **kwargs,
         )
 

@@ -23,7 +23,7 @@ ACTION_SPACE = hfo_flat_action_space()
 
 def make_policy(**kwargs: object) -> HFOPolicy:
     th.manual_seed(0)
-    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, net_arch=[32, 16], **kwargs)  # type: ignore[arg-type]
+    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, net_arch=[32, 16], **{"domain": "hfo", **kwargs})  # type: ignore[arg-type]
 
 
 def test_parse_and_format_round_trip_in_a_fixed_order() -> None:

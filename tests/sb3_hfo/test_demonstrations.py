@@ -64,6 +64,7 @@ def _cloning_model(env_id: str = "HFO/EmptyGoal-v0", seed: int = 0, **policy_kwa
         net_arch=[64, 64],
         n_skills=2,
         skill_router="field_half",
+        domain="hfo",
         inverting_gradients=False,
         weight_init_std=0.08,
     )

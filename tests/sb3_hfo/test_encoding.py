@@ -27,12 +27,12 @@ ACTION_SPACE = hfo_flat_action_space()  # HFO's flat action, its layout declared
 
 def make_policy(**kwargs: object) -> HFOPolicy:
     th.manual_seed(0)
-    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **kwargs)  # type: ignore[arg-type]
+    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **{"domain": "hfo", **kwargs})  # type: ignore[arg-type]
 
 
 def make_goalie_policy(**kwargs: object) -> HFOPolicy:
     th.manual_seed(0)
-    return HFOPolicy(GOALIE_OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **kwargs)  # type: ignore[arg-type]
+    return HFOPolicy(GOALIE_OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **{"domain": "hfo", **kwargs})  # type: ignore[arg-type]
 
 
 def batch_obs(n: int = 32, seed: int = 0, dim: int = 58) -> th.Tensor:

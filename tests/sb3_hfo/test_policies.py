@@ -23,7 +23,7 @@ from sb3_hfo.common.routers import validate_skills
 from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask, MirrorChoice
 from sb3_hfo.skill_ddpg.encoding import DirectionFeatures
-from sb3_hfo.skill_ddpg.policies import KICKABLE_FEATURE_INDEX
+from sb3_hfo.hfo import HFO_DOMAIN
 
 OBS_SPACE = spaces.Box(-1.0, 1.0, (58,), np.float32)
 ACTION_SPACE = hfo_flat_action_space()  # HFO's flat action, its layout declared
@@ -31,7 +31,7 @@ ACTION_SPACE = hfo_flat_action_space()  # HFO's flat action, its layout declared
 
 def make_policy(**kwargs: object) -> HFOPolicy:
     th.manual_seed(0)
-    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **kwargs)  # type: ignore[arg-type]
+    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **{"domain": "hfo", **kwargs})  # type: ignore[arg-type]
 
 
 def linear_sizes(module: nn.Module) -> list[tuple[int, int]]:
@@ -490,7 +490,7 @@ def test_critic_choice_errors_and_round_trip(tmp_path) -> None:
 def test_kickable_feature_index_is_hfo2ds() -> None:
     from hfo2d import features
 
-    assert KICKABLE_FEATURE_INDEX == features.KICKABLE
+    assert HFO_DOMAIN.kickable_column == features.KICKABLE
 
 
 @pytest.mark.parametrize("choice", ["actor", "critic"])
@@ -502,8 +502,8 @@ def test_kick_mask_never_kicks_at_a_ball_out_of_reach(choice: str) -> None:
         weight_init_std=1.0,
     )
     obs = batch_obs(256)
-    obs[:, KICKABLE_FEATURE_INDEX] = th.where(obs[:, KICKABLE_FEATURE_INDEX] > 0, 1.0, -1.0)
-    out_of_reach = obs[:, KICKABLE_FEATURE_INDEX] < 0
+    obs[:, HFO_DOMAIN.kickable_column] = th.where(obs[:, HFO_DOMAIN.kickable_column] > 0, 1.0, -1.0)
+    out_of_reach = obs[:, HFO_DOMAIN.kickable_column] < 0
     with th.no_grad():
         free = policy._predict(obs)
         policy.acting = (*policy.acting, KickMask())
@@ -546,7 +546,7 @@ GOALIE_OBS_SPACE = spaces.Box(-1.0, 1.0, (66,), np.float32)
 
 def make_goalie_policy(**kwargs: object) -> HFOPolicy:
     th.manual_seed(0)
-    return HFOPolicy(GOALIE_OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **kwargs)  # type: ignore[arg-type]
+    return HFOPolicy(GOALIE_OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, **{"domain": "hfo", **kwargs})  # type: ignore[arg-type]
 
 
 # ----------------------------------------------------------------------------------------------------------

@@ -60,7 +60,7 @@ def build_run(tensorboard_log: str | None = None) -> tuple[SkillDDPG, list[BaseC
         exploration_keep_parameters=True,
         mc_mixing=0.2,
         action_noise=NormalActionNoise(np.zeros(8), np.full(8, 0.2)),
-        policy_kwargs={"net_arch": [16, 16], "n_skills": 2, "skill_router": "field_half"},
+        policy_kwargs={"net_arch": [16, 16], "n_skills": 2, "skill_router": "field_half", "domain": "hfo"},
         tensorboard_log=tensorboard_log,
         seed=0,
     )

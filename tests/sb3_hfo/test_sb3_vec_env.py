@@ -1,4 +1,4 @@
-"""sb3_hfo.common.vec_env: hfo2d's batch through SB3's VecEnv interface (HFOVecEnv, make_hfo_vec_env), bit for bit
+"""sb3_hfo.vec_env: hfo2d's batch through SB3's VecEnv interface (HFOVecEnv, make_hfo_vec_env), bit for bit
 a DummyVecEnv of gym.make(id) seeded alike, in one process and sharded; PPO, VecMonitor and VecNormalize on it."""
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecMonitor, VecNormali
 
 import hfo2d  # noqa: F401  (registers the ids)
 from hfo2d.vector import HFOVectorEnv
-from sb3_hfo.common.vec_env import HFOVecEnv, make_hfo_vec_env
+from sb3_hfo.vec_env import HFOVecEnv, make_hfo_vec_env
 
 REPO = Path(__file__).resolve().parents[2]
 

@@ -58,7 +58,7 @@ def make_batch(
 
 
 def make_model(n_skills: int = 1, **kwargs: object) -> SkillDDPG:
-    policy_kwargs = dict(TINY, n_skills=n_skills, **kwargs.pop("policy_kwargs", {}))  # type: ignore[arg-type]
+    policy_kwargs = {**TINY, "n_skills": n_skills, "domain": "hfo", **kwargs.pop("policy_kwargs", {})}  # type: ignore[dict-item]
     return SkillDDPG("HFOPolicy", HybridTargetEnv(), seed=0, policy_kwargs=policy_kwargs, **kwargs)  # type: ignore[arg-type]
 
 
