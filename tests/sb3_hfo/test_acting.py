@@ -195,7 +195,7 @@ def test_two_parallel_envs_keep_separate_sides() -> None:
 
 
 def test_save_load_keeps_the_acting_strategies(tmp_path: Path) -> None:
-    model = SkillDDPG("HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="critic"))
+    model = SkillDDPG("HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="critic", domain="hfo"))
     model.policy.acting = "critic,mirror:0.25"  # switched after construction
     model.save(tmp_path / "m.zip")
     loaded = SkillDDPG.load(tmp_path / "m.zip")

@@ -222,12 +222,13 @@ def test_direction_features_errors_name_the_problem() -> None:
             DirectionFeatures(frequencies=bad)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="DirectionFeatures frequencies must be"):  # the dict form too
         make_policy(critic_action_encoding={"frequencies": [0]})
-    with pytest.raises(
-        ValueError, match=r"DirectionFeatures relative_to: unknown landmark\(s\) \['keeper'\]"
-    ):
-        DirectionFeatures(frequencies=(1,), relative_to=("keeper",))
-    with pytest.raises(ValueError, match=r"unknown landmark\(s\) \['keeper'\]"):
+    # the landmarks are the domain's: names are checked against it when the policy is built
+    with pytest.raises(ValueError, match=r"unknown landmark\(s\) \['keeper'\]; the policy's domain knows \('goalie'"):
         make_goalie_policy(critic_action_encoding={"frequencies": [1], "relative_to": ["goalie", "keeper"]})
+    with pytest.raises(ValueError, match=r"unknown landmark\(s\) \['goalie'\]; the policy's domain knows \(\)"):
+        make_goalie_policy(critic_action_encoding={"frequencies": [1], "relative_to": ["goalie"]}, domain=None)
+    with pytest.raises(ValueError, match="relative_to must name landmarks by non-empty strings"):
+        DirectionFeatures(frequencies=(1,), relative_to=("",))
     with pytest.raises(
         ValueError, match="DirectionFeatures relative_to must be a sequence of landmark names"
     ):
@@ -294,7 +295,9 @@ def test_relative_kick_features_round_trip_in_the_dict_form_and_train(tmp_path: 
         "HFOPolicy",
         gym.make("HFO/StaticKeeper-v0"),
         policy_kwargs=dict(
-            net_arch=[16], critic_action_encoding={"frequencies": [1, 16], "relative_to": ["goalie"]}
+            net_arch=[16],
+            critic_action_encoding={"frequencies": [1, 16], "relative_to": ["goalie"]},
+            domain="hfo",
         ),
         seed=0,
     )
@@ -336,7 +339,10 @@ def test_the_legacy_encoding_options_become_direction_features() -> None:
             env,
             seed=0,
             policy_kwargs=dict(
-                net_arch=[16], critic_direction_frequencies=[1, 16], critic_kick_relative_to=["goalie"]
+                net_arch=[16],
+                critic_direction_frequencies=[1, 16],
+                critic_kick_relative_to=["goalie"],
+                domain="hfo",
             ),
         )
     assert old.policy.critic_action_encoding == DirectionFeatures((1, 16), ("goalie",))
@@ -347,7 +353,9 @@ def test_the_legacy_encoding_options_become_direction_features() -> None:
             "HFOPolicy",
             env,
             seed=0,
-            policy_kwargs=dict(net_arch=[16], critic_action_encoding=DirectionFeatures((1, 16), ("goalie",))),
+            policy_kwargs=dict(
+                net_arch=[16], critic_action_encoding=DirectionFeatures((1, 16), ("goalie",)), domain="hfo"
+            ),
         )
     obs, action = batch_obs(8, dim=66), random_actions(8)
     with th.no_grad():

@@ -373,7 +373,7 @@ class _FarHalfToy(HybridTargetEnv):
 
 def test_field_half_skills_route_to_their_head() -> None:
     model = HybridPPO(
-        "MlpPolicy", HybridTargetEnv(), seed=0, policy_kwargs={"skills": 2, "router": "field_half"}
+        "MlpPolicy", HybridTargetEnv(), seed=0, policy_kwargs={"skills": 2, "router": "field_half", "domain": "hfo"}
     )
     policy = model.policy
     obs = np.zeros((4, 58), np.float32)
@@ -394,7 +394,7 @@ def test_each_skill_optimizer_updates_only_its_head() -> None:
         batch_size=32,
         n_epochs=2,
         seed=0,
-        policy_kwargs={"skills": 2, "router": "field_half"},
+        policy_kwargs={"skills": 2, "router": "field_half", "domain": "hfo"},
     )
     policy = model.policy
     assert {id(p) for g in policy.skill_1_optimizer.param_groups for p in g["params"]} == {

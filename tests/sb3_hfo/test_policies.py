@@ -19,7 +19,7 @@ from sb3_hfo import (
     SkillRouter,
     make_router,
 )
-from sb3_hfo.common.routers import validate_skills
+from sb3_hfo.common.routers import field_half_router, validate_skills
 from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask, MirrorChoice
 from sb3_hfo.skill_ddpg.encoding import DirectionFeatures
@@ -242,7 +242,7 @@ class FieldHalfRouter3(SkillRouter):
 
 
 def test_field_half_router_splits_at_x_feature_zero() -> None:
-    router = FieldHalfRouter()
+    router = field_half_router(HFO_DOMAIN)
     obs = np.zeros((4, 58), np.float32)
     obs[:, 46] = [0.9, 1e-6, 0.0, -0.5]  # obs[46] > 0  <=>  agent x < 26.25 m  <=>  skill 0
     np.testing.assert_array_equal(router(obs), [0, 0, 1, 1])
@@ -260,7 +260,7 @@ def test_field_half_router_matches_hfo_observation() -> None:
     import hfo2d  # noqa: F401
 
     env = gym.make("HFO/EmptyGoal-v0")
-    router = FieldHalfRouter()
+    router = field_half_router(HFO_DOMAIN)
     for x, skill in ((10.0, 0), (26.0, 0), (27.0, 1), (45.0, 1)):
         obs, _ = env.reset(seed=0, options={"player": (x, 0.0, 0.0), "ball": (x + 2.0, 0.0)})
         assert int(router.numpy_route(obs[None])[0]) == skill, x
@@ -269,13 +269,16 @@ def test_field_half_router_matches_hfo_observation() -> None:
 
 def test_router_names_and_consistency_errors() -> None:
     assert set(ROUTERS) == {"single", "field_half"}
-    assert isinstance(make_router("field_half", 2), FieldHalfRouter)
+    assert make_router("field_half", 2, "hfo") == FieldHalfRouter(HFO_DOMAIN.field_half_column, 0.0)
     assert isinstance(make_router(None, 1), SingleSkillRouter)
-    assert isinstance(make_router(None, 2), FieldHalfRouter)
+    assert isinstance(make_router(None, 2, HFO_DOMAIN), FieldHalfRouter)
+    # the field-half rule is the domain's: without one, the router is refused by name
+    with pytest.raises(ValueError, match="'field_half' skill router needs a domain.*generic domain"):
+        make_router(None, 2)
     with pytest.raises(ValueError, match=r"Unknown skill_router 'halves'.*\['field_half', 'single'\]"):
         make_router("halves", 2)
     with pytest.raises(ValueError, match="routes to 2 skill.*n_skills=1"):
-        make_router("field_half", 1)
+        make_router("field_half", 1, "hfo")
     with pytest.raises(ValueError, match="routes to 1 skill.*n_skills=2"):
         make_router("single", 2)
     with pytest.raises(ValueError, match="n_skills=3 needs an explicit skill_router"):
@@ -338,7 +341,7 @@ class SwitchableRouter(SkillRouter):
 
     def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
         if self.index is None:
-            return FieldHalfRouter()(obs)
+            return field_half_router(HFO_DOMAIN)(obs)
         if isinstance(obs, th.Tensor):
             return th.full((obs.shape[0],), self.index, dtype=th.long)
         return np.full(obs.shape[0], self.index, dtype=np.int64)
@@ -367,7 +370,7 @@ def test_router_objects_compare_and_pickle() -> None:
 
     router = FieldHalfRouter(feature_index=3, threshold=0.25)
     clone = pickle.loads(pickle.dumps(router))
-    assert clone == router and clone != FieldHalfRouter() and hash(clone) == hash(router)
+    assert clone == router and clone != field_half_router(HFO_DOMAIN) and hash(clone) == hash(router)
     assert "feature_index=3" in repr(router)
 
 
@@ -527,14 +530,16 @@ def test_kick_mask_never_kicks_at_a_ball_out_of_reach(choice: str) -> None:
 
 
 def test_kick_mask_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="KickMask needs an action layout with a kick"):
-        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(KickMask(),))
+    with pytest.raises(ValueError, match="KickMask needs an action layout with a ball action"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(KickMask(),), domain="hfo")
+    with pytest.raises(ValueError, match="KickMask needs a domain with the observation column.*generic domain"):
+        HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, acting=(KickMask(),))
     with pytest.raises(ValueError, match="acting takes CriticChoice, KickMask and MirrorChoice objects"):
         make_policy(acting=["kick_mask"])  # the token, not the strategy
     model = SkillDDPG(
         "HFOPolicy",
         HybridTargetEnv(),
-        policy_kwargs=dict(net_arch=[16], acting="kick_mask,critic"),
+        policy_kwargs=dict(net_arch=[16], acting="kick_mask,critic", domain="hfo"),
         seed=0,
     )
     model.save(tmp_path / "m.zip")
@@ -589,15 +594,19 @@ def test_mirror_choice_keeps_a_state_that_is_its_own_mirror_image() -> None:
 
 
 def test_mirror_choice_errors_and_round_trip(tmp_path) -> None:
-    with pytest.raises(ValueError, match="acting MirrorChoice needs HFO's flat action"):
-        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(MirrorChoice(),))
+    with pytest.raises(ValueError, match=r"acting MirrorChoice needs the hfo domain's flat action"):
+        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(MirrorChoice(),), domain="hfo")
+    with pytest.raises(ValueError, match="acting MirrorChoice needs a domain that knows its mirror image"):
+        HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, acting=(MirrorChoice(),))
     with pytest.raises(
         ValueError, match=r"acting MirrorChoice: an HFO feature vector has 58 \+ 8 \* players entries"
     ):
-        HFOPolicy(spaces.Box(-1.0, 1.0, (60,)), ACTION_SPACE, lambda _: 1e-3, acting=(MirrorChoice(),))
+        HFOPolicy(
+            spaces.Box(-1.0, 1.0, (60,)), ACTION_SPACE, lambda _: 1e-3, acting=(MirrorChoice(),), domain="hfo"
+        )
     with pytest.raises(ValueError, match="acting names mirror more than once"):
         make_policy(acting=(MirrorChoice(), MirrorChoice(0.5)))
-    model = SkillDDPG("HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16]), seed=0)
+    model = SkillDDPG("HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], domain="hfo"), seed=0)
     model.policy.acting = (MirrorChoice(),)  # acting strategies switched on a built model are saved with it
     model.policy.acting = (CriticChoice(), KickMask(), *model.policy.acting)
     model.save(tmp_path / "m.zip")
@@ -682,7 +691,7 @@ def test_mirror_margin_errors_and_round_trip(tmp_path) -> None:
     ):
         policy.predict(obs, state=np.zeros(64))  # type: ignore[arg-type]
     model = SkillDDPG(
-        "HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="mirror"), seed=0
+        "HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="mirror", domain="hfo"), seed=0
     )
     model.policy.acting = (MirrorChoice(0.25),)
     model.save(tmp_path / "m.zip")

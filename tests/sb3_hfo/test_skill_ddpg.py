@@ -16,7 +16,7 @@ from stable_baselines3.common.logger import configure
 from stable_baselines3.common.noise import NormalActionNoise
 from torch.nn import functional as F
 
-from sb3_hfo import FieldHalfRouter, HFOPolicy, SkillDDPG, SkillRouter
+from sb3_hfo import HFO_DOMAIN, FieldHalfRouter, HFOPolicy, SkillDDPG, SkillRouter
 from sb3_hfo.common.buffers import MonteCarloReplayBufferSamples
 from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg.acting import KickMask, MirrorChoice
@@ -542,7 +542,7 @@ def test_hfo_empty_goal_500_steps_logs_everything(tmp_path: Path) -> None:
         "HFO/EmptyGoal-v0",
         learning_starts=100,
         seed=0,
-        policy_kwargs=dict(net_arch=[16, 16], n_skills=2, skill_router="field_half"),
+        policy_kwargs=dict(net_arch=[16, 16], n_skills=2, skill_router="field_half", domain="hfo"),
     )
     model.set_logger(configure(str(tmp_path), ["csv"]))
     callback = CountingCallback()
@@ -587,7 +587,7 @@ def test_tensorboard_default_run_name(tmp_path: Path) -> None:
 
 def test_vec_env_two_envs() -> None:
     env = make_vec_env("HFO/EmptyGoal-v0", n_envs=2, seed=0)
-    model = SkillDDPG("HFOPolicy", env, learning_starts=50, seed=0, policy_kwargs=dict(TINY, n_skills=2))
+    model = SkillDDPG("HFOPolicy", env, learning_starts=50, seed=0, policy_kwargs=dict(TINY, n_skills=2, domain="hfo"))
     model.learn(200)
     assert model.num_timesteps == 200
     assert model.replay_buffer is not None and model.replay_buffer.actions.shape[1:] == (2, 8)
@@ -607,7 +607,7 @@ def test_pendulum_single_skill() -> None:
 
 
 def test_save_load_round_trip(tmp_path: Path) -> None:
-    router = FieldHalfRouter(threshold=0.1)
+    router = FieldHalfRouter(HFO_DOMAIN.field_half_column, threshold=0.1)
     model = make_model(
         2,
         learning_starts=50,
@@ -790,10 +790,12 @@ def test_learn_uses_the_clis_thread_count_unless_the_user_chose_one(
 
 
 def test_router_must_match_obs_layout() -> None:
-    with pytest.raises(ValueError, match="only 3 features"):
-        SkillDDPG("MlpPolicy", "Pendulum-v1", learning_starts=0, policy_kwargs=dict(TINY, n_skills=2)).learn(
-            5
-        )
+    with pytest.raises(ValueError, match="only 3 features"):  # HFO's field-half rule on Pendulum's 3 features
+        SkillDDPG(
+            "MlpPolicy", "Pendulum-v1", learning_starts=0, policy_kwargs=dict(TINY, n_skills=2, domain="hfo")
+        ).learn(5)
+    with pytest.raises(ValueError, match="'field_half' skill router needs a domain"):  # no domain: no such rule
+        SkillDDPG("MlpPolicy", "Pendulum-v1", policy_kwargs=dict(TINY, n_skills=2))
 
 
 # ----------------------------------------------------------------------------------------------------------
@@ -826,7 +828,7 @@ def test_learns_hybrid_toy_task_with_two_skills() -> None:
         learning_starts=200,
         exploration_fraction=0.3,
         seed=0,
-        policy_kwargs=dict(net_arch=[64, 64], n_skills=2, weight_init_std=0.1),
+        policy_kwargs=dict(net_arch=[64, 64], n_skills=2, weight_init_std=0.1, domain="hfo"),
     )
     before = evaluate_goal_rate(model)
     model.learn(4000)
@@ -845,7 +847,7 @@ def test_same_seed_same_training() -> None:
             seed=3,
             learning_starts=100,
             tau=0.005,
-            policy_kwargs=dict(net_arch=[16, 16], n_skills=2, skill_router="field_half"),
+            policy_kwargs=dict(net_arch=[16, 16], n_skills=2, skill_router="field_half", domain="hfo"),
         )
         model.learn(400)
         return th.cat([p.detach().flatten() for p in model.policy.parameters()])
@@ -867,7 +869,7 @@ def test_training_rollouts_act_without_the_mirror_choice() -> None:
         "HFO/EmptyGoal-v0",
         seed=0,
         learning_starts=0,
-        policy_kwargs=dict(net_arch=[16], acting=(MirrorChoice(),)),
+        policy_kwargs=dict(net_arch=[16], acting=(MirrorChoice(),), domain="hfo"),
     )
     mirror_on_while_acting: list[bool] = []
     plain_predict = model.policy._predict
