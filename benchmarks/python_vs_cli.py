@@ -74,7 +74,7 @@ def run_python_snippet(steps: int, folder: Path) -> None:
     model = SkillDDPG(
         "HFOPolicy",
         env,
-        policy_kwargs=dict(n_skills=2, skill_router="field_half"),
+        policy_kwargs=dict(n_skills=2, skill_router="field_half", domain="hfo"),
         tensorboard_log=str(folder / "tb"),
         verbose=1,
         seed=0,

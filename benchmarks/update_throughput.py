@@ -70,7 +70,7 @@ def make_contestants(buffer_size: int, learning_starts: int) -> dict[str, Callab
         return lambda: SkillDDPG(
             "HFOPolicy",
             gym.make(ENV_ID),
-            policy_kwargs=dict(net_arch=PAPER_ARCH, n_skills=n_skills),
+            policy_kwargs=dict(net_arch=PAPER_ARCH, n_skills=n_skills, domain="hfo"),
             **common,
         )
 

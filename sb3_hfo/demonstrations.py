@@ -22,8 +22,8 @@ from stable_baselines3.common.vec_env import VecEnv
 from tqdm.auto import tqdm
 
 from hfo2d.strikers import STRIKERS, make_striker
-from sb3_hfo.skill_ddpg.acting import CriticChoice, format_acting
 from sb3_hfo.hfo import HFO_ACTION_PARAMETER_SIZES, HFO_KICK_ACTION, HFO_N_DISCRETE_ACTIONS
+from sb3_hfo.skill_ddpg.acting import CriticChoice, format_acting
 
 
 class DemonstrationPrefillCallback(BaseCallback):

@@ -66,7 +66,9 @@ HFO_DOMAIN = DomainAdapter(
     kickable_column=KICKABLE,
     field_half_column=SELF_X,
     field_half_threshold=0.0,
-    bearings=tuple((name, sin_column, cos_column) for name, (sin_column, cos_column) in KICK_REFERENCE_BEARINGS.items()),
+    bearings=tuple(
+        (name, sin_column, cos_column) for name, (sin_column, cos_column) in KICK_REFERENCE_BEARINGS.items()
+    ),
     observation_mirror=feature_mirror,
     action_mirror_signs=tuple(flat_action_mirror_signs()),
     mirror_parameter_sizes=HFO_FLAT_ACTION_LAYOUT.parameter_sizes,

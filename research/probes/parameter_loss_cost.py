@@ -32,6 +32,7 @@ POLICY_KWARGS = dict(
     critic_action_encoding=DirectionFeatures(
         frequencies=(1, 2, 4, 8, 16, 32), relative_to=("goalie", "goal_post_top", "goal_post_bottom")
     ),
+    domain="hfo",
 )
 BATCH_SIZE = 128
 

@@ -63,11 +63,17 @@ class DomainAdapter:
     def __post_init__(self) -> None:
         for field_name in ("kickable_column", "field_half_column"):
             value = getattr(self, field_name)
-            if value is not None and (isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0):
-                raise ValueError(f"DomainAdapter {field_name} must be a column index >= 0 or None, got {value!r}")
+            if value is not None and (
+                isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0
+            ):
+                raise ValueError(
+                    f"DomainAdapter {field_name} must be a column index >= 0 or None, got {value!r}"
+                )
         object.__setattr__(self, "bearings", tuple((str(n), int(s), int(c)) for n, s, c in self.bearings))
         if (self.observation_mirror is None) != (self.action_mirror_signs is None):
-            raise ValueError("DomainAdapter needs both observation_mirror and action_mirror_signs, or neither")
+            raise ValueError(
+                "DomainAdapter needs both observation_mirror and action_mirror_signs, or neither"
+            )
 
     @property
     def bearing_columns(self) -> dict[str, tuple[int, int]]:
@@ -104,7 +110,9 @@ def resolve_domain(spec: DomainSpec) -> DomainAdapter:
         return spec
     if isinstance(spec, str):
         if spec not in DOMAINS:
-            raise ValueError(f"unknown domain {spec!r}; known domains: {sorted(DOMAINS)} (or a DomainAdapter)")
+            raise ValueError(
+                f"unknown domain {spec!r}; known domains: {sorted(DOMAINS)} (or a DomainAdapter)"
+            )
         module_name, _, attribute = DOMAINS[spec].partition(":")
         adapter = getattr(importlib.import_module(module_name), attribute)
         if not isinstance(adapter, DomainAdapter):

@@ -44,7 +44,9 @@ def make_mirror(
         is for.
     """
     if domain.observation_mirror is None or domain.action_mirror_signs is None:
-        raise ValueError(f"{option} needs a domain that knows its mirror image; the {domain.name} domain does not")
+        raise ValueError(
+            f"{option} needs a domain that knows its mirror image; the {domain.name} domain does not"
+        )
     if layout is None or layout.parameter_sizes != domain.mirror_parameter_sizes:
         raise ValueError(
             f"{option} needs the {domain.name} domain's flat action (parameter sizes "

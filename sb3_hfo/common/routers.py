@@ -38,6 +38,7 @@ __all__ = [
     "validate_skills",
 ]
 
+
 class SkillRouter:
     """Base class of skill routers (see the module docstring for the calling convention).
 

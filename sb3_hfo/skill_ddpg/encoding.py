@@ -30,6 +30,7 @@ __all__ = [
     "parse_encoding",
 ]
 
+
 def _positive_frequencies(frequencies: object) -> tuple[float, ...]:
     if isinstance(frequencies, (str, bytes)) or not isinstance(frequencies, Iterable):
         raise ValueError(f"DirectionFeatures frequencies must be a sequence of numbers, got {frequencies!r}")
@@ -52,7 +53,9 @@ def _landmarks(names: object) -> tuple[str, ...]:
         raise ValueError(f"DirectionFeatures relative_to must be a sequence of landmark names, got {names!r}")
     values = tuple(names)
     if not all(isinstance(name, str) and name for name in values):
-        raise ValueError(f"DirectionFeatures relative_to must name landmarks by non-empty strings, got {names!r}")
+        raise ValueError(
+            f"DirectionFeatures relative_to must name landmarks by non-empty strings, got {names!r}"
+        )
     if len(set(values)) != len(values):
         raise ValueError(f"DirectionFeatures relative_to names a landmark twice: {values}")
     return values

@@ -296,7 +296,8 @@ class SkillDDPG(OffPolicyAlgorithm):
         self.parameter_loss = parameter_loss
         # SB3's load builds the model with _init_setup_model=False, then sets the saved attributes.
         self._loading = not _init_setup_model
-        if _init_setup_model:  # saved explicitly, so that a model without it is known to predate it (LEGACY_DOMAIN)
+        # the domain is saved explicitly, so that a model without it is known to predate it (LEGACY_DOMAIN)
+        if _init_setup_model:
             self.policy_kwargs = {"domain": None, **self.policy_kwargs}
         self.fast_update = fast_update
         if _init_setup_model:

@@ -11,6 +11,7 @@ import torch as th
 import yaml
 
 from sb3_hfo import SkillDDPG, SkillPDQN
+from sb3_hfo.cli.zoo import with_hfo_domain
 from sb3_hfo.common.schedules import SCHEDULE_KEYS, parse_schedule
 from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask
@@ -55,18 +56,20 @@ def assert_same_model(first: SkillDDPG, second: SkillDDPG) -> None:
 
 
 def test_the_preset_is_skill_ddpg_with_the_best_recipe_switched_on() -> None:
-    preset = SkillPDQN("HFOPolicy", HybridTargetEnv(), seed=0)
+    preset = SkillPDQN("HFOPolicy", HybridTargetEnv(), seed=0, policy_kwargs=dict(domain="hfo"))
     explicit = SkillDDPG(
         "HFOPolicy",
         HybridTargetEnv(),
         seed=0,
-        policy_kwargs=dict(PRESET_POLICY_DEFAULTS),
+        policy_kwargs=dict(PRESET_POLICY_DEFAULTS, domain="hfo"),
         **PRESET_ALGORITHM_DEFAULTS,
     )
     assert_same_model(preset, explicit)
     paper = SkillDDPG("HFOPolicy", HybridTargetEnv(), seed=0)
     assert paper.discrete_target == "actor" and paper.mc_mixing == 0.0 and paper.policy.acting == ()
     assert preset.policy.parameter_masks is not None and preset.policy.acting == (CriticChoice(), KickMask())
+    # without a domain that names the kickable column there is nothing to mask by: the preset leaves the mask out
+    assert SkillPDQN("HFOPolicy", HybridTargetEnv(), seed=0).policy.acting == (CriticChoice(),)
 
 
 def test_the_preset_defaults_are_its_signature_defaults() -> None:
@@ -75,7 +78,9 @@ def test_the_preset_defaults_are_its_signature_defaults() -> None:
 
 
 def test_policy_kwargs_override_the_preset_key_by_key() -> None:
-    model = SkillPDQN("HFOPolicy", HybridTargetEnv(), seed=0, policy_kwargs=dict(acting="kick_mask"))
+    model = SkillPDQN(
+        "HFOPolicy", HybridTargetEnv(), seed=0, policy_kwargs=dict(acting="kick_mask", domain="hfo")
+    )
     assert model.policy.acting == (KickMask(),)  # the actor picks the discrete action again ...
     assert model.policy.parameter_masks is not None  # ... and the preset's other policy keys stay
     model = SkillPDQN("HFOPolicy", HybridTargetEnv(), seed=0, parameter_loss="chosen", mc_mixing=0.0)
@@ -106,7 +111,8 @@ def test_a_best_config_builds_the_model_it_built_with_every_switch_spelt_out(con
     for key in SCHEDULE_KEYS:
         if key in kwargs:
             kwargs[key] = parse_schedule(kwargs[key])
-    policy_kwargs = kwargs.pop("policy_kwargs")
+    policy_kwargs = with_hfo_domain(kwargs.pop("policy_kwargs"), env_id)  # as the zoo gives HFO ids
+    assert policy_kwargs is not None
     env_kwargs = hyperparams.get("env_kwargs", {})
     preset = SkillPDQN(
         "MlpPolicy", gym.make(env_id, **env_kwargs), seed=0, policy_kwargs=policy_kwargs, **kwargs
@@ -119,7 +125,9 @@ def test_a_best_config_builds_the_model_it_built_with_every_switch_spelt_out(con
         **{**PRESET_ALGORITHM_DEFAULTS, **kwargs},
     )
     assert_same_model(preset, spelt_out)
-    assert len(policy_kwargs) <= 6, "the preset leaves a few lines of policy_kwargs"
+    assert len(policy_kwargs) <= 7, (
+        "the preset leaves a few lines of policy_kwargs (and the zoo adds the domain)"
+    )
 
 
 def test_rl_zoo_knows_both_algorithms() -> None:

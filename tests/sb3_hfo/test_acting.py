@@ -23,7 +23,8 @@ ACTION_SPACE = hfo_flat_action_space()
 
 def make_policy(**kwargs: object) -> HFOPolicy:
     th.manual_seed(0)
-    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, net_arch=[32, 16], **{"domain": "hfo", **kwargs})  # type: ignore[arg-type]
+    kwargs = {"domain": "hfo", **kwargs}
+    return HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, net_arch=[32, 16], **kwargs)  # type: ignore[arg-type]
 
 
 def test_parse_and_format_round_trip_in_a_fixed_order() -> None:
@@ -195,7 +196,9 @@ def test_two_parallel_envs_keep_separate_sides() -> None:
 
 
 def test_save_load_keeps_the_acting_strategies(tmp_path: Path) -> None:
-    model = SkillDDPG("HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="critic", domain="hfo"))
+    model = SkillDDPG(
+        "HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="critic", domain="hfo")
+    )
     model.policy.acting = "critic,mirror:0.25"  # switched after construction
     model.save(tmp_path / "m.zip")
     loaded = SkillDDPG.load(tmp_path / "m.zip")

@@ -223,10 +223,16 @@ def test_direction_features_errors_name_the_problem() -> None:
     with pytest.raises(ValueError, match="DirectionFeatures frequencies must be"):  # the dict form too
         make_policy(critic_action_encoding={"frequencies": [0]})
     # the landmarks are the domain's: names are checked against it when the policy is built
-    with pytest.raises(ValueError, match=r"unknown landmark\(s\) \['keeper'\]; the policy's domain knows \('goalie'"):
+    with pytest.raises(
+        ValueError, match=r"unknown landmark\(s\) \['keeper'\]; the policy's domain knows \('goalie'"
+    ):
         make_goalie_policy(critic_action_encoding={"frequencies": [1], "relative_to": ["goalie", "keeper"]})
-    with pytest.raises(ValueError, match=r"unknown landmark\(s\) \['goalie'\]; the policy's domain knows \(\)"):
-        make_goalie_policy(critic_action_encoding={"frequencies": [1], "relative_to": ["goalie"]}, domain=None)
+    with pytest.raises(
+        ValueError, match=r"unknown landmark\(s\) \['goalie'\]; the policy's domain knows \(\)"
+    ):
+        make_goalie_policy(
+            critic_action_encoding={"frequencies": [1], "relative_to": ["goalie"]}, domain=None
+        )
     with pytest.raises(ValueError, match="relative_to must name landmarks by non-empty strings"):
         DirectionFeatures(frequencies=(1,), relative_to=("",))
     with pytest.raises(

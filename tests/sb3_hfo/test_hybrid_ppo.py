@@ -373,7 +373,10 @@ class _FarHalfToy(HybridTargetEnv):
 
 def test_field_half_skills_route_to_their_head() -> None:
     model = HybridPPO(
-        "MlpPolicy", HybridTargetEnv(), seed=0, policy_kwargs={"skills": 2, "router": "field_half", "domain": "hfo"}
+        "MlpPolicy",
+        HybridTargetEnv(),
+        seed=0,
+        policy_kwargs={"skills": 2, "router": "field_half", "domain": "hfo"},
     )
     policy = model.policy
     obs = np.zeros((4, 58), np.float32)

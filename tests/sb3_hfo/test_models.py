@@ -44,7 +44,9 @@ def _trained_model(tmp_path: Path, **policy_kwargs: object) -> Path:
         batch_size=16,
         tau=0.05,
         seed=0,
-        policy_kwargs=dict(net_arch=[16, 8], n_skills=2, mask_unused_parameters=True, domain="hfo", **policy_kwargs),
+        policy_kwargs=dict(
+            net_arch=[16, 8], n_skills=2, mask_unused_parameters=True, domain="hfo", **policy_kwargs
+        ),
     )
     model.learn(150)
     model.policy.acting = (CriticChoice(),)  # acting strategies switched after construction travel too

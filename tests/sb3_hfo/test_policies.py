@@ -21,9 +21,9 @@ from sb3_hfo import (
 )
 from sb3_hfo.common.routers import field_half_router, validate_skills
 from sb3_hfo.common.toy_env import HybridTargetEnv
+from sb3_hfo.hfo import HFO_DOMAIN
 from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask, MirrorChoice
 from sb3_hfo.skill_ddpg.encoding import DirectionFeatures
-from sb3_hfo.hfo import HFO_DOMAIN
 
 OBS_SPACE = spaces.Box(-1.0, 1.0, (58,), np.float32)
 ACTION_SPACE = hfo_flat_action_space()  # HFO's flat action, its layout declared
@@ -532,7 +532,9 @@ def test_kick_mask_never_kicks_at_a_ball_out_of_reach(choice: str) -> None:
 def test_kick_mask_errors_and_round_trip(tmp_path) -> None:
     with pytest.raises(ValueError, match="KickMask needs an action layout with a ball action"):
         HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(KickMask(),), domain="hfo")
-    with pytest.raises(ValueError, match="KickMask needs a domain with the observation column.*generic domain"):
+    with pytest.raises(
+        ValueError, match="KickMask needs a domain with the observation column.*generic domain"
+    ):
         HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, acting=(KickMask(),))
     with pytest.raises(ValueError, match="acting takes CriticChoice, KickMask and MirrorChoice objects"):
         make_policy(acting=["kick_mask"])  # the token, not the strategy
@@ -595,7 +597,9 @@ def test_mirror_choice_keeps_a_state_that_is_its_own_mirror_image() -> None:
 
 def test_mirror_choice_errors_and_round_trip(tmp_path) -> None:
     with pytest.raises(ValueError, match=r"acting MirrorChoice needs the hfo domain's flat action"):
-        HFOPolicy(OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(MirrorChoice(),), domain="hfo")
+        HFOPolicy(
+            OBS_SPACE, spaces.Box(0.0, 1.0, (5,)), lambda _: 1e-3, acting=(MirrorChoice(),), domain="hfo"
+        )
     with pytest.raises(ValueError, match="acting MirrorChoice needs a domain that knows its mirror image"):
         HFOPolicy(OBS_SPACE, ACTION_SPACE, lambda _: 1e-3, acting=(MirrorChoice(),))
     with pytest.raises(
@@ -691,7 +695,10 @@ def test_mirror_margin_errors_and_round_trip(tmp_path) -> None:
     ):
         policy.predict(obs, state=np.zeros(64))  # type: ignore[arg-type]
     model = SkillDDPG(
-        "HFOPolicy", HybridTargetEnv(), policy_kwargs=dict(net_arch=[16], acting="mirror", domain="hfo"), seed=0
+        "HFOPolicy",
+        HybridTargetEnv(),
+        policy_kwargs=dict(net_arch=[16], acting="mirror", domain="hfo"),
+        seed=0,
     )
     model.policy.acting = (MirrorChoice(0.25),)
     model.save(tmp_path / "m.zip")

@@ -587,7 +587,9 @@ def test_tensorboard_default_run_name(tmp_path: Path) -> None:
 
 def test_vec_env_two_envs() -> None:
     env = make_vec_env("HFO/EmptyGoal-v0", n_envs=2, seed=0)
-    model = SkillDDPG("HFOPolicy", env, learning_starts=50, seed=0, policy_kwargs=dict(TINY, n_skills=2, domain="hfo"))
+    model = SkillDDPG(
+        "HFOPolicy", env, learning_starts=50, seed=0, policy_kwargs=dict(TINY, n_skills=2, domain="hfo")
+    )
     model.learn(200)
     assert model.num_timesteps == 200
     assert model.replay_buffer is not None and model.replay_buffer.actions.shape[1:] == (2, 8)
@@ -794,7 +796,8 @@ def test_router_must_match_obs_layout() -> None:
         SkillDDPG(
             "MlpPolicy", "Pendulum-v1", learning_starts=0, policy_kwargs=dict(TINY, n_skills=2, domain="hfo")
         ).learn(5)
-    with pytest.raises(ValueError, match="'field_half' skill router needs a domain"):  # no domain: no such rule
+    # no domain: no field-half rule
+    with pytest.raises(ValueError, match="'field_half' skill router needs a domain"):
         SkillDDPG("MlpPolicy", "Pendulum-v1", policy_kwargs=dict(TINY, n_skills=2))
 
 
