@@ -29,7 +29,7 @@ from dataclasses import dataclass
 import numpy as np
 from gymnasium import spaces
 
-__all__ = ["DOMAINS", "GENERIC_DOMAIN", "DomainAdapter", "DomainSpec", "resolve_domain"]
+__all__ = ["DOMAINS", "GENERIC_DOMAIN", "LEGACY_DOMAIN", "DomainAdapter", "DomainSpec", "resolve_domain"]
 
 
 @dataclass(frozen=True)
@@ -94,6 +94,11 @@ GENERIC_DOMAIN = DomainAdapter()
 
 #: Domains by name: ``"module:attribute"`` of a :class:`DomainAdapter`, imported when the name is first resolved.
 DOMAINS: dict[str, str] = {"hfo": "sb3_hfo.hfo:HFO_DOMAIN"}
+
+#: The domain of a model saved before the algorithms took a ``domain`` (a new model saves its own, None included):
+#: until then every domain fact they used (the field-half column, the kick mask's column, the mirror, the landmarks)
+#: was hfo2d's, so such a model loads with HFO's adapter and acts as it was saved.
+LEGACY_DOMAIN = "hfo"
 
 #: What a policy's ``domain`` argument accepts: an adapter, the name of one in :data:`DOMAINS`, or None (generic).
 DomainSpec = DomainAdapter | str | None

@@ -28,6 +28,7 @@ from stable_baselines3.common.type_aliases import GymEnv, Schedule
 from stable_baselines3.common.utils import FloatSchedule, explained_variance, obs_as_tensor
 from stable_baselines3.common.vec_env import VecEnv
 
+from sb3_hfo.common.domain import LEGACY_DOMAIN
 from sb3_hfo.hybrid_ppo.policies import HybridActorCriticPolicy
 
 __all__ = ["HybridPPO"]
@@ -109,9 +110,13 @@ class HybridPPO(OnPolicyAlgorithm):
         self.normalize_advantage = normalize_advantage
         self.target_kl = target_kl
         if _init_setup_model:
+            # the domain is saved explicitly, so that a model without it is known to predate it (LEGACY_DOMAIN)
+            self.policy_kwargs = {"domain": None, **self.policy_kwargs}
             self._setup_model()
 
     def _setup_model(self) -> None:
+        if "domain" not in self.policy_kwargs:  # loading a model saved before the option
+            self.policy_kwargs = {**self.policy_kwargs, "domain": LEGACY_DOMAIN}
         self._setup_lr_schedule()
         self.set_random_seed(self.seed)
         self.policy = self.policy_class(  # type: ignore[assignment]

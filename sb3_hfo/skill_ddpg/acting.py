@@ -10,13 +10,14 @@ command lines take, ``evaluate --acting critic,kick_mask,mirror:0.1``):
   the actor's parameters, as P-DQN / MP-DQN choose (Xiong et al. 2018; Bester et al. 2019); without it the actor's
   largest preference does. Why: with ``mask_unused_parameters`` the critic values each discrete action by its own
   parameters, which the actor's preferences do not.
-* :class:`KickMask` (``kick_mask``): KICK is never the greedy choice while the observation's "able to kick" feature
+* :class:`KickMask` (``kick_mask``): KICK (the layout's ball action) is never the greedy choice while the
+  observation's "able to kick" feature (the column the policy's domain adapter names, :mod:`sb3_hfo.common.domain`)
   is -1; the critic's choice and SkillDDPG's ``discrete_target="max"`` leave it out of their maximum, and the
   actor's choice falls to its best other preference (invalid-action masking, as in sb3-contrib's MaskablePPO;
   exploration may still try such kicks). Why: rcssserver ignores a kick out of reach, so a deterministic policy
   that picks KICK there repeats it until HFO's time limit.
-* :class:`MirrorChoice` (``mirror`` or ``mirror:M``): HFO is symmetric about the pitch's long axis
-  (:mod:`hfo2d.symmetry`), so the policy played in the state's mirror image, its action mirrored back, is another
+* :class:`MirrorChoice` (``mirror`` or ``mirror:M``): HFO is symmetric about the pitch's long axis (hfo2d's
+  ``symmetry``; the policy gets the mirror maps from its domain adapter), so the policy played in the state's mirror image, its action mirrored back, is another
   policy for the real state; acting (``predict``, not SkillDDPG's training rollouts) plays the better, by the
   critic, of the two greedy actions (ties: the unmirrored one). Why: a one-step policy improvement over two
   policies, for agents that score by one route only. With a margin ``M > 0`` the side played is kept through an

@@ -76,7 +76,7 @@ from torch.nn import functional as F
 
 from sb3_hfo.common.action_layout import space_layout
 from sb3_hfo.common.buffers import MonteCarloReplayBuffer, MonteCarloReplayBufferSamples
-from sb3_hfo.common.domain import resolve_domain
+from sb3_hfo.common.domain import LEGACY_DOMAIN, resolve_domain
 from sb3_hfo.skill_ddpg.acting import format_acting
 from sb3_hfo.skill_ddpg.fast_update import FastUpdate
 from sb3_hfo.skill_ddpg.legacy import translate_legacy_options
@@ -103,9 +103,6 @@ SelfSkillDDPG = TypeVar("SelfSkillDDPG", bound="SkillDDPG")
 REMOVED_OPTIONS: dict[str, object] = {"mirror_fraction": 0.0}
 #: The same for ``policy_kwargs`` (``n_critics=2``, TD3's clipped double Q, learned more slowly on E1).
 REMOVED_POLICY_OPTIONS: dict[str, object] = {"n_critics": 1}
-#: The domain of a model saved before the policy took a ``domain`` (a new model saves its own, None included): SkillDDPG
-#: was trained on the HFO envs only until then, and such a model's kick mask, field-half router and mirror are HFO's.
-LEGACY_DOMAIN = "hfo"
 
 # Layout of the running sums of training statistics (one row of a tensor, summed over updates).
 _STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3

@@ -278,6 +278,26 @@ def test_a_model_saved_before_the_domain_option_loads_with_hfos(tmp_path: Path) 
     assert loaded.policy.domain is HFO_DOMAIN and loaded.policy_kwargs["domain"] == "hfo"
 
 
+def test_a_hybrid_ppo_model_saved_before_the_domain_option_loads_with_hfos(tmp_path: Path) -> None:
+    from sb3_hfo.common.toy_env import HybridTargetEnv
+
+    kwargs = dict(net_arch=[8], skills=2, router="field_half")
+    model = HybridPPO(
+        "MlpPolicy",
+        HybridTargetEnv(),
+        n_steps=8,
+        batch_size=8,
+        seed=0,
+        policy_kwargs=dict(kwargs, domain="hfo"),
+    )
+    assert model.policy_kwargs["domain"] == "hfo"
+    model.policy_kwargs = kwargs  # as saved before
+    model.save(tmp_path / "old.zip")
+    loaded = HybridPPO.load(tmp_path / "old.zip")
+    assert loaded.policy_kwargs["domain"] == "hfo" and loaded.policy.skill_router == model.policy.skill_router
+    assert HybridPPO("MlpPolicy", SideBandit(False), n_steps=8, batch_size=8).policy_kwargs["domain"] is None
+
+
 def test_the_committed_models_act_with_hfos_domain() -> None:
     from sb3_hfo.models import load_model
 
