@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import statistics
 import subprocess
 import sys
 from pathlib import Path
@@ -67,3 +68,29 @@ def test_the_default_run_leaves_the_research_tests_out() -> None:
     collected = [line for line in completed.stdout.splitlines() if ".py::" in line or ".py:" in line]
     assert collected and all(line.startswith("tests/") for line in collected), collected[:5]
     assert (REPO / "research" / "tests" / "test_probes.py").is_file()
+
+
+def test_training_throughput_times_both_contestants_in_each_round(tmp_path: Path) -> None:
+    out = tmp_path / "training_throughput.json"
+    command = [sys.executable, str(REPO / "benchmarks" / "training_throughput.py"), "--smoke"]
+    command += ["--rounds", "2", "--seconds", "0.2", "--out", str(out)]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    results = json.loads(out.read_text())
+    samples = results["samples"]
+    assert set(samples) == {"hybrid_ppo", "skill_ddpg"}
+    assert all(len(runs) == 2 for runs in samples.values())
+    for runs in samples.values():
+        for sample in runs:
+            assert sample["seconds"] >= 0.2 and sample["steps"] > 0  # a slice of at least --seconds
+            assert sample["warmup_steps"] > 0  # timed after the warm-up
+    # HybridPPO trains on hfo2d's batch of 16 games, SkillDDPG on E6's 4 envs in rl-zoo3's DummyVecEnv
+    assert results["n_envs"] == {"hybrid_ppo": 16, "skill_ddpg": 4}
+    assert results["vec_env"]["hybrid_ppo"].endswith("HFOVecEnv")
+    assert results["vec_env"]["skill_ddpg"] == "DummyVecEnv"
+    assert results["torch_threads"] == {"hybrid_ppo": [1], "skill_ddpg": [1]}
+    rates = results["steps_per_s"]
+    assert results["ratio_hybrid_ppo_vs_skill_ddpg"] == rates["hybrid_ppo"] / rates["skill_ddpg"]
+    for name, runs in samples.items():
+        assert rates[name] == statistics.median(sample["steps_per_s"] for sample in runs)
+    assert "load average" in results["uptime_before"] and results["cpu_model"]
