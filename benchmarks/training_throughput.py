@@ -23,15 +23,19 @@ contestants alternate in each of ``--rounds`` rounds, so that load from other pr
 report gives each round's steps/s, steps per CPU-second of the training process, the medians and their ratio,
 torch's thread count during training, the CPU model and the load average (``uptime``) before and after.
 
-``--smoke`` shrinks both (tiny networks, short warm-up) for tests: its figures mean nothing.
+``--smoke`` shrinks both (tiny networks, short warm-up) for tests: its figures mean nothing. ``--profile`` instead
+prints where HybridPPO's time goes: cProfile of ``learn`` over ``--profile-rollouts`` rollouts (after one of warm-up),
+the same recipe built in this process from Python (``make_hfo_vec_env`` in ``VecNormalize``, one torch thread).
 """
 
 from __future__ import annotations
 
 import argparse
+import cProfile
 import json
 import os
 import platform
+import pstats
 import statistics
 import subprocess
 import sys
@@ -166,6 +170,41 @@ def measure(name: str, seconds: float, smoke: bool, num_workers: int) -> dict[st
     return result
 
 
+def profile_hybrid_ppo(rollouts: int, top: int = 25) -> None:
+    """cProfile of HybridPPO's ``learn`` on Keeper-v1 with the recipe of :data:`HYBRID_PPO_CONFIG`, printed."""
+    import torch as th
+    from stable_baselines3.common.vec_env import VecNormalize
+
+    from sb3_hfo import HybridPPO
+    from sb3_hfo.common.schedules import parse_schedule
+    from sb3_hfo.common.vec_env import make_hfo_vec_env
+
+    th.set_num_threads(1)
+    hyperparams = _section(HYBRID_PPO_CONFIG, HYBRID_PPO_SECTION)
+    normalize = eval(hyperparams.pop("normalize", "{}"))  # rl-zoo3 evaluates this string the same way
+    n_envs = int(hyperparams.pop("n_envs"))
+    for key in ("n_timesteps", "policy", "callback", "vec_env", "num_workers"):
+        hyperparams.pop(key, None)
+    hyperparams["learning_rate"] = parse_schedule(hyperparams["learning_rate"])
+    env = VecNormalize(
+        make_hfo_vec_env(ENV_ID, n_envs, seed=0), gamma=hyperparams.get("gamma", 0.99), **normalize
+    )
+    model = HybridPPO("MlpPolicy", env, seed=0, **hyperparams)
+    steps_per_rollout = model.n_steps * n_envs
+    model.learn(steps_per_rollout)  # warm-up
+    profiler = cProfile.Profile()
+    wall, cpu = time.perf_counter(), time.process_time()
+    profiler.enable()
+    model.learn(rollouts * steps_per_rollout, reset_num_timesteps=False)
+    profiler.disable()
+    wall, cpu = time.perf_counter() - wall, time.process_time() - cpu
+    steps = rollouts * steps_per_rollout
+    print(
+        f"HybridPPO on {ENV_ID}: {steps:,} steps in {wall:.1f} s ({cpu:.1f} CPU-s) under cProfile; {uptime()}"
+    )
+    pstats.Stats(profiler).sort_stats("cumulative").print_stats(top)
+
+
 def cpu_model() -> str:
     """The CPU's model name (``/proc/cpuinfo``), or the platform's processor string."""
     try:
@@ -196,9 +235,16 @@ def main(argv: list[str] | None = None) -> int:
     )
     parser.add_argument("--smoke", action="store_true", help="tiny networks and warm-up (for tests)")
     parser.add_argument("--out", type=Path, default=None, help="write the results as JSON here")
+    parser.add_argument(
+        "--profile", action="store_true", help="profile HybridPPO's learn instead (see above)"
+    )
+    parser.add_argument("--profile-rollouts", type=int, default=6, help="rollouts profiled (default 6)")
     args = parser.parse_args(argv)
-    if args.seconds <= 0 or args.rounds < 1 or args.num_workers < 1:
-        parser.error("--seconds must be > 0, --rounds and --num-workers >= 1")
+    if args.seconds <= 0 or args.rounds < 1 or args.num_workers < 1 or args.profile_rollouts < 1:
+        parser.error("--seconds must be > 0, --rounds, --num-workers and --profile-rollouts >= 1")
+    if args.profile:
+        profile_hybrid_ppo(args.profile_rollouts)
+        return 0
 
     command = " ".join(
         ["python", "benchmarks/training_throughput.py", *(sys.argv[1:] if argv is None else argv)]

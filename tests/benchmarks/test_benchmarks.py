@@ -94,3 +94,15 @@ def test_training_throughput_times_both_contestants_in_each_round(tmp_path: Path
     for name, runs in samples.items():
         assert rates[name] == statistics.median(sample["steps_per_s"] for sample in runs)
     assert "load average" in results["uptime_before"] and results["cpu_model"]
+
+
+def test_training_throughput_profile_shows_where_hybrid_ppo_spends_its_time(tmp_path: Path) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "training_throughput.py"), "--profile"]
+    completed = subprocess.run(
+        [*command, "--profile-rollouts", "1"], capture_output=True, text=True, timeout=300, cwd=tmp_path
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    # one rollout of 16 games x 256 steps
+    assert "HybridPPO on HFO/Keeper-v1: 4,096 steps" in completed.stdout
+    for function in ("collect_rollouts", "step_games", "(train)"):
+        assert function in completed.stdout
