@@ -285,10 +285,17 @@ def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) ->
 
         def _check_batch(self, env_wrapper: Any) -> None:
             """Refuse what ``vec_env: batch`` cannot do, before any folder or env is made."""
+            from stable_baselines3.common.vec_env import DummyVecEnv
+
             if options.checkpointing or options.resume is not None:
                 raise ConfigConflictError(
                     "--checkpoint-freq / --resume need rl-zoo3's DummyVecEnv; this config trains on hfo2d's batch "
                     "(vec_env: batch): add --hyperparams \"vec_env:'dummy'\" to checkpoint it"
+                )
+            if self.vec_env_class is not DummyVecEnv:
+                raise ConfigConflictError(
+                    f"--vec-env {self.vec_env_class.__name__} and vec_env: batch (the config's) exclude each other; "
+                    "num_workers: 2 steps the batch on two processes"
                 )
             if self.env_name.gym_id not in ENV_IDS:
                 raise ConfigConflictError(

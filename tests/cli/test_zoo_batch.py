@@ -128,6 +128,10 @@ def test_the_log_has_the_goal_rate_and_episode_statistics(runs: Path, name: str)
     ("extra", "expected"),
     [
         (["--checkpoint-freq", "100"], "--checkpoint-freq / --resume need rl-zoo3's DummyVecEnv"),
+        (
+            ["--vec-env", "subproc"],
+            "--vec-env SubprocVecEnv and vec_env: batch (the config's) exclude each other",
+        ),
         (["--hyperparams", "num_workers:0"], "num_workers must be a positive integer, got 0"),
         (["--hyperparams", "vec_env:'subproc'"], "vec_env must be one of dummy, batch, got 'subproc'"),
         (["--hyperparams", "vec_env:'dummy'", "num_workers:2"], "num_workers applies to vec_env: batch only"),
