@@ -33,6 +33,7 @@ from hfo2d.agent2d.decision import FreeKickState, decide
 from hfo2d.agent2d.intercept import build_intercept_table
 from hfo2d.agent2d.tackle import client_tackle_dir
 from hfo2d.physics import PlayerState, ServerParams, World
+from hfo2d.protocol import AGENT2D_FIRST_BODY_DEGS
 
 # librcsc world_model.cpp updatePlayerStateCache: an opponent counts as kickable within
 # kickable_area + min(0.25, 0.02 * ball distance from self) + min(0.25, 0.02 * its distance from self).
@@ -285,6 +286,11 @@ class _FullstateView(GoalieView):
         self._obody = value
 
 
+def _check_skill(skill: object) -> None:
+    if isinstance(skill, bool) or not isinstance(skill, (int, float, np.number)) or not 0.0 <= skill <= 1.0:
+        raise ValueError(f"keeper skill must be a number in [0, 1], got {skill!r}")
+
+
 class Agent2dGoalie:
     """HFO's default defence goalie (agent2d "base" team, role Goalie), defending the goal at x = +52.5.
 
@@ -296,18 +302,20 @@ class Agent2dGoalie:
             stands where it is. This weakening is this project's design, for curricula; HFO has no such knob.
 
     ``last_command`` is the body command of the last decision (None: nothing sent), ``last_view`` its world model.
+    It is a :class:`hfo2d.npc.DefenseNPC` whose client state carries over between episodes, as in real HFO.
     """
 
+    carries_over = True
+
     def __init__(self, params: ServerParams, rng: np.random.Generator, skill: float = 1.0) -> None:
-        if (
-            isinstance(skill, bool)
-            or not isinstance(skill, (int, float, np.number))
-            or not 0.0 <= skill <= 1.0
-        ):
-            raise ValueError(f"keeper skill must be a number in [0, 1], got {skill!r}")
+        _check_skill(skill)
         self.params = params
         self.rng = rng
         self.skill = float(skill)
+        self.restart()
+
+    def restart(self) -> None:
+        """Forget the client state, as a goalie made afresh (the params, generator and skill stay)."""
         self.last_command: Command | None = None
         self.last_view: GoalieView | None = None
         # client state that outlives an episode in real HFO (the trainer resets only the server's objects)
@@ -328,6 +336,17 @@ class Agent2dGoalie:
         self._ball_numbers: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
         self._body_key: bytes | None = None
         self._body_numbers: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
+
+    def set_skill(self, skill: float) -> None:
+        """Play with quality ``skill`` in [0, 1] from now on; the client state (catch time...) stays."""
+        _check_skill(skill)
+        self.skill = float(skill)
+
+    def start_body_deg(self, rng: np.random.Generator) -> float:
+        """The body angle of a goalie that no episode has moved yet: rcssserver starts it at 0 (facing its own
+        goal) and agent2d's before-kick-off scan turns it by 180 degrees every few cycles, so real HFO's first
+        episode starts facing either way (drawn from ``rng``; agent2d goalie spec §2.5)."""
+        return AGENT2D_FIRST_BODY_DEGS[int(rng.integers(len(AGENT2D_FIRST_BODY_DEGS)))]
 
     def reset(self) -> None:
         """A new episode: the referee's before_kick_off / play_on messages put the world model back in PlayOn."""
