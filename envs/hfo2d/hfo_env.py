@@ -315,8 +315,6 @@ class HFOEnv(gym.Env):
         self.noise = bool(noise)
         self.keeper_skill = 1.0 if keeper_skill is None else float(keeper_skill)
         self.goalie = goalie
-        self.frames_per_trial = int(frames_per_trial)
-        self.untouched_time = int(untouched_time)
         self.params: ServerParams = ServerParams.with_overrides(server_params)
         self.has_keeper = task != "empty_goal"
         self._kickable_distance = self.params.kickable_area - KICKABLE_BUFFER
@@ -365,7 +363,7 @@ class HFOEnv(gym.Env):
         rules = _GOALIE_RULES[goalie] if task == "keeper" else "hfo2d_v0"
         #: HFO's referee, judging every player of the world.
         self.referee = Referee(
-            self.params, self.untouched_time, trial_time=self.frames_per_trial, rules=rules
+            self.params, int(untouched_time), trial_time=int(frames_per_trial), rules=rules
         )
         # Real HFO's timing (rules "rcssserver"): the server runs on between episodes, so one cycle is played after
         # each episode and the NPCs' client state carries over; the agent first observes a few cycles after the
@@ -617,6 +615,24 @@ class HFOEnv(gym.Env):
     # ------------------------------------------------------------------------------------------------------------
     # Internals
     # ------------------------------------------------------------------------------------------------------------
+    @property
+    def frames_per_trial(self) -> int:
+        """Steps after which an episode is truncated (the referee's trial time)."""
+        return self.referee.trial_time
+
+    @frames_per_trial.setter
+    def frames_per_trial(self, value: int) -> None:
+        self.referee.trial_time = int(value)
+
+    @property
+    def untouched_time(self) -> int:
+        """Cycles without a player near the ball after which the episode ends (the referee's)."""
+        return self.referee.untouched_time
+
+    @untouched_time.setter
+    def untouched_time(self, value: int) -> None:
+        self.referee.untouched_time = int(value)
+
     @property
     def status(self) -> str:
         """HFO status of the last step ("IN_GAME" after reset)."""

@@ -19,15 +19,17 @@ import struct
 
 import numpy as np
 
+from hfo2d.agent2d import common as _common
 from hfo2d.agent2d.actions import client_dash, client_turn_moment
 from hfo2d.agent2d.common import (
-    KICKABLE_AREA,
-    SELF_KICKABLE_DIST,
     Command,
     Effector,
     GoalieView,
     angle_of,
+    bind_server_params,
+    canonical_params,
     norm_deg,
+    register_binder,
 )
 from hfo2d.agent2d.decision import FreeKickState, decide
 from hfo2d.agent2d.intercept import build_intercept_table
@@ -158,7 +160,18 @@ if tuple(f.name for f in dataclasses.fields(GoalieView)) != _VIEW_FIELDS:
 # The kickable-opponent test (opponent-ball distance < 1.085 + 0.25 + 0.25 at most) is False for sure when the
 # attacker's unrounded position is farther than this from the ball: the fullstate's 6 significant digits move a
 # coordinate below 1000 m by at most 5e-3
-_KICK_OPP_SURE_FAR = KICKABLE_AREA + 2.0 * KICKABLE_OPP_ERROR_MAX + 0.1
+# (set by _bind, with the server parameters below)
+
+
+def _bind(sp: ServerParams) -> None:
+    global KICKABLE_AREA, SELF_KICKABLE_DIST, BALL_DECAY, _KICK_OPP_SURE_FAR
+    KICKABLE_AREA = _common.KICKABLE_AREA  # 1.085
+    SELF_KICKABLE_DIST = _common.SELF_KICKABLE_DIST  # 1.03
+    BALL_DECAY = _common.BALL_DECAY  # 0.94
+    _KICK_OPP_SURE_FAR = KICKABLE_AREA + 2.0 * KICKABLE_OPP_ERROR_MAX + 0.1
+
+
+register_binder(_bind)
 
 
 class _FullstateView(GoalieView):
@@ -310,6 +323,8 @@ class Agent2dGoalie:
     def __init__(self, params: ServerParams, rng: np.random.Generator, skill: float = 1.0) -> None:
         _check_skill(skill)
         self.params = params
+        # the object bind_server_params knows these params by (goalies of equal params share it)
+        self._server_params = canonical_params(params)
         self.rng = rng
         self.skill = float(skill)
         self.restart()
@@ -363,6 +378,8 @@ class Agent2dGoalie:
 
     def decide(self, world: World, keeper: PlayerState) -> Command | None:
         """The goalie's body command for the coming cycle, from the state after the last server step."""
+        if self._server_params is not _common.BOUND_PARAMS:  # another world's parameters: the goalie's own
+            bind_server_params(self._server_params)
         cycle = world.cycle
         # SelfObject::updateAfterSenseBody: the sense body after a catch command marks the catch time.
         if self._last_body_kind == "catch":
@@ -395,6 +412,8 @@ class Agent2dGoalie:
         """Send ``command`` through librcsc's conversions (:func:`client_turn_moment`, :func:`client_dash`)."""
         if command is None:
             return
+        if self._server_params is not _common.BOUND_PARAMS:
+            bind_server_params(self._server_params)
         view = self.last_view
         kind = command.kind
         if kind == "turn":
@@ -542,7 +561,7 @@ class Agent2dGoalie:
         angle_diff = abs(norm_deg(angle_of(view.true_wx, view.true_wy) - angle_of(*prev)))
         changed = (
             cur_speed > prev_speed + BALL_VEL_CHANGE_SPEED
-            or cur_speed < prev_speed * 0.94 * 0.5
+            or cur_speed < prev_speed * BALL_DECAY * 0.5
             or (prev_speed > 0.5 and angle_diff > BALL_VEL_CHANGE_ANGLE)
         )
         if changed and math.hypot(view.ox - view.bx, view.oy - view.by) < LAST_KICKER_DIST:
