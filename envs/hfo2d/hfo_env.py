@@ -1,4 +1,9 @@
-"""Gymnasium environment for RoboCup Half Field Offense (1v0 and 1v1 against a goalie) on the hfo2d simulator."""
+"""Gymnasium environment for RoboCup Half Field Offense (1v0 and 1v1 against a goalie) on the hfo2d simulator.
+
+The env plays the agent against a list of defense NPCs (:mod:`hfo2d.npc`; today at most the goalie), judged by one
+:class:`hfo2d.referee.Referee`; HFO's protocol (statuses, action bounds, episode rules, start state) lives in
+:mod:`hfo2d.protocol`, whose names this module re-exports.
+"""
 
 from __future__ import annotations
 
@@ -246,9 +251,10 @@ class HFOEnv(gym.Env):
             next as in real HFO (one wait cycle is played after each episode), except after ``reset(seed=...)``,
             which starts the goalie afresh so that a seed repeats; its first body angle faces its own goal or the
             field (drawn). As in real HFO, the goalie plays two cycles after the placement before the agent's first
-            observation, and rcssserver's HFO referee judges the episode (``physics.HFOReferee``: the untouched
-            limit is checked before the cycle's count; the trial ends on cycle ``frames_per_trial + 1``, counted
-            from the placement, i.e. after ``frames_per_trial - 1`` agent steps, as a truncation).
+            observation, and rcssserver's HFO referee judges the episode (:class:`hfo2d.referee.Referee`, rules
+            "rcssserver": the untouched limit is checked before the cycle's count; the trial ends on cycle
+            ``frames_per_trial + 1``, counted from the placement, i.e. after ``frames_per_trial - 1`` agent steps,
+            as a truncation). The other ids are judged as described above (rules "hfo2d_v0").
         frames_per_trial: steps after which an episode is truncated.
         untouched_time: cycles without a player near the ball after which the episode ends.
 
