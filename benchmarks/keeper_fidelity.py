@@ -3,13 +3,13 @@
 Run it inside a loopback-only network namespace (the script refuses otherwise) with a real HFO build
 (``--hfo-dir``, default ``$HFO_DIR``: the directory holding ``bin/HFO`` and ``hfo/hfo.py``)::
 
-    bash netns.sh python benchmarks/keeper_fidelity.py deterministic --episodes 5 --out det.json
-    bash netns.sh python benchmarks/keeper_fidelity.py noise --episodes 1000 --out noise.json
-    bash netns.sh python benchmarks/keeper_fidelity.py shots --reps 7 --out shots.json
+    tools/real_hfo/loopback.sh python benchmarks/keeper_fidelity.py deterministic --episodes 5 --out det.json
+    tools/real_hfo/loopback.sh python benchmarks/keeper_fidelity.py noise --episodes 1000 --out noise.json
+    tools/real_hfo/loopback.sh python benchmarks/keeper_fidelity.py shots --reps 7 --out shots.json
 
-(``netns.sh``: ``unshare --net --pid --fork --mount-proc`` with only ``lo`` up.) Every real session is one
-``bin/HFO --offense-agents 1 --defense-npcs 1 --headless --fullstate --frames-per-trial 500 --untouched-time 100``
-server, with this script's scripted striker (:mod:`hfo2d.strikers`) as the learning agent, each in its own process
+(``tools/real_hfo/loopback.sh``: ``unshare --net --pid --fork --mount-proc`` with only ``lo`` up.) Every real
+session is one ``bin/HFO --offense-agents 1 --defense-npcs 1 --headless --fullstate --frames-per-trial 500
+--untouched-time 100`` server, with this script's scripted striker (:mod:`hfo2d.strikers`) as the learning agent, each in its own process
 (HFO's binding allows one ``connectToServer`` per process). The striker reads HFO master's 68 features converted
 with :func:`hfo2d.features.paper_from_hfo`, and its flat action is sent as ``HFOEnv`` maps it (DASH power, dir;
 TURN dir; KICK power, dir).
@@ -153,13 +153,13 @@ def difference(real: dict[str, Any], sim: dict[str, Any]) -> dict[str, float]:
 # Real HFO sessions
 # ---------------------------------------------------------------------------------------------------------------
 def check_network_namespace() -> None:
-    """Refuse to start servers unless loopback is the only network interface (``netns.sh``)."""
+    """Refuse to start servers unless loopback is the only network interface (``tools/real_hfo/loopback.sh``)."""
     with open("/proc/net/dev", encoding="ascii") as handle:  # the reading process's own network namespace
         interfaces = sorted(line.split(":")[0].strip() for line in handle if ":" in line)
     if interfaces != ["lo"]:
         raise SystemExit(
             f"keeper_fidelity: network interfaces {interfaces}; run this inside a loopback-only network namespace "
-            "(e.g. `unshare --net --pid --fork --mount-proc`, the project's netns.sh)"
+            "(e.g. with the repository's runner: tools/real_hfo/loopback.sh python benchmarks/keeper_fidelity.py ...)"
         )
 
 

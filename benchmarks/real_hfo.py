@@ -16,10 +16,11 @@ hfo2d's side of the keeper task is every id of ``--hfo2d-keeper`` (default: ``HF
 goalie, and ``HFO/Keeper-v1``, its port of agent2d's, when registered). The first reset of every env uses
 ``--seed`` (for the real HFO that is bin/HFO's ``--seed``, which fixes its start positions).
 
-The real servers must run in a loopback-only network namespace; the script refuses to run outside one::
+The real servers must run in a loopback-only network namespace; the script refuses to run outside one. The
+repository's runner makes one (the build: ``tools/real_hfo/build.sh``, docs/real_hfo.md)::
 
-    bash shared/real_hfo/netns.sh python benchmarks/real_hfo.py --hfo-dir /path/to/HFO --episodes 100 \\
-        --model e6_keeper_v0 --json benchmarks/results/real_hfo.json
+    tools/real_hfo/loopback.sh python benchmarks/real_hfo.py --hfo-dir /path/to/HFO --episodes 100 \\
+        --model e6 --json benchmarks/results/real_hfo.json
 """
 
 from __future__ import annotations
@@ -223,8 +224,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if not real.in_loopback_namespace():
         print(
-            "error: run this inside a loopback-only network namespace: "
-            "bash shared/real_hfo/netns.sh python benchmarks/real_hfo.py ...",
+            "error: run this inside a loopback-only network namespace, e.g. with the repository's runner: "
+            "tools/real_hfo/loopback.sh python benchmarks/real_hfo.py ...",
             file=sys.stderr,
         )
         return 2

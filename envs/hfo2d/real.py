@@ -7,7 +7,8 @@ action spaces, its action mapping and its rewards are hfo2d's, so a model traine
 
 Nothing is imported from the HFO build until an env is made, and this module needs neither torch nor a build to be
 imported. A build is the directory holding ``bin/HFO`` and ``hfo/libhfo_c.so`` (``hfo_dir``, else the environment
-variable ``HFO_DIR``); the error raised without one says how to build it.
+variable ``HFO_DIR``); the error raised without one says how to build it (``tools/real_hfo/build.sh``, guide:
+docs/real_hfo.md).
 
 Process model (one HFO session per env, started lazily by the first ``reset``):
 
@@ -30,7 +31,22 @@ they also receive SIGTERM when the thread that made the env dies. A session that
 dead worker, no answer) ends the episode (truncated, ``info["status"] == "SERVER_DOWN"``) with a warning, and the
 next ``reset`` starts a new session.
 
-Run real servers in a network namespace with only loopback (HFO's players talk UDP on ``port`` .. ``port + 2``).
+Run real servers in a network namespace with only loopback (HFO's players talk UDP on ``port`` .. ``port + 2``):
+``tools/real_hfo/loopback.sh python ...``.
+
+Seeds (rcssserver 15.2.2's src/stadium.cpp and src/referee.cpp, HFO's bin/HFO). HFO's ``--seed`` becomes
+rcssserver's ``server::random_seed``, which seeds two generators:
+
+* the referee's: the start positions, from the first kick-off on;
+* the simulator's noise: seeded at server start.
+
+How many cycles the server runs before kick-off, while the players connect, depends on the wall clock. Each of
+them draws from the noise generator (Stadium::turnMovableObjects shuffles the objects) and lets the players turn.
+So the noise and the players' body and neck angles at kick-off differ from run to run (seen in rcssserver's game
+logs): two sessions of one seed repeat the start positions, not the episodes. Re-seeding the noise at kick-off (a
+one-line rcssserver change, tried) does not fix this, since the goalie's first command still differs; without noise
+(``noise=False``) it happens less often (3 of 6 measured pairs of sessions differed from their first observation).
+A real-HFO figure is therefore one sample: docs/real_hfo.md gives the spread and how to pool runs.
 
 Episode timing (HFO's src/HFO.cpp and rcssserver's HFORef, src/referee.cpp):
 
@@ -198,11 +214,10 @@ class HFOSessionError(RuntimeError):
 
 
 BUILD_HINT = (
-    "Build the real HFO (LARG/HFO with its rcssserver and librcsc forks, about 3 minutes on 2 cores) with the "
-    "project's shared build script: `bash build.sh DEST HFO_GIT RCSSSERVER_GIT LIBRCSC_GIT` "
-    "(shared/real_hfo/build.sh), where the three git directories are local clones of github.com/LARG/HFO, "
-    "github.com/mhauskn/rcssserver and github.com/mhauskn/librcsc; then pass hfo_dir=DEST/HFO or set "
-    f"{HFO_DIR_ENV}=DEST/HFO."
+    "Build the real HFO (LARG/HFO with its rcssserver and librcsc forks, about 7 CPU-minutes) with the "
+    "repository's script `tools/real_hfo/build.sh DEST` (it clones github.com/LARG/HFO, mhauskn/rcssserver and "
+    "mhauskn/librcsc; --help shows how to build from local clones), then pass hfo_dir=DEST/HFO or set "
+    f"{HFO_DIR_ENV}=DEST/HFO; run the servers under tools/real_hfo/loopback.sh. Guide: docs/real_hfo.md."
 )
 
 
@@ -229,7 +244,8 @@ def find_hfo_dir(hfo_dir: str | os.PathLike[str] | None = None) -> Path:
 
 
 def in_loopback_namespace() -> bool:
-    """True when this process's network namespace has no interface but loopback (as under shared/netns.sh)."""
+    """True when this process's network namespace has no interface but loopback (as under
+    tools/real_hfo/loopback.sh)."""
     try:
         names = [name for _, name in socket.if_nameindex()]
     except OSError:
@@ -709,9 +725,11 @@ class RealHFOEnv(gym.Env):
     Episodes: HFO's referee ends them (GOAL, CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME after
     ``untouched_time`` untouched cycles: ``terminated``; OUT_OF_TIME at ``frames_per_trial``: ``truncated``). HFO
     places the players itself; ``seed`` (or the seed given to ``reset``, which starts a new session when it differs
-    from the running one's) is HFO's ``--seed``, which fixes the sequence of start positions, not the noise nor the
-    NPCs. ``reset(options=...)`` is not supported. A ``reset`` in the middle of an episode plays NOOPs until HFO ends
-    it. See the module docstring for the timing of first and last observations.
+    from the running one's) is HFO's ``--seed`` (rcssserver's ``server::random_seed``). It fixes the sequence of
+    start positions, not the noise nor the state of the players at kick-off, so two runs of one seed are two
+    samples (see the module docstring).
+    ``reset(options=...)`` is not supported. A ``reset`` in the middle of an episode plays NOOPs until HFO ends it.
+    See the module docstring for the timing of first and last observations.
 
     Info: ``status`` (hfo2d's names, or ``"SERVER_DOWN"``), ``is_success``, ``kickable``, ``player``, ``ball`` and
     ``keeper`` (global state recovered from the features, :func:`state_from_hfo_features`), ``player_on_ball``

@@ -4,9 +4,9 @@ Always run (no HFO build needed): registration, the missing-build error, argumen
 line, spaces and action mapping against HFOEnv, the state recovered from HFO master's features, and the env's
 episode plumbing over a fake session that replays hfo2d's simulator as HFO would serve it.
 
-The real HFO (a build in ``$HFO_DIR`` or at DEFAULT_HFO_DIR) is run only inside a loopback-only network namespace
-(``bash shared/real_hfo/netns.sh pytest tests/test_real_hfo.py``) or with ``HFO_TESTS=1``; otherwise those tests
-skip.
+The real HFO (a build in ``$HFO_DIR``, made by ``tools/real_hfo/build.sh``) is run only inside a loopback-only
+network namespace (``HFO_DIR=... tools/real_hfo/loopback.sh python -m pytest tests/test_real_hfo.py``) or with
+``HFO_TESTS=1``; otherwise those tests skip.
 """
 
 from __future__ import annotations
@@ -30,8 +30,6 @@ from hfo2d.features import hfo_feature_list
 from hfo2d.heuristic import heuristic
 from hfo2d.hfo_env import DASH, KICK, TURN, HFOEnv
 
-#: Where this workplace builds the real HFO (shared/real_hfo/build.sh DEST=/work/real_hfo_build).
-DEFAULT_HFO_DIR = Path("/work/real_hfo_build/HFO")
 STATUS_CODES = {name: code for code, name in enumerate(real.STATUS_NAMES)}
 
 
@@ -775,19 +773,20 @@ def test_still_goalie_worker(stand_in_build: Path) -> None:
 # The real HFO (opt-in: inside a loopback-only network namespace, or HFO_TESTS=1)
 # ---------------------------------------------------------------------------------------------------------------
 def _real_build() -> Path | None:
-    for candidate in (os.environ.get(real.HFO_DIR_ENV), DEFAULT_HFO_DIR):
-        if candidate:
-            try:
-                return real.find_hfo_dir(candidate)
-            except FileNotFoundError:
-                continue
+    candidate = os.environ.get(real.HFO_DIR_ENV)
+    if candidate:
+        try:
+            return real.find_hfo_dir(candidate)
+        except FileNotFoundError:
+            return None
     return None
 
 
 REAL_BUILD = _real_build()
 needs_real_hfo = pytest.mark.skipif(
     REAL_BUILD is None or not (os.environ.get("HFO_TESTS") == "1" or real.in_loopback_namespace()),
-    reason="needs an HFO build ($HFO_DIR) and a loopback-only network namespace (netns.sh) or HFO_TESTS=1",
+    reason="needs an HFO build ($HFO_DIR) and a loopback-only network namespace (tools/real_hfo/loopback.sh) or "
+    "HFO_TESTS=1",
 )
 
 
