@@ -488,7 +488,8 @@ class HFOEnv(gym.Env):
         defense = self.defense_npcs
         # the NPCs decide on the state after the last step, before this cycle's commands arrive (a turn of the
         # agent changes its body angle at once in World)
-        decisions = [npc.decide(world, player) for player, npc in defense] if defense else ()
+        if defense:
+            decisions = [npc.decide(world, player) for player, npc in defense]
 
         success = True
         kick_power = 0.0
@@ -500,8 +501,9 @@ class HFOEnv(gym.Env):
             success = bool(world.client_kick(agent, power, direction))
             if success:
                 kick_power = min(max(power, POWER_MIN), POWER_MAX)
-        for (player, npc), decision in zip(defense, decisions, strict=True):
-            npc.apply(world, player, decision)
+        if defense:
+            for (player, npc), decision in zip(defense, decisions, strict=True):
+                npc.apply(world, player, decision)
 
         world.step()
         self._steps += 1

@@ -218,16 +218,13 @@ class ScriptedKeeper:
         command of the cycle, as ``HFO/Keeper-v0`` was measured."""
         return None
 
-    def apply(self, world: World, keeper: PlayerState, decision: None = None) -> None:
-        """Decide on the world as it is and issue at most one server-side command (dash or turn) for ``keeper``."""
-        self._command(world, keeper)
-
     def act(self, world: World, keeper: PlayerState) -> None:
         """Issue at most one server-side command (dash or turn) for ``keeper`` for the coming cycle."""
-        self._command(world, keeper)
+        self.apply(world, keeper)
 
     # ---------------------------------------------------------------------------------------------------------
-    def _command(self, world: World, keeper: PlayerState) -> None:
+    def apply(self, world: World, keeper: PlayerState, decision: None = None) -> None:
+        """Decide on the world as it is and issue at most one server-side command (dash or turn) for ``keeper``."""
         ball = world.ball
         if self.reaction_delay > 0:
             self._ball_memory.append((ball.x, ball.y, ball.vx, ball.vy))

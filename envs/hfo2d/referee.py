@@ -47,6 +47,7 @@ __all__ = ["REFEREE_RULES", "HFOReferee", "Referee", "crosses_right_goal_line", 
 REFEREE_RULES: tuple[str, ...] = ("rcssserver", "hfo2d_v0")
 
 _DEFAULT_PARAMS = ServerParams()
+_hypot = math.hypot
 
 
 def crosses_right_goal_line(
@@ -249,8 +250,11 @@ class Referee:
         # Counters first: they record who is on the ball this cycle (offense before defense, as HFORef iterates).
         capture = self._capture_distance
         offense_on_ball = defense_on_ball = goalie_on_ball = False
-        for p in world.players if self.players is None else self.players:
-            if math.hypot(p.x - bx, p.y - by) <= capture:
+        players = self.players
+        if players is None:
+            players = world.players
+        for p in players:
+            if _hypot(p.x - bx, p.y - by) <= capture:
                 if p.side == DEFENSE_SIDE:
                     defense_on_ball = True
                     if p.unum == KEEPER_UNUM:
