@@ -488,8 +488,8 @@ class HFOEnv(gym.Env):
         defense = self.defense_npcs
         # the NPCs decide on the state after the last step, before this cycle's commands arrive (a turn of the
         # agent changes its body angle at once in World)
-        if defense:
-            decisions = [npc.decide(world, player) for player, npc in defense]
+        for player, npc in defense:
+            npc.decide(world, player)
 
         success = True
         kick_power = 0.0
@@ -501,9 +501,8 @@ class HFOEnv(gym.Env):
             success = bool(world.client_kick(agent, power, direction))
             if success:
                 kick_power = min(max(power, POWER_MIN), POWER_MAX)
-        if defense:
-            for (player, npc), decision in zip(defense, decisions, strict=True):
-                npc.apply(world, player, decision)
+        for player, npc in defense:
+            npc.apply(world, player)  # what it decided above
 
         world.step()
         self._steps += 1

@@ -5,7 +5,7 @@ An env holds a list of ``(player, npc)`` pairs and plays every NPC the same way,
 1. at an episode's start, :meth:`DefenseNPC.start_body_deg` gives the body angle it is placed with (unless the
    server carries the last episode's over), then :meth:`DefenseNPC.reset`;
 2. every cycle, :meth:`DefenseNPC.decide` on the state after the last step, before any command of the cycle
-   arrives; then the agents' commands; then :meth:`DefenseNPC.apply` sends the NPC's;
+   arrives (the NPC keeps its decision); then the agents' commands; then :meth:`DefenseNPC.apply` sends the NPC's;
 3. :meth:`DefenseNPC.act` (decide, then apply) in the cycles where no agent plays (real HFO's wait cycles).
 
 Three NPCs implement it today: HFO's own goalie (:class:`hfo2d.agent2d.goalie.Agent2dGoalie`, ``HFO/Keeper-v1``),
@@ -56,10 +56,11 @@ class DefenseNPC(Protocol):
         """The body angle (degrees) it starts an episode with when the server carries none over."""
 
     def decide(self, world: World, player: PlayerState) -> Any:
-        """Its decision for the coming cycle, on the state after the last step."""
+        """Decide the coming cycle on the state after the last step; the NPC keeps the decision for :meth:`apply`
+        (and returns it)."""
 
-    def apply(self, world: World, player: PlayerState, decision: Any) -> None:
-        """Send ``decision`` (what :meth:`decide` returned this cycle) to the world."""
+    def apply(self, world: World, player: PlayerState) -> None:
+        """Send the command :meth:`decide` kept this cycle to the world."""
 
     def act(self, world: World, player: PlayerState) -> None:
         """:meth:`decide`, then :meth:`apply`."""
@@ -93,7 +94,7 @@ class StillGoalie:
         """No decision."""
         return None
 
-    def apply(self, world: World, player: PlayerState, decision: Any) -> None:
+    def apply(self, world: World, player: PlayerState, decision: None = None) -> None:
         """No command."""
 
     def act(self, world: World, player: PlayerState) -> None:

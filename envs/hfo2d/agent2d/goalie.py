@@ -299,6 +299,9 @@ class _FullstateView(GoalieView):
         self._obody = value
 
 
+_DECIDED = object()  # Agent2dGoalie.apply's default command: the last decision's
+
+
 def _check_skill(skill: object) -> None:
     if isinstance(skill, bool) or not isinstance(skill, (int, float, np.number)) or not 0.0 <= skill <= 1.0:
         raise ValueError(f"keeper skill must be a number in [0, 1], got {skill!r}")
@@ -408,8 +411,11 @@ class Agent2dGoalie:
         self.last_command = command
         return command
 
-    def apply(self, world: World, keeper: PlayerState, command: Command | None) -> None:
-        """Send ``command`` through librcsc's conversions (:func:`client_turn_moment`, :func:`client_dash`)."""
+    def apply(self, world: World, keeper: PlayerState, command: Command | None | object = _DECIDED) -> None:
+        """Send ``command`` (by default the last :meth:`decide`'s) through librcsc's conversions
+        (:func:`client_turn_moment`, :func:`client_dash`)."""
+        if command is _DECIDED:
+            command = self.last_command
         if command is None:
             return
         if self._server_params is not _common.BOUND_PARAMS:
