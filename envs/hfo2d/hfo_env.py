@@ -434,16 +434,16 @@ class HFOEnv(gym.Env):
         world.place_ball(*ball)
         player = placements.get("player", (agent_x, agent_y, agent_body, 0.0, 0.0))
         world.place_player(agent, *player)
-        for player, npc in defense:  # (the goalie alone, today)
+        for npc_player, npc in defense:  # (the goalie alone, today)
             # real HFO never resets a body angle (HFORef::resetField): it carries over, or the NPC's own start
-            body = player.body_deg if carry_over else npc.start_body_deg(rng)
-            world.place_player(player, *placements.get("keeper", (*KEEPER_START, body)))
+            body = npc_player.body_deg if carry_over else npc.start_body_deg(rng)
+            world.place_player(npc_player, *placements.get("keeper", (*KEEPER_START, body)))
         world.recover_players()
         # collisions of the last episode's final cycle are not part of the new one
         for placed in world.players:
             placed.collided_ball = placed.collided_player = placed.collided_post = False
         world.ball.collided_post = False
-        for _, npc in defense:
+        for _, npc in defense:  # (keeper_skill is the goalie's: the only NPC today)
             if npc.skill != self.keeper_skill:  # set_keeper_skill() was called
                 npc.set_skill(self.keeper_skill)
             npc.reset()
