@@ -8,7 +8,7 @@ For each task (1v0 ``empty_goal``, 1v1 ``keeper``) it measures, on hfo2d's envs 
   ratio hfo2d / real;
 * ``rates``: the goal rate with its Wilson 95 % interval, the end-status counts and the mean steps to a goal, over
   ``--episodes`` episodes, of the scripted striker :func:`hfo2d.heuristic.heuristic` and of every ``--model`` (a
-  SkillDDPG ``.zip`` or rl-zoo3 run folder, played greedily by :func:`sb3_hfo.evaluate.evaluate` with its saved
+  SkillDDPG ``.zip`` or rl-zoo3 run folder, played greedily by :func:`sb3_hfo.evaluation.evaluate` with its saved
   acting options, on the task its observation size names: 58 features empty goal, 66 keeper), and per pair the
   difference hfo2d - real (in points).
 
@@ -56,7 +56,7 @@ HEURISTIC = "hfo2d.heuristic"
 
 
 def wilson(goals: int, episodes: int) -> tuple[float, float]:
-    from sb3_hfo.cli.evaluate import wilson_interval  # no torch at import
+    from sb3_hfo.evaluation import wilson_interval  # no torch at import
 
     return wilson_interval(goals, episodes)
 
@@ -136,7 +136,7 @@ def model_rates(
     model: str, env_id: str, env_kwargs: dict[str, Any], episodes: int, seed: int
 ) -> dict[str, Any]:
     """A SkillDDPG model's greedy evaluation (sb3_hfo.evaluate) over ``episodes`` episodes of ``env_id``."""
-    from sb3_hfo.cli.evaluate import evaluate
+    from sb3_hfo.evaluation import evaluate
 
     start = time.perf_counter()
     result = evaluate(model, env_id=env_id, episodes=episodes, seed=seed, env_kwargs=env_kwargs)
@@ -149,7 +149,7 @@ def model_rates(
 
 def model_task(model: str) -> str:
     """The task a model plays, from its observation size (58: empty goal, 66: keeper)."""
-    from sb3_hfo.cli.evaluate import resolve_model
+    from sb3_hfo.evaluation import resolve_model
     from sb3_hfo.models import load_model
 
     path = resolve_model(model).path

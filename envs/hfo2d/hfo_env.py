@@ -567,7 +567,7 @@ class HFOEnv(gym.Env):
     def set_keeper_skill(self, skill: float) -> None:
         """Change the scripted goalie's quality (task "keeper" only), in [0, 1]; effective from the next reset.
 
-        For training curricula (``sb3_hfo.zoo.KeeperSkillCurriculumCallback`` calls it through the VecEnv's
+        For training curricula (``sb3_hfo.callbacks.KeeperSkillCurriculumCallback`` calls it through the VecEnv's
         ``env_method``); an episode in progress keeps the keeper it started with.
         """
         if self.task != "keeper":
@@ -618,6 +618,19 @@ class HFOEnv(gym.Env):
         if self._renderer is not None:
             self._renderer.close()
             self._renderer = None
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The env's state for pickle (resumable training checkpoints it mid-episode): everything but the
+        observation packer (a ``struct.Struct``, which does not pickle; rebuilt from the observation space) and the
+        render window (a new one opens at the next ``render()``)."""
+        state = dict(self.__dict__)
+        del state["_observation_packer"]
+        state["_renderer"] = None
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        self._observation_packer = struct.Struct(f"={self.observation_space.shape[0]}f")
 
     # ------------------------------------------------------------------------------------------------------------
     # Internals

@@ -19,7 +19,8 @@ from typing import Any
 
 import torch as th
 
-from sb3_hfo.cli.evaluate import episodes_parser, load_for_evaluation, model_n_skills, run_episodes, summarize
+from sb3_hfo.cli.evaluate import episodes_parser
+from sb3_hfo.evaluation import load_for_evaluation, model_n_skills, run_episodes, summarize
 from sb3_hfo.skill_ddpg.acting import CriticChoice, format_acting
 from sb3_hfo.skill_ddpg.policies import HFO_KICK_ACTION
 

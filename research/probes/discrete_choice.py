@@ -24,13 +24,8 @@ from typing import Any
 import numpy as np
 import torch as th
 
-from sb3_hfo.cli.evaluate import (
-    episodes_parser,
-    load_for_evaluation,
-    model_n_skills,
-    run_episodes,
-    wilson_interval,
-)
+from sb3_hfo.cli.evaluate import episodes_parser
+from sb3_hfo.evaluation import load_for_evaluation, model_n_skills, run_episodes, wilson_interval
 from sb3_hfo.skill_ddpg.acting import ActingStrategy, CriticChoice
 
 ACTION_NAMES = ("DASH", "TURN", "KICK")

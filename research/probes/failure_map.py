@@ -22,11 +22,10 @@ from pathlib import Path
 from typing import Any
 
 from hfo2d.physics import GOAL_HALF_WIDTH
-from sb3_hfo.cli.evaluate import (
+from sb3_hfo.cli.evaluate import add_acting_argument, episodes_parser
+from sb3_hfo.evaluation import (
     GOAL_CENTRE,
     EpisodeRecord,
-    add_acting_argument,
-    episodes_parser,
     load_for_evaluation,
     model_n_skills,
     run_episodes,

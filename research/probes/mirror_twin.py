@@ -24,9 +24,9 @@ from typing import Any
 import numpy as np
 
 from hfo2d.symmetry import start_offset_is_drawn, start_y_is_clamped
-from sb3_hfo.cli.evaluate import (
+from sb3_hfo.cli.evaluate import episodes_parser
+from sb3_hfo.evaluation import (
     EpisodeRecord,
-    episodes_parser,
     load_for_evaluation,
     model_n_skills,
     run_episodes,

@@ -20,9 +20,9 @@ from collections.abc import Sequence
 from pathlib import Path
 
 from hfo2d.reward import REWARD_NAMES
-from sb3_hfo.cli.evaluate import (
+from sb3_hfo.cli.evaluate import episodes_parser
+from sb3_hfo.evaluation import (
     EpisodeRecord,
-    episodes_parser,
     load_for_evaluation,
     model_n_skills,
     run_episodes,

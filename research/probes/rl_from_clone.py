@@ -26,7 +26,7 @@ from stable_baselines3.common.noise import NormalActionNoise
 
 import hfo2d  # noqa: F401  (registers the envs)
 from sb3_hfo import SkillDDPG
-from sb3_hfo.cli.zoo import HFOEpisodeStatsCallback
+from sb3_hfo.callbacks import HFOEpisodeStatsCallback
 from sb3_hfo.models import load_model
 
 

@@ -22,7 +22,8 @@ import torch as th
 from hfo2d.action_layout import HFO_FLAT_ACTION_LAYOUT
 from hfo2d.features import BALL_ANGLE_COS, BALL_ANGLE_SIN
 from hfo2d.hfo_env import TURN
-from sb3_hfo.cli.evaluate import episodes_parser, load_for_evaluation
+from sb3_hfo.cli.evaluate import episodes_parser
+from sb3_hfo.evaluation import load_for_evaluation
 from sb3_hfo.skill_ddpg.acting import CriticChoice
 
 #: The turn direction's index in HFO's flat action ([-1, 1] for [-180, 180] degrees).

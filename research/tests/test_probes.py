@@ -83,7 +83,7 @@ def test_start_class_bands_the_agents_lead_over_the_ball() -> None:
         from failure_map import start_class
     finally:
         sys.path.pop(0)
-    from sb3_hfo.cli.evaluate import EpisodeRecord
+    from sb3_hfo.evaluation import EpisodeRecord
 
     def record(agent_x: float) -> EpisodeRecord:
         return EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1], None, (10.0, 0.0), (agent_x, 3.0))
@@ -122,7 +122,7 @@ def test_mirror_start_class_follows_hfos_offsets() -> None:
         from mirror_twin import START_CLASSES, mirror_start_class
     finally:
         sys.path.pop(0)
-    from sb3_hfo.cli.evaluate import EpisodeRecord
+    from sb3_hfo.evaluation import EpisodeRecord
 
     def record(ball_y: float, agent_y: float) -> EpisodeRecord:
         return EpisodeRecord("GOAL", 1, 0.0, 0, [], 0, [1], None, (5.0, ball_y), (10.0, agent_y))
@@ -139,7 +139,7 @@ def test_end_class_sorts_goals_by_goal_half_and_losses_by_distance() -> None:
         from failure_map import end_class, end_class_labels, table_rows
     finally:
         sys.path.pop(0)
-    from sb3_hfo.cli.evaluate import EpisodeRecord
+    from sb3_hfo.evaluation import EpisodeRecord
 
     def record(status: str, x: float, y: float) -> EpisodeRecord:
         return EpisodeRecord(status, 1, 0.0, 0, [], 0, [1], end_ball=(x, y))
@@ -277,7 +277,7 @@ def test_critic_parameter_search_candidates_move_one_own_parameter_at_a_time() -
         sys.path.pop(0)
     import torch as th
 
-    from sb3_hfo.cli.evaluate import load_for_evaluation
+    from sb3_hfo.evaluation import load_for_evaluation
 
     model, env, _, _, _ = load_for_evaluation(committed("e3"))
     env.close()

@@ -20,6 +20,17 @@ from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
 
+from sb3_hfo.cli.errors import (
+    UserError,
+    check_installed,
+    check_playback_args,
+    check_render_extra,
+    fail,
+    one_line_argparse_errors,
+)
+from sb3_hfo.cli.models import playback_argv
+from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
+
 PROG = "python -m sb3_hfo.enjoy"
 #: SDL video drivers that show nothing: pygame falls back to "offscreen" without a display, "dummy" is asked for.
 HEADLESS_VIDEO_DRIVERS = ("offscreen", "dummy")
@@ -30,7 +41,7 @@ def display_driver() -> str:
 
     :raises UserError: when no video driver starts.
     """
-    from sb3_hfo.cli_errors import UserError, one_line
+    from sb3_hfo.errors import UserError, one_line
 
     os.environ.setdefault("SDL_NO_SIGNAL_HANDLERS", "1")  # as hfo2d's renderer: SIGTERM stays the default
     import pygame
@@ -82,16 +93,6 @@ def main(argv: Sequence[str] | None = None) -> None:
     User errors (no or unknown ``--env``, no ``-f``, no model there or a damaged one, bad ``--env-kwargs``, a
     negative ``--seed``, a bad option) exit with one line on stderr and code 2.
     """
-    from sb3_hfo.cli.errors import (
-        UserError,
-        check_installed,
-        check_playback_args,
-        check_render_extra,
-        fail,
-        one_line_argparse_errors,
-    )
-    from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
-
     args = list(sys.argv[1:] if argv is None else argv)
     try:
         # rl_zoo3.enjoy imports its Hugging Face download helper, which needs `requests`.
@@ -99,8 +100,6 @@ def main(argv: Sequence[str] | None = None) -> None:
     except UserError as error:
         fail(error)
     import rl_zoo3.enjoy
-
-    from sb3_hfo.models import playback_argv
 
     with tempfile.TemporaryDirectory(prefix="sb3_hfo_enjoy_") as run_root:
         if not any(arg in ("-h", "--help") for arg in args):

@@ -19,18 +19,25 @@ import inspect
 import io
 import os
 import sys
-import zipfile
-import zlib
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any, NoReturn
 
+import gymnasium as gym
+
+import hfo2d
+from sb3_hfo.cli.zoo import ALGO_NAME, algo_classes
+
+# The library's errors and checks, also offered here (`as` marks them re-exported) for the command-line tools.
+from sb3_hfo.errors import UserError as UserError
+from sb3_hfo.errors import module_missing as module_missing
+from sb3_hfo.errors import one_line as one_line
+from sb3_hfo.evaluation import hfo_env_ids
+from sb3_hfo.models import check_model_zip as check_model_zip
+from sb3_hfo.skill_ddpg.legacy import LEGACY_POLICY_OPTIONS
+
 #: Exit status of a user error (argparse's).
 USAGE_EXIT_CODE = 2
-
-
-class UserError(Exception):
-    """A mistake in what the user asked for; the message names it in one line."""
 
 
 class UsageExit(SystemExit):
@@ -42,11 +49,6 @@ class UsageExit(SystemExit):
 
     def __str__(self) -> str:
         return self.message
-
-
-def one_line(message: object) -> str:
-    """``message`` with its whitespace (newlines included) collapsed to single spaces."""
-    return " ".join(str(message).split())
 
 
 def fail(message: object) -> NoReturn:
@@ -93,31 +95,9 @@ def non_negative_int(text: str) -> int:
 # Models, env kwargs
 
 
-def check_model_zip(path: str | Path) -> None:
-    """UserError unless ``path`` is a readable zip that holds SB3's ``data`` entry (a saved model)."""
-    path = Path(path)
-    if not path.is_file():
-        raise UserError(f"model file not found: {path}")
-    if not zipfile.is_zipfile(path):
-        raise UserError(f"{path} is not a model .zip: not a zip archive, or cut short")
-    try:
-        with zipfile.ZipFile(path) as archive:
-            if "data" not in archive.namelist():
-                raise UserError(f"{path} is not a saved SB3 model: the zip has no 'data' entry")
-            damaged = archive.testzip()
-    except (zipfile.BadZipFile, EOFError, OSError, zlib.error) as error:
-        raise UserError(f"{path} is a damaged zip ({one_line(error)}): truncated or corrupted?") from None
-    if damaged is not None:
-        raise UserError(f"{path} is a damaged zip: its entry {damaged!r} fails the CRC check")
-
-
 def check_env_kwargs(env_id: str, env_kwargs: dict[str, Any], what: str = "--env-kwargs") -> None:
     """UserError when an hfo2d env ``env_id`` cannot be made with ``env_kwargs`` (other ids are not checked:
     making a real-HFO env would start a server)."""
-    import gymnasium as gym
-
-    import hfo2d
-
     if env_id not in hfo2d.ENV_IDS:
         return
     try:
@@ -176,16 +156,12 @@ def option_values(args: Sequence[str], *names: str) -> list[str] | None:
 
 
 def _known_ids() -> str:
-    from sb3_hfo.cli.zoo import hfo_env_ids
-
     return ", ".join(hfo_env_ids())
 
 
 def check_env_option(args: Sequence[str], example: str) -> str:
     """The ``--env`` of an rl-zoo3 command line: UserError when it is missing (rl-zoo3 would fall back to
     CartPole-v1) or not registered."""
-    import gymnasium as gym
-
     env_id = option_value(args, "--env")
     if env_id is None:
         raise UserError(
@@ -318,9 +294,6 @@ def check_hyperparameter_keys(hyperparams: dict[str, Any], where: str, algo: str
     """UserError naming a key of ``hyperparams`` (a config section or ``--hyperparams``) that neither rl-zoo3 nor
     the algorithm's constructor takes, with the closest valid key; the same for the keys of a ``policy_kwargs``
     dict when the policy is the algorithm's own. Algorithms other than sb3_hfo's are not checked."""
-    from sb3_hfo.skill_ddpg.legacy import LEGACY_POLICY_OPTIONS
-    from sb3_hfo.zoo import ALGO_NAME, algo_classes
-
     algo_class = algo_classes().get(algo or ALGO_NAME)
     if algo_class is None:
         return
@@ -348,14 +321,6 @@ EXTRA_MODULES: dict[str, tuple[str, ...]] = {
     "zoo": ("rl_zoo3", "optuna", "pandas", "matplotlib", "requests"),
     "render": ("pygame", "moviepy"),
 }
-
-
-def module_missing(module: str) -> bool:
-    """Whether the top-level module ``module`` cannot be imported (looked up without importing it)."""
-    try:
-        return importlib.util.find_spec(module) is None
-    except (ImportError, ValueError):  # a broken install, or sys.modules[module] set to a non-module
-        return True
 
 
 def check_installed(extra: str, modules: Sequence[str], needed_by: str) -> None:

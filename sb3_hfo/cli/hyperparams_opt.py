@@ -4,11 +4,11 @@ rl-zoo3 calls ``HYPERPARAMS_SAMPLER[algo](trial, n_actions, n_envs, additional_a
 the returned dict straight to the algorithm's constructor (on top of the config file's values); with
 ``--trial-id`` it rebuilds the hyperparameters of a stored trial through ``HYPERPARAMS_CONVERTER[algo](params)``,
 where ``params`` are the raw Optuna values. So the sampler suggests raw values and the converter maps them onto
-constructor arguments. :func:`sb3_hfo.zoo.register_with_rl_zoo` installs them under ``"skill_ddpg"`` and, with
+constructor arguments. :func:`sb3_hfo.cli.zoo.register_with_rl_zoo` installs them under ``"skill_ddpg"`` and, with
 :func:`sample_skill_pdqn_params`, under ``"skill_pdqn"``.
 
 The experiment-defining policy keys (``n_skills``, ``skill_router``, ``inverting_gradients``) come from the
-config file and are never sampled; only ``net_arch`` is (see ``sb3_hfo.zoo.merge_policy_kwargs``).
+config file and are never sampled; only ``net_arch`` is (see ``sb3_hfo.cli.zoo.merge_policy_kwargs``).
 """
 
 from __future__ import annotations
@@ -18,6 +18,8 @@ from typing import Any
 import numpy as np
 import optuna
 from stable_baselines3.common.noise import NormalActionNoise, OrnsteinUhlenbeckActionNoise
+
+from sb3_hfo.common.schedules import parse_schedule
 
 #: Hidden layer sizes an Optuna trial may choose; "paper" is the seed paper's 400-300-200 (Method section).
 NET_ARCHS: dict[str, list[int]] = {
@@ -29,7 +31,7 @@ NET_ARCHS: dict[str, list[int]] = {
 
 #: The action noises an Optuna trial may choose ("none": epsilon-greedy exploration only, as in the paper).
 NOISE_TYPES: tuple[str, ...] = ("none", "normal", "ornstein-uhlenbeck")
-#: Key of rl-zoo3's ``additional_args`` under which :class:`sb3_hfo.zoo.HFOExperimentManager` says that the
+#: Key of rl-zoo3's ``additional_args`` under which :class:`sb3_hfo.cli.zoo.HFOExperimentManager` says that the
 #: config's callbacks need an action noise (``ActionNoiseDecayCallback`` rejects a model without one, so a trial
 #: that drew "none" would be pruned before its first step).
 NOISE_REQUIRED_ARG = "action_noise_required"
@@ -79,8 +81,6 @@ def sample_skill_ddpg_params(
         ``additional_args[NOISE_REQUIRED_ARG]`` true, ``noise_type`` is drawn without "none".
     :return: constructor keyword arguments; learning rates as floats or schedules, action noise as an object.
     """
-    from sb3_hfo.cli.zoo import parse_schedule
-
     noise_required = bool(additional_args.get(NOISE_REQUIRED_ARG, False))
     noise_types = [kind for kind in NOISE_TYPES if not (noise_required and kind == "none")]
     sampled = {

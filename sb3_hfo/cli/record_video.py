@@ -23,6 +23,20 @@ from collections.abc import Sequence
 from pathlib import Path
 
 import numpy as np
+import torch
+
+from sb3_hfo.cli.errors import (
+    UserError,
+    check_installed,
+    check_output_folder,
+    check_playback_args,
+    check_render_extra,
+    fail,
+    one_line_argparse_errors,
+    option_value,
+)
+from sb3_hfo.cli.models import playback_argv
+from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
 
 
 def even_frame(frame: np.ndarray) -> np.ndarray:
@@ -75,27 +89,11 @@ def main(argv: Sequence[str] | None = None) -> None:
 
     User errors (as for :mod:`sb3_hfo.enjoy`) exit with one line on stderr and code 2.
     """
-    import torch
-
-    from sb3_hfo.cli.errors import (
-        UserError,
-        check_installed,
-        check_output_folder,
-        check_playback_args,
-        check_render_extra,
-        fail,
-        one_line_argparse_errors,
-        option_value,
-    )
-    from sb3_hfo.cli.zoo import ALGO_NAME, run_rl_zoo_entry_point
-
     args = list(sys.argv[1:] if argv is None else argv)
     try:
         check_installed("zoo", ("rl_zoo3", "requests"), PROG)
     except UserError as error:
         fail(error)
-
-    from sb3_hfo.models import playback_argv
 
     os.environ.setdefault("SDL_VIDEODRIVER", "dummy")
     # rl-zoo3's record_video has no --num-threads; small networks run fastest on one torch thread.

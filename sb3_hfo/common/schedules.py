@@ -16,6 +16,9 @@ import zipfile
 from pathlib import Path
 from typing import IO, Any
 
+#: Hyperparameters holding a learning rate that rl-zoo3 style strings (``"lin_1e-3"``) or floats may describe.
+SCHEDULE_KEYS: tuple[str, ...] = ("learning_rate", "learning_rate_actor", "learning_rate_critic")
+
 
 class LinearToZero:
     """``progress_remaining * initial_value``: linear from ``initial_value`` at the start of training to 0 at its end
@@ -59,3 +62,23 @@ def rl_zoo3_free_custom_objects(model: str | Path | IO[bytes]) -> dict[str, Any]
             if b"rl_zoo3" in raw:
                 custom_objects[key] = _RlZoo3FreeUnpickler(io.BytesIO(raw)).load()
     return custom_objects
+
+
+def parse_schedule(value: Any) -> Any:
+    """Convert an rl-zoo3 style learning-rate value into what SB3 algorithms accept.
+
+    ``"lin_<x>"`` -> linear decay from ``x`` (start of training) to 0 (end of ``n_timesteps``), as rl-zoo3 does
+    for ``learning_rate``; a number or ``"<x>"`` -> constant ``x`` (as a float); a callable is returned unchanged.
+    """
+    if callable(value):
+        return value
+    if isinstance(value, str):
+        kind, _, number = value.partition("_")
+        if kind == "lin" and number:
+            return LinearToZero(float(number))
+        if not number:
+            return float(kind)
+        raise ValueError(f"unknown schedule {value!r}: expected 'lin_<value>' or a number")
+    if isinstance(value, (int, float)):
+        return float(value)
+    raise ValueError(f"invalid learning rate {value!r}")

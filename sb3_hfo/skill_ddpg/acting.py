@@ -22,7 +22,7 @@ command lines take, ``evaluate --acting critic,kick_mask,mirror:0.1``):
   policies, for agents that score by one route only. With a margin ``M > 0`` the side played is kept through an
   episode, in ``predict``'s ``state``, and switched only when the other is better by more than ``M``, so that the
   choice does not alternate between two routes. HFO's start distribution is not mirror-symmetric, and on the empty
-  goal the choice can cost points (research/RESULTS.md).
+  goal the choice can cost points (docs/findings.md, "The mirror choice").
 
 The empty tuple (text ``""`` or ``"actor"``) is the paper's policy: the actor's greedy action as it is.
 """

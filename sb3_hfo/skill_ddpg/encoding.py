@@ -8,7 +8,7 @@ update (:mod:`sb3_hfo.skill_ddpg.fast_update`), its chain rule.
 Why: on the [-1, 1] action scale a 5-degree change of the kick direction moves the critic's input by 0.028, too
 little for it to tell a shot past a keeper from one at him; Fourier features of the directions (Tancik et al. 2020)
 let the network fit such sharp functions, and "kick minus keeper bearing" is otherwise a difference of two inputs
-the network has to form itself. The measurements are in research/RESULTS.md.
+the network has to form itself. The measurements are in docs/findings.md ("Fourier features of the directions").
 """
 
 from __future__ import annotations

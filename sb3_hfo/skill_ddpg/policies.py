@@ -33,7 +33,7 @@ the actor's output layer is linear (no ``tanh``); the algorithm rescales dQ/da t
 acting clips actions to [-1, 1]. Figure 2's 1024-512-256-128 network is ``net_arch=[1024, 512, 256, 128]``.
 
 Options beyond the paper, each off by default; each says why in one sentence, and the measurements are in
-research/RESULTS.md (the results page, docs/results.md, gives the committed models' figures):
+docs/findings.md (docs/results.md gives the committed models' figures):
 
 * ``mask_unused_parameters``: the critic sees the action with every other discrete action's parameters set to 0
   (the middle of the [-1, 1] scale), from the replay buffer and from the actor alike, as Bester et al. 2019's

@@ -107,7 +107,7 @@ REMOVED_POLICY_OPTIONS: dict[str, object] = {"n_critics": 1}
 _STAT_CRITIC_LOSS, _STAT_ACTOR_LOSS, _STAT_MAX_Q, _STAT_MEAN_Q = 0, 1, 2, 3
 _N_GLOBAL_STATS = 4
 #: torch threads ``SkillDDPG.learn`` trains with unless the user has chosen a count: what ``python -m
-#: sb3_hfo.train`` passes to rl-zoo3 (``--num-threads 1``, :func:`sb3_hfo.zoo.default_algo_argv`).
+#: sb3_hfo.train`` passes to rl-zoo3 (``--num-threads 1``, :func:`sb3_hfo.cli.zoo.default_algo_argv`).
 TRAINING_THREADS = 1
 #: Environment variables from which torch takes its thread count at start-up; one that is set is the user's choice.
 TORCH_THREAD_VARIABLES = ("OMP_NUM_THREADS", "MKL_NUM_THREADS")

@@ -113,12 +113,7 @@ def test_evaluate_bad_env_kwargs(
     with zipfile.ZipFile(model, "w") as archive:
         archive.writestr("data", "{}")
 
-    class Loaded:
-        @staticmethod
-        def load(*args: Any, **kwargs: Any) -> Any:
-            return object()
-
-    monkeypatch.setattr("sb3_hfo.cli.zoo.skill_ddpg_class", lambda: Loaded)
+    monkeypatch.setattr("sb3_hfo.evaluation.load_model", lambda *args, **kwargs: object())
     for kwargs, expected in (
         ("noise:'no'", "noise must be True or False, got 'no'"),
         ("no_such_kwarg:1", "unexpected keyword argument 'no_such_kwarg'"),

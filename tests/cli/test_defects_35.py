@@ -100,7 +100,7 @@ def _train_argv(logs: Path, *extra: str, config: Path = CONFIGS / "e1_empty_goal
 def test_train_hyperparams_typo_is_one_line(
     capsys: pytest.CaptureFixture[str], tmp_path: Path, hyperparams: str, key: str, suggestion: str
 ) -> None:
-    from sb3_hfo.train import main
+    from sb3_hfo.cli.train import main
 
     logs = tmp_path / "logs"
     line = _one_line_error(capsys, main, _train_argv(logs, "--hyperparams", hyperparams))
@@ -109,7 +109,7 @@ def test_train_hyperparams_typo_is_one_line(
 
 
 def test_train_config_key_typo_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
-    from sb3_hfo.train import main
+    from sb3_hfo.cli.train import main
 
     text = (CONFIGS / "e1_empty_goal_fast.yml").read_text()
     assert "\n  tau: 0.001\n" in text
@@ -124,7 +124,7 @@ def test_train_config_key_typo_is_one_line(capsys: pytest.CaptureFixture[str], t
 def test_train_failing_at_setup_leaves_no_run_folder(tmp_path: Path) -> None:
     """A value the constructor rejects fails after rl-zoo3 made the run folder; the folder goes with the run, so
     the next run is still ``_1``."""
-    from sb3_hfo.train import main
+    from sb3_hfo.cli.train import main
 
     logs = tmp_path / "logs"
     with pytest.raises(ValueError, match="mc_mixing"):
@@ -175,7 +175,7 @@ def _video_stream(path: Path) -> tuple[str, str, int, int]:
 def test_even_frame_repeats_the_last_column_and_row() -> None:
     import numpy as np
 
-    from sb3_hfo.record_video import even_frame
+    from sb3_hfo.cli.record_video import even_frame
 
     frame = np.arange(740 * 585 * 3, dtype=np.int64).reshape(740, 585, 3).astype(np.uint8)
     padded = even_frame(frame)
@@ -190,7 +190,7 @@ def test_record_video_writes_h264_yuv420p_with_even_sides(tmp_path: Path) -> Non
     """yuv444p (H.264 High 4:4:4), moviepy's default for RGB frames, plays in neither browsers nor QuickTime."""
     pytest.importorskip("pygame")
     pytest.importorskip("moviepy")
-    from sb3_hfo.record_video import main
+    from sb3_hfo.cli.record_video import main
 
     main(["e1", "-n", "10", "-o", str(tmp_path / "videos")])
     (video,) = (tmp_path / "videos").glob("*.mp4")
@@ -202,7 +202,7 @@ def test_record_video_writes_h264_yuv420p_with_even_sides(tmp_path: Path) -> Non
 def test_record_video_to_a_folder_it_cannot_create_is_one_line(
     capsys: pytest.CaptureFixture[str], tmp_path: Path
 ) -> None:
-    from sb3_hfo.record_video import main
+    from sb3_hfo.cli.record_video import main
 
     blocker = tmp_path / "a_file"
     blocker.write_text("not a folder\n")
@@ -217,7 +217,7 @@ def test_record_video_to_a_read_only_folder_is_one_line(
 ) -> None:
     import os
 
-    from sb3_hfo.record_video import main
+    from sb3_hfo.cli.record_video import main
 
     read_only = tmp_path / "read_only"
     read_only.mkdir(mode=0o555)
@@ -239,7 +239,7 @@ def test_enjoy_draws_each_step_once_and_says_when_no_window_shows(
     pytest.importorskip("pygame")
     import hfo2d.rendering
     from hfo2d.hfo_env import HFOEnv
-    from sb3_hfo.enjoy import main
+    from sb3_hfo.cli.enjoy import main
 
     monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")
     monkeypatch.setattr(hfo2d.rendering, "RENDER_FPS", 10_000)  # the count matters here, not the clock
@@ -327,7 +327,7 @@ def test_readme_names_the_goal_rate_tag_that_training_logs() -> None:
     from stable_baselines3.common.noise import NormalActionNoise
 
     from sb3_hfo import SkillDDPG
-    from sb3_hfo.zoo import ActionNoiseDecayCallback, HFOEpisodeStatsCallback
+    from sb3_hfo.callbacks import ActionNoiseDecayCallback, HFOEpisodeStatsCallback
 
     class Keys(KVWriter):
         def __init__(self) -> None:

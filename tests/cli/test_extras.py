@@ -64,7 +64,7 @@ def test_extras_in_pyproject_hold_the_modules_the_messages_name() -> None:
         assert set(modules) <= names(extras[extra]), extra
         assert not set(modules) & base, extra
     assert "sb3_contrib" not in base
-    assert "pyyaml" in base  # sb3_hfo.evaluate and cli_errors import yaml
+    assert "pyyaml" in base  # sb3_hfo.evaluation and sb3_hfo.cli.errors import yaml
     assert {"sb3_hfo"} == names([r for r in extras["test"] if r.startswith("sb3-hfo")])
     assert "zoo,render" in "".join(extras["test"])
 
@@ -72,7 +72,7 @@ def test_extras_in_pyproject_hold_the_modules_the_messages_name() -> None:
 def test_importing_the_api_loads_none_of_the_zoo_modules() -> None:
     code = (
         "import sys\n"
-        "import sb3_hfo, sb3_hfo.models, sb3_hfo.evaluate, sb3_hfo.zoo, sb3_hfo.cli.errors\n"
+        "import sb3_hfo, sb3_hfo.models, sb3_hfo.evaluation, sb3_hfo.evaluate, sb3_hfo.zoo, sb3_hfo.cli.errors\n"
         f"print(sorted(m for m in {ZOO_MODULES!r} if m in sys.modules))\n"
     )
     completed = _run_python(code)

@@ -1,4 +1,4 @@
-"""The results table (sb3_hfo.results) is generated from the manifest's evaluations and cannot drift."""
+"""The results table (devtools/results_page.py) is generated from the manifest's evaluations and cannot drift."""
 
 from __future__ import annotations
 
@@ -36,7 +36,7 @@ results_page = results.results_page
 table = results.table
 with_readme_block = results.with_readme_block
 
-REGENERATE = "run python -m sb3_hfo.results to regenerate it from models/manifest.json"
+REGENERATE = "run python devtools/results_page.py to regenerate it from sb3_hfo/pretrained/manifest.json"
 
 
 def test_the_readme_table_is_what_the_manifest_gives() -> None:
@@ -50,7 +50,7 @@ def test_the_results_page_is_what_the_manifest_gives() -> None:
 
 
 def _entry(goals: int, episodes: int = 1000, real: tuple[int, int] | None = None) -> dict:
-    from sb3_hfo.cli.evaluate import wilson_interval
+    from sb3_hfo.evaluation import wilson_interval
 
     def rate(goals: int, episodes: int) -> dict:
         return {
@@ -61,7 +61,7 @@ def _entry(goals: int, episodes: int = 1000, real: tuple[int, int] | None = None
         }
 
     return {
-        "config": "zoo_configs/x9_some_config.yml",
+        "config": "zoo_configs/empty_goal_skill_pdqn_fast.yml",
         "seed": 4,
         "evaluation": rate(goals, episodes),
         "real_hfo": {**rate(*real), "env_id": "HFO/RealKeeper-v0"} if real else None,
@@ -74,7 +74,11 @@ def test_each_task_gets_one_row_with_its_evaluation() -> None:
     rows = lines[2:]
     assert len(rows) == len(TASKS) + 1  # every task, then the model no task names
     e1 = next(row for row in rows if row.startswith("| E1 "))
-    assert "**98.8 % [97.9, 99.3]**" in e1 and "`e1` (x9, seed 4)" in e1 and e1.endswith("| not measured |")
+    assert (
+        "**98.8 % [97.9, 99.3]**" in e1
+        and "`e1` (empty_goal_skill_pdqn_fast, seed 4)" in e1
+        and e1.endswith("| not measured |")
+    )
     e6 = next(row for row in rows if "`e6`" in row)
     assert "34.8 % [31.9, 37.8]" in e6 and "30.0 % [27.2, 32.9] (against agent2d's goalie)" in e6
     assert sum("no committed model yet" in row for row in rows) == len(TASKS) - 2
@@ -94,3 +98,13 @@ def test_the_readme_block_needs_both_markers() -> None:
         with_readme_block("# a readme\n", "table\n")
     text = f"a\n{BEGIN_MARKER}\nold\n{END_MARKER}\nb\n"
     assert with_readme_block(text, "new\n") == f"a\n{BEGIN_MARKER}\nnew\n{END_MARKER}\nb\n"
+
+
+def test_the_script_checks_the_checkout_from_its_command_line(tmp_path: Path) -> None:
+    """``python devtools/results_page.py --check`` from another folder: the checkout's files are up to date."""
+    import subprocess
+
+    completed = subprocess.run(
+        [sys.executable, str(RESULTS_PAGE_SCRIPT), "--check"], cwd=tmp_path, capture_output=True, text=True
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]

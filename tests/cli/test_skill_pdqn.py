@@ -11,15 +11,22 @@ import torch as th
 import yaml
 
 from sb3_hfo import SkillDDPG, SkillPDQN
-from sb3_hfo.cli.zoo import SCHEDULE_KEYS, parse_schedule
+from sb3_hfo.common.schedules import SCHEDULE_KEYS, parse_schedule
 from sb3_hfo.common.toy_env import HybridTargetEnv
 from sb3_hfo.skill_ddpg.acting import CriticChoice, KickMask
 from sb3_hfo.skill_ddpg.skill_pdqn import PRESET_ALGORITHM_DEFAULTS, PRESET_POLICY_DEFAULTS
 
 REPO = Path(__file__).resolve().parents[2]
 BEST_CONFIGS = sorted(
-    path for path in (REPO / "zoo_configs").glob("x*.yml") if "--algo skill_pdqn " in path.read_text()
+    path for path in (REPO / "zoo_configs").glob("*.yml") if "--algo skill_pdqn " in path.read_text()
 )
+
+
+def test_the_best_recipe_configs_are_found() -> None:
+    """The committed models' SkillPDQN configs (those of e1 to e4 and e6_keeper_v0)."""
+    assert len(BEST_CONFIGS) == 5
+
+
 #: Config keys rl-zoo3 handles itself (not constructor arguments).
 ZOO_ONLY_KEYS = {"n_timesteps", "n_envs", "noise_type", "noise_std", "callback", "env_kwargs", "policy"}
 ALGORITHM_ARGUMENTS = [

@@ -49,8 +49,14 @@ def _load_config(path: Path) -> tuple[str, dict[str, Any]]:
 
 
 def _algo(config: Path) -> str:
-    """The ``--algo`` a config's header command names: SkillPDQN (the preset) for the best configs."""
-    return "skill_pdqn" if "--algo skill_pdqn " in config.read_text() else "skill_ddpg"
+    """The ``--algo`` a config's header command names (SkillPDQN, the preset, for the best configs; HybridPPO's
+    configs say ``hybrid_ppo``); ``skill_ddpg`` when it names none."""
+    named = re.search(r"--algo (\w+) ", config.read_text())
+    return named.group(1) if named else "skill_ddpg"
+
+
+#: Configs of HybridPPO (on-policy): no replay buffer, SkillDDPG's keys do not apply.
+HYBRID_PPO_CONFIGS = [config for config in CONFIGS if _algo(config) == "hybrid_ppo"]
 
 
 def _env_dir(env_id: str) -> str:
@@ -98,8 +104,11 @@ def _smoke_argv(config: Path, root: Path) -> list[str]:
         "--num-threads",
         "1",
         "--hyperparams",
-        "learning_starts:100",
-        "buffer_size:2000",
+        *(
+            ["n_steps:64", "batch_size:64"]
+            if config in HYBRID_PPO_CONFIGS
+            else ["learning_starts:100", "buffer_size:2000"]
+        ),
         f"policy_kwargs:{policy_kwargs!r}",
     ]
     # A scripted striker's episodes before training cost minutes at a config's size: a few are enough here.
@@ -177,7 +186,7 @@ def test_every_experiment_has_a_paper_and_a_fast_config() -> None:
 
 
 def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
-    """zoo_configs/ holds the paper's experiments and the configs of the committed models (models/manifest.json);
+    """zoo_configs/ holds the paper's experiments and the configs of the committed models (sb3_hfo/pretrained/manifest.json);
     the rest is in research/zoo_configs/."""
     from sb3_hfo.models import read_manifest
 
@@ -185,11 +194,32 @@ def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
     for config in manifest_configs:
         assert (REPO / config).is_file(), config
     for config in CONFIGS:
-        if config.stem.startswith(EXPERIMENTS):
+        if (
+            config.stem.startswith(EXPERIMENTS) or config in HYBRID_PPO_CONFIGS
+        ):  # HybridPPO: no model committed yet
             continue
         assert f"zoo_configs/{config.name}" in manifest_configs, config.name
     assert RESEARCH_CONFIGS, "research/zoo_configs/ is empty"
     assert not {c.name for c in CONFIGS} & {c.name for c in RESEARCH_CONFIGS}
+
+
+@pytest.mark.parametrize(
+    "config", [c for c in CONFIGS if not c.stem.startswith(EXPERIMENTS)], ids=lambda c: c.stem
+)
+def test_a_committed_model_s_config_is_named_by_task_with_its_lineage(config: Path) -> None:
+    """Named by its task, not by the research diary's id; its header's lineage names the research config it was
+    and the public config it descends from (one of the paper's, or a sibling's whose lineage goes on)."""
+    import re
+
+    assert not re.match(r"x\d+_", config.name), config.name
+    _, found, rest = config.read_text().partition("\n# Lineage: ")
+    assert found, f"{config.name}: no '# Lineage:' line in its header"
+    lineage = rest.split("\n#\n", 1)[0]
+    assert re.match(r"research config x\d+ \(this file was zoo_configs/x\d+_[a-z0-9_]+\.yml", lineage), (
+        lineage
+    )
+    ancestors = set(re.findall(r"(?<![/\w])([a-z][a-z0-9_]*\.yml)", lineage)) - {config.name}
+    assert ancestors and all((CONFIG_DIR / name).is_file() for name in ancestors), ancestors
 
 
 @pytest.mark.parametrize(
@@ -200,6 +230,17 @@ def test_config_is_valid_and_documents_its_command(config: Path) -> None:
 
     env_id, hyperparams = _load_config(config)
     assert env_id in hfo2d.ENV_IDS
+    if config in HYBRID_PPO_CONFIGS:
+        for key in ("gamma", "batch_size", "n_steps", "n_epochs", "n_timesteps"):
+            assert isinstance(hyperparams[key], (int, float)), f"{key} = {hyperparams[key]!r}"
+        learning_rate = hyperparams["learning_rate"]
+        assert isinstance(learning_rate, (int, float)) or re.fullmatch(r"lin_[0-9.]+", learning_rate)
+        conf_file = config.relative_to(REPO).as_posix()
+        assert (
+            f"python -m sb3_hfo.train --algo hybrid_ppo --env {env_id} --conf-file {conf_file} --seed 0"
+            in config.read_text()
+        )
+        return
     for key in ("tau", "gamma", "batch_size", "buffer_size", "n_timesteps"):
         # PyYAML reads "1e-4" (no dot) as a string; every number must really be a number.
         assert isinstance(hyperparams[key], (int, float)), f"{key} = {hyperparams[key]!r}"
@@ -244,7 +285,7 @@ def test_paper_configs_use_the_paper_settings(config: Path) -> None:
 
 
 def test_wilson_interval_matches_reference_values() -> None:
-    from sb3_hfo.cli.evaluate import wilson_interval
+    from sb3_hfo.evaluation import wilson_interval
 
     assert wilson_interval(0, 10) == pytest.approx((0.0, 0.2775), abs=1e-4)
     assert wilson_interval(5, 10) == pytest.approx((0.2366, 0.7634), abs=1e-4)
@@ -253,7 +294,7 @@ def test_wilson_interval_matches_reference_values() -> None:
 
 
 def test_summarize_counts_goals_kicks_and_skills() -> None:
-    from sb3_hfo.cli.evaluate import EpisodeRecord, summarize
+    from sb3_hfo.evaluation import EpisodeRecord, summarize
 
     records = [
         EpisodeRecord("GOAL", 80, 6.0, 3, [100.0, 50.0, 30.0], 10, [60, 20]),
@@ -275,7 +316,7 @@ def test_summarize_counts_goals_kicks_and_skills() -> None:
 
 
 def test_summarize_bins_last_kicks_by_distance_to_goal() -> None:
-    from sb3_hfo.cli.evaluate import EpisodeRecord, shot_distance_label, summarize
+    from sb3_hfo.evaluation import EpisodeRecord, shot_distance_label, summarize
 
     def record(status: str, shot_distance: float | None) -> EpisodeRecord:
         return EpisodeRecord(status, 10, 0.0, 1, [100.0], 0, [10], shot_distance=shot_distance)
@@ -304,7 +345,7 @@ def test_summarize_bins_last_kicks_by_distance_to_goal() -> None:
 def test_evaluation_measures_the_shot_from_where_the_ball_was_kicked() -> None:
     import gymnasium as gym
 
-    from sb3_hfo.cli.evaluate import run_episodes, summarize
+    from sb3_hfo.evaluation import run_episodes, summarize
 
     class PlacedStart(gym.Wrapper):  # facing the goal centre, ball 0.5 m ahead: 22 m out
         def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
@@ -336,7 +377,7 @@ def test_evaluation_names_the_line_an_out_of_bounds_ball_crossed(
 ) -> None:
     import gymnasium as gym
 
-    from sb3_hfo.cli.evaluate import run_episodes, summarize
+    from sb3_hfo.evaluation import run_episodes, summarize
 
     class PlacedStart(gym.Wrapper):
         def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
@@ -362,7 +403,7 @@ def test_evaluation_names_the_line_an_out_of_bounds_ball_crossed(
 def test_evaluation_records_where_the_keeper_caught_the_ball() -> None:
     import gymnasium as gym
 
-    from sb3_hfo.cli.evaluate import run_episodes
+    from sb3_hfo.evaluation import run_episodes
 
     class PlacedStart(gym.Wrapper):  # 12 m out, facing the static keeper on the goal centre
         def reset(self, *, seed: int | None = None, options: dict | None = None) -> tuple:
@@ -386,7 +427,7 @@ def test_evaluation_loop_counts_goals_and_kicks_of_a_scoring_policy() -> None:
     import gymnasium as gym
 
     import hfo2d
-    from sb3_hfo.cli.evaluate import run_episodes, summarize
+    from sb3_hfo.evaluation import run_episodes, summarize
 
     env = gym.make("HFO/EmptyGoal-v0")
 
@@ -409,7 +450,7 @@ def test_evaluation_loop_counts_goals_and_kicks_of_a_scoring_policy() -> None:
 
 
 def test_parse_schedule_handles_rl_zoo_strings() -> None:
-    from sb3_hfo.cli.zoo import parse_schedule
+    from sb3_hfo.common.schedules import parse_schedule
 
     schedule = parse_schedule("lin_0.001")
     assert schedule(1.0) == pytest.approx(1e-3) and schedule(0.5) == pytest.approx(5e-4)
@@ -542,7 +583,7 @@ def test_time_to_targets_reads_the_first_evaluation_at_each_rate() -> None:
 
 
 def test_episode_stats_callback_logs_episodes_and_leaves_the_goal_rate_to_sb3() -> None:
-    from sb3_hfo.cli.zoo import HFOEpisodeStatsCallback
+    from sb3_hfo.callbacks import HFOEpisodeStatsCallback
 
     class Recorder:
         def __init__(self) -> None:
@@ -584,7 +625,7 @@ def test_keeper_skill_curriculum_ramps_the_training_envs_only() -> None:
     from stable_baselines3.common.env_util import make_vec_env
 
     from sb3_hfo import SkillDDPG
-    from sb3_hfo.cli.zoo import KeeperSkillCurriculumCallback
+    from sb3_hfo.callbacks import KeeperSkillCurriculumCallback
 
     class SkillRecorder(BaseCallback):
         def __init__(self) -> None:
@@ -627,7 +668,7 @@ def test_action_noise_decay_callback_anneals_sigma_per_env() -> None:
     from stable_baselines3.common.env_util import make_vec_env
     from stable_baselines3.common.noise import NormalActionNoise
 
-    from sb3_hfo.cli.zoo import ActionNoiseDecayCallback
+    from sb3_hfo.callbacks import ActionNoiseDecayCallback
 
     class SigmaRecorder(BaseCallback):
         def __init__(self) -> None:
@@ -707,7 +748,7 @@ def test_evaluation_leaves_out_env_kwargs_the_env_no_longer_takes(tmp_path: Path
 
     import hfo2d  # noqa: F401  (registers the envs)
     from sb3_hfo import SkillDDPG
-    from sb3_hfo.cli.evaluate import load_for_evaluation
+    from sb3_hfo.evaluation import load_for_evaluation
 
     run = tmp_path / "HFO-EmptyGoal-v0_1"
     (run / "HFO-EmptyGoal-v0").mkdir(parents=True)
@@ -724,7 +765,8 @@ def test_evaluation_leaves_out_env_kwargs_the_env_no_longer_takes(tmp_path: Path
 
 
 def test_evaluate_can_switch_on_the_mirror_choice() -> None:
-    from sb3_hfo.cli.evaluate import build_parser, evaluate
+    from sb3_hfo.cli.evaluate import build_parser
+    from sb3_hfo.evaluation import evaluate
 
     model = "e6_keeper_v0"
     result = evaluate(str(model), episodes=2, seed=0, acting="critic,mirror")
@@ -761,7 +803,8 @@ def test_evaluate_acting_flag_parses_and_names_a_bad_token(capsys: pytest.Captur
 def test_evaluate_sets_the_mirror_margin_and_threads_predicts_state_through_each_episode() -> None:
     import gymnasium as gym
 
-    from sb3_hfo.cli.evaluate import EvaluationError, build_parser, evaluate, run_episodes
+    from sb3_hfo.cli.evaluate import build_parser
+    from sb3_hfo.evaluation import EvaluationError, evaluate, run_episodes
 
     model = "e6_keeper_v0"
     result = evaluate(str(model), episodes=1, seed=0, acting="critic,mirror:inf")

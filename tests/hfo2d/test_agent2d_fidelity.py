@@ -4,8 +4,9 @@ benchmarks/keeper_fidelity.py, and the benchmark's readers of the goalie's clien
 
 from __future__ import annotations
 
-import sys
+from collections.abc import Callable
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 import pytest
@@ -14,9 +15,6 @@ from hfo2d.agent2d import goalie as goalie_module
 from hfo2d.agent2d.actions import client_dash, client_turn_moment
 from hfo2d.agent2d.goalie import Agent2dGoalie, fullstate_value
 from hfo2d.physics import ServerParams, World
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
-import real_hfo_logs  # noqa: E402  (benchmarks/real_hfo_logs.py)
 
 
 def world_of(
@@ -152,7 +150,10 @@ def test_a_held_ball_long_after_the_catch_gives_the_free_kicks_first_move() -> N
 
 
 # --- the benchmark's readers of the goalie's client log -------------------------------------------------------
-def test_fullstate_and_client_log_parsing(tmp_path: Path) -> None:
+def test_fullstate_and_client_log_parsing(
+    tmp_path: Path, benchmark_script: Callable[[str], ModuleType]
+) -> None:
+    real_hfo_logs = benchmark_script("real_hfo_logs")  # benchmarks/real_hfo_logs.py
     line = (
         "(fullstate 49 (pmode play_on) (vmode high normal) (count 0 0 0 0 0 0 0 0) (arm (movable 0) (expires 0) "
         "(target 0 0) (count 0)) (score 0 0) ((b) 44.487 1.13178 2.20381 1.06387) ((p l 11 0) 41.7575 0 0 0 "

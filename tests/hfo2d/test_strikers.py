@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import math
-import sys
+from collections.abc import Callable
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import numpy as np
@@ -120,18 +121,9 @@ def test_unknown_striker() -> None:
 # ---------------------------------------------------------------------------------------------------------------
 # benchmarks/keeper_fidelity.py: the log readers and the replay's command conversions (no HFO build needed)
 # ---------------------------------------------------------------------------------------------------------------
-BENCHMARKS = Path(__file__).resolve().parents[2] / "benchmarks"
-
-
 @pytest.fixture(scope="module")
-def fidelity() -> Any:
-    sys.path.insert(0, str(BENCHMARKS))
-    try:
-        import keeper_fidelity
-
-        yield keeper_fidelity
-    finally:
-        sys.path.remove(str(BENCHMARKS))
+def fidelity(benchmark_script: Callable[[str], ModuleType]) -> ModuleType:
+    return benchmark_script("keeper_fidelity")
 
 
 def test_log_readers(tmp_path: Path, fidelity: Any) -> None:

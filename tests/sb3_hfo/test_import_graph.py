@@ -8,6 +8,7 @@ interpreter until the function runs). Imports under ``if TYPE_CHECKING:`` are le
 from __future__ import annotations
 
 import ast
+import subprocess
 import sys
 from pathlib import Path
 
@@ -149,6 +150,45 @@ def test_the_graph_covers_the_package() -> None:
 def test_sb3_hfo_has_no_import_circles() -> None:
     found = circles(import_graph())
     assert found == [], f"import circles among sb3_hfo's modules: {found}"
+
+
+#: The library's public modules: none of them may reach the command line (argparse tools, rl-zoo3, Optuna).
+LIBRARY_MODULES = (
+    "sb3_hfo",
+    "sb3_hfo.evaluation",
+    "sb3_hfo.models",
+    "sb3_hfo.callbacks",
+    "sb3_hfo.demonstrations",
+)
+
+
+def reachable(graph: dict[str, set[str]], roots: tuple[str, ...]) -> set[str]:
+    """The modules that importing ``roots`` can import, by any path through ``graph`` (roots included)."""
+    seen: set[str] = set()
+    pending = list(roots)
+    while pending:
+        module = pending.pop()
+        if module not in seen:
+            seen.add(module)
+            pending.extend(graph.get(module, ()))
+    return seen
+
+
+def test_the_library_does_not_reach_the_command_line() -> None:
+    graph = import_graph()
+    assert set(LIBRARY_MODULES) <= set(graph)
+    assert sorted(m for m in reachable(graph, LIBRARY_MODULES) if m.startswith("sb3_hfo.cli")) == []
+
+
+def test_importing_the_library_imports_neither_rl_zoo3_nor_the_cli() -> None:
+    code = (
+        f"import sys\nimport {', '.join(LIBRARY_MODULES)}\n"
+        "print(sorted(m for m in sys.modules if m.split('.')[0] in ('rl_zoo3', 'optuna', 'huggingface_sb3')"
+        " or m.startswith('sb3_hfo.cli')))\n"
+    )
+    completed = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    assert completed.stdout.strip() == "[]"
 
 
 if __name__ == "__main__":

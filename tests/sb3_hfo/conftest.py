@@ -1,20 +1,19 @@
-"""Shared test settings."""
+"""Settings of the library's tests (torch, SB3)."""
 
 from __future__ import annotations
 
 from collections.abc import Iterator
 
 import pytest
+import torch as th
 
 
 @pytest.fixture(autouse=True)
 def one_torch_thread() -> Iterator[None]:
     """Batch-32 networks run fastest (and reproducibly) on one thread, especially on a shared 2-core machine.
 
-    torch is imported only when installed tests need it: hfo2d's own tests must run without it.
+    Here and in tests/cli/conftest.py, not in a conftest above tests/hfo2d/: hfo2d's tests must run without torch.
     """
-    import torch as th
-
     previous = th.get_num_threads()
     th.set_num_threads(1)
     yield

@@ -1,0 +1,163 @@
+"""Training callbacks for SkillDDPG (and any SB3 algorithm): the episode counter the paper's figures need, the
+action-noise annealing and the keeper-skill curriculum. rl-zoo3 configs name them as
+``sb3_hfo.callbacks.HFOEpisodeStatsCallback`` and so on (the ``callback:`` key).
+
+:class:`HFOEpisodeStatsCallback` logs ``rollout/episodes`` (SB3 excludes ``time/episodes`` from TensorBoard, and
+the paper's figures are plotted against episodes). The training goal rate is SB3's own ``rollout/success_rate``
+(from HFO's ``info["is_success"]``), logged for any SB3 algorithm, e.g. a TD3 baseline.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from stable_baselines3.common.callbacks import BaseCallback
+
+
+class HFOEpisodeStatsCallback(BaseCallback):
+    """Log ``rollout/episodes``, the number of episodes finished so far, whenever one ends (written at SB3's next
+    log dump): SB3 logs ``time/episodes`` to stdout only, and the paper's Figures 3 and 4 use episodes on the x axis.
+
+    The goal rate is not logged here: SB3 logs it for every algorithm as ``rollout/success_rate`` (the last
+    ``stats_window_size`` episodes' ``info["is_success"]``, which HFO sets at a GOAL), the one name it has.
+    """
+
+    def __init__(self, verbose: int = 0) -> None:
+        super().__init__(verbose)
+        self.episodes = 0
+
+    def _on_step(self) -> bool:
+        dones = np.asarray(self.locals.get("dones", []), dtype=bool)
+        finished = int(dones.sum())
+        if finished:
+            self.episodes += finished
+            self.logger.record("rollout/episodes", self.episodes)
+        return True
+
+
+def _ramp_progress(callback: BaseCallback, start_timesteps: int, ramp_fraction: float) -> float:
+    """Progress in [0, 1] of a ramp over the first ``ramp_fraction`` of the current ``learn`` call's steps."""
+    total = max(int(getattr(callback.model, "_total_timesteps", 0)) - start_timesteps, 1)
+    return min((callback.num_timesteps - start_timesteps) / (ramp_fraction * total), 1.0)
+
+
+class ActionNoiseDecayCallback(BaseCallback):
+    """Anneal the standard deviation of the model's Gaussian (or Ornstein-Uhlenbeck) action noise linearly.
+
+    SB3's ``action_noise`` keeps its ``sigma`` fixed, and rl-zoo3's ``noise_std`` sets it once. Wide noise early on
+    shows the critic many kicks; late in training the same noise spoils aimed kicks, and the behaviour policy (whose
+    returns ``mc_mixing`` mixes into the targets) stays far worse than the greedy one; annealing the noise and
+    epsilon together helps (docs/findings.md, "Annealed exploration"). This callback moves every noise's ``sigma`` from its value at the start of
+    each ``learn`` call to ``final_std`` over the first ``decay_fraction`` of that call (the schedule of SB3's
+    epsilon), then holds it, and logs it as ``rollout/action_noise_std``.
+
+    :param final_std: noise standard deviation at the end of the decay, on the policy's action scale ([-1, 1]
+        in SB3's buffer; the same unit as rl-zoo3's ``noise_std``).
+    :param decay_fraction: fraction of the ``learn`` call's ``total_timesteps`` over which to decay, in (0, 1].
+    """
+
+    def __init__(self, final_std: float, decay_fraction: float = 1.0, verbose: int = 0) -> None:
+        super().__init__(verbose)
+        if not np.isfinite(final_std) or final_std < 0:
+            raise ValueError(f"final_std must be a finite number >= 0, got {final_std!r}")
+        if not 0 < decay_fraction <= 1:
+            raise ValueError(f"decay_fraction must be in (0, 1], got {decay_fraction!r}")
+        self.final_std = float(final_std)
+        self.decay_fraction = float(decay_fraction)
+        self.initial_sigmas: list[np.ndarray] = []
+        self._start_timesteps = 0
+
+    def _noises(self) -> list[Any]:
+        noise = getattr(self.model, "action_noise", None)
+        if noise is None:
+            return []
+        return list(getattr(noise, "noises", [noise]))  # VectorizedActionNoise holds one noise per env
+
+    def _init_callback(self) -> None:
+        noises = self._noises()
+        if not noises or not all(hasattr(noise, "_sigma") for noise in noises):
+            raise ValueError(
+                "ActionNoiseDecayCallback needs a model with a Gaussian or Ornstein-Uhlenbeck action_noise "
+                f"(rl-zoo3: noise_type normal or ornstein-uhlenbeck); got {getattr(self.model, 'action_noise', None)!r}"
+            )
+
+    def _on_training_start(self) -> None:
+        self.initial_sigmas = [
+            np.array(noise._sigma, dtype=np.float64, copy=True) for noise in self._noises()
+        ]
+        self._start_timesteps = self.num_timesteps
+
+    def _on_step(self) -> bool:
+        progress = _ramp_progress(self, self._start_timesteps, self.decay_fraction)
+        for noise, initial in zip(self._noises(), self.initial_sigmas, strict=True):
+            noise._sigma = initial + progress * (self.final_std - initial)
+        self.logger.record("rollout/action_noise_std", float(np.mean(self._noises()[0]._sigma)))
+        return True
+
+
+class KeeperSkillCurriculumCallback(BaseCallback):
+    """Raise the scripted goalie's skill of the training envs from ``initial_skill`` to ``final_skill``.
+
+    A curriculum for ``HFO/Keeper-v0`` (E6, which the paper could not solve): against the full keeper a random
+    policy almost never scores, so the shaped reward's goal bonus is rarely seen. The skill moves linearly over the
+    first ``ramp_fraction`` of each ``learn`` call in steps of ``skill_step`` (each change rebuilds the keeper at
+    the envs' next reset), then holds; it is logged as ``rollout/keeper_skill``. Only the training envs are
+    changed: rl-zoo3's evaluation env, and ``python -m sb3_hfo.evaluate``, keep the env's own ``keeper_skill``
+    (1.0 for ``HFO/Keeper-v0``), so evaluations measure E6's task. SB3 resets the envs before callbacks start, so
+    each env's first episode keeps the keeper it was made with.
+
+    :param initial_skill: keeper skill at the start, in [0, 1] (0: a keeper that only turns to face the ball).
+    :param final_skill: keeper skill at the end of the ramp, in [0, 1].
+    :param ramp_fraction: fraction of the ``learn`` call's ``total_timesteps`` over which to ramp, in (0, 1].
+    :param skill_step: the skill changes in steps of this size, in (0, 1].
+    """
+
+    def __init__(
+        self,
+        initial_skill: float = 0.0,
+        final_skill: float = 1.0,
+        ramp_fraction: float = 0.5,
+        skill_step: float = 0.05,
+        verbose: int = 0,
+    ) -> None:
+        super().__init__(verbose)
+        for name, value in (("initial_skill", initial_skill), ("final_skill", final_skill)):
+            if not 0.0 <= value <= 1.0:  # also rejects NaN
+                raise ValueError(f"{name} must be in [0, 1], got {value!r}")
+        if not 0 < ramp_fraction <= 1:
+            raise ValueError(f"ramp_fraction must be in (0, 1], got {ramp_fraction!r}")
+        if not 0 < skill_step <= 1:
+            raise ValueError(f"skill_step must be in (0, 1], got {skill_step!r}")
+        self.initial_skill = float(initial_skill)
+        self.final_skill = float(final_skill)
+        self.ramp_fraction = float(ramp_fraction)
+        self.skill_step = float(skill_step)
+        self.skill = self.initial_skill
+        self._start_timesteps = 0
+
+    def _init_callback(self) -> None:  # SB3 calls it at the start of every learn()
+        try:
+            self._set_skill(self.initial_skill)
+        except (AttributeError, ValueError) as error:
+            raise ValueError(
+                f"KeeperSkillCurriculumCallback needs HFO/Keeper-v0 training envs (set_keeper_skill): {error}"
+            ) from error
+
+    def _on_training_start(self) -> None:
+        self._start_timesteps = self.num_timesteps
+
+    def _set_skill(self, skill: float) -> None:
+        self.skill = skill
+        self.training_env.env_method("set_keeper_skill", skill)
+
+    def _on_step(self) -> bool:
+        progress = _ramp_progress(self, self._start_timesteps, self.ramp_fraction)
+        target = self.initial_skill + progress * (self.final_skill - self.initial_skill)
+        # Rounded to the nearest skill_step, so that each env's keeper is rebuilt a few dozen times, not every step.
+        quantised = self.final_skill if progress >= 1.0 else self.skill_step * round(target / self.skill_step)
+        quantised = min(max(quantised, 0.0), 1.0)
+        if quantised != self.skill:
+            self._set_skill(quantised)
+        self.logger.record("rollout/keeper_skill", self.skill)
+        return True

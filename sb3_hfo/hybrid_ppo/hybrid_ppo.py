@@ -1,0 +1,281 @@
+"""HybridPPO: PPO (Schulman et al. 2017) over parameterised (discrete + continuous) actions, as an SB3 algorithm.
+
+The update is SB3's PPO (clipped surrogate, optional value clipping, entropy bonus, GAE from SB3's
+``RolloutBuffer``, early stop on ``target_kl``) with the hybrid log-probability and entropy of
+:mod:`sb3_hfo.hybrid_ppo.distributions`; ``train`` reads top to bottom like SB3's ``PPO.train``. What differs from
+SB3's ``PPO``:
+
+* the action space may be hybrid (:mod:`sb3_hfo.hybrid_ppo.layout`): the rollout buffer stores the internal
+  vector ``[k, parameters (unclipped), skill (learned router only)]``, and ``collect_rollouts`` hands the env
+  its own format (clipped to its bounds) through the policy's adapter;
+* one optimizer per skill head plus one for the shared parts (:mod:`sb3_hfo.hybrid_ppo.policies`);
+* ``rollout/action_<name>_fraction`` (and ``rollout/skill_<s>_fraction`` with skills) log how often each discrete
+  action (skill) was sampled in the last rollout.
+"""
+
+from __future__ import annotations
+
+from typing import Any, ClassVar, TypeVar
+
+import numpy as np
+import torch as th
+from gymnasium import spaces
+from stable_baselines3.common.buffers import RolloutBuffer
+from stable_baselines3.common.callbacks import BaseCallback
+from stable_baselines3.common.on_policy_algorithm import OnPolicyAlgorithm
+from stable_baselines3.common.policies import BasePolicy
+from stable_baselines3.common.type_aliases import GymEnv, Schedule
+from stable_baselines3.common.utils import FloatSchedule, explained_variance, obs_as_tensor
+from stable_baselines3.common.vec_env import VecEnv
+
+from sb3_hfo.hybrid_ppo.policies import HybridActorCriticPolicy
+
+__all__ = ["HybridPPO"]
+
+SelfHybridPPO = TypeVar("SelfHybridPPO", bound="HybridPPO")
+
+
+class HybridPPO(OnPolicyAlgorithm):
+    """PPO with a hybrid action distribution. Hyperparameters and defaults are SB3's ``PPO``'s
+    (``n_steps`` per env, ``batch_size``, ``n_epochs``, ``clip_range``, ``clip_range_vf``, ``normalize_advantage``,
+    ``ent_coef``, ``vf_coef``, ``max_grad_norm``, ``target_kl``); ``policy_kwargs`` go to
+    :class:`~sb3_hfo.hybrid_ppo.policies.HybridActorCriticPolicy` (e.g. ``skills=2, router="field_half"``).
+    """
+
+    policy_aliases: ClassVar[dict[str, type[BasePolicy]]] = {
+        "MlpPolicy": HybridActorCriticPolicy,
+        "HybridPolicy": HybridActorCriticPolicy,
+    }
+    policy: HybridActorCriticPolicy
+
+    def __init__(
+        self,
+        policy: str | type[HybridActorCriticPolicy],
+        env: GymEnv | str,
+        learning_rate: float | Schedule = 3e-4,
+        n_steps: int = 2048,
+        batch_size: int = 64,
+        n_epochs: int = 10,
+        gamma: float = 0.99,
+        gae_lambda: float = 0.95,
+        clip_range: float | Schedule = 0.2,
+        clip_range_vf: float | Schedule | None = None,
+        normalize_advantage: bool = True,
+        ent_coef: float = 0.0,
+        vf_coef: float = 0.5,
+        max_grad_norm: float = 0.5,
+        target_kl: float | None = None,
+        stats_window_size: int = 100,
+        tensorboard_log: str | None = None,
+        policy_kwargs: dict[str, Any] | None = None,
+        verbose: int = 0,
+        seed: int | None = None,
+        device: th.device | str = "auto",
+        _init_setup_model: bool = True,
+    ) -> None:
+        super().__init__(
+            policy,
+            env,
+            learning_rate=learning_rate,
+            n_steps=n_steps,
+            gamma=gamma,
+            gae_lambda=gae_lambda,
+            ent_coef=ent_coef,
+            vf_coef=vf_coef,
+            max_grad_norm=max_grad_norm,
+            use_sde=False,
+            sde_sample_freq=-1,
+            stats_window_size=stats_window_size,
+            tensorboard_log=tensorboard_log,
+            policy_kwargs=policy_kwargs,
+            verbose=verbose,
+            seed=seed,
+            device=device,
+            _init_setup_model=False,
+            supported_action_spaces=None,  # the adapter checks the space and names it in a ValueError
+        )
+        if batch_size < 2 and normalize_advantage:
+            raise ValueError(
+                "batch_size must be > 1 with normalize_advantage (advantages are normalised per batch)"
+            )
+        if n_steps < 1 or n_epochs < 1 or batch_size < 1:
+            raise ValueError(
+                f"n_steps, batch_size and n_epochs must be >= 1, got {n_steps}, {batch_size}, {n_epochs}"
+            )
+        self.batch_size = batch_size
+        self.n_epochs = n_epochs
+        self.clip_range = clip_range
+        self.clip_range_vf = clip_range_vf
+        self.normalize_advantage = normalize_advantage
+        self.target_kl = target_kl
+        if _init_setup_model:
+            self._setup_model()
+
+    def _setup_model(self) -> None:
+        self._setup_lr_schedule()
+        self.set_random_seed(self.seed)
+        self.policy = self.policy_class(  # type: ignore[assignment]
+            self.observation_space, self.action_space, self.lr_schedule, **self.policy_kwargs
+        )
+        self.policy = self.policy.to(self.device)
+        # The buffer stores the internal action vector (unclipped parameters), not the env's format.
+        buffer_actions = spaces.Box(-np.inf, np.inf, (self.policy.action_vector_size,), np.float32)
+        self.rollout_buffer = RolloutBuffer(
+            self.n_steps,
+            self.observation_space,  # type: ignore[arg-type]
+            buffer_actions,
+            device=self.device,
+            gamma=self.gamma,
+            gae_lambda=self.gae_lambda,
+            n_envs=self.n_envs,
+        )
+        self.clip_range = FloatSchedule(self.clip_range)
+        if self.clip_range_vf is not None:
+            if isinstance(self.clip_range_vf, (float, int)) and self.clip_range_vf <= 0:
+                raise ValueError("clip_range_vf must be positive (or None to disable value clipping)")
+            self.clip_range_vf = FloatSchedule(self.clip_range_vf)
+
+    def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
+        return ["policy", *(f"policy.{name}" for name in self.policy.optimizer_names)], []
+
+    def collect_rollouts(
+        self, env: VecEnv, callback: BaseCallback, rollout_buffer: RolloutBuffer, n_rollout_steps: int
+    ) -> bool:
+        """Fill ``rollout_buffer`` with ``n_rollout_steps`` steps of every env (SB3's ``collect_rollouts``, with
+        the env's action format from the adapter and the discrete-action counts logged)."""
+        assert self._last_obs is not None
+        self.policy.set_training_mode(False)
+        rollout_buffer.reset()
+        adapter = self.policy.adapter
+        discrete_counts = np.zeros(adapter.n_discrete, dtype=np.int64)
+        skill_counts = np.zeros(self.policy.n_skills, dtype=np.int64)
+        callback.on_rollout_start()
+        for _ in range(n_rollout_steps):
+            with th.no_grad():
+                obs_tensor = obs_as_tensor(self._last_obs, self.device)  # type: ignore[arg-type]
+                actions_t, values, log_probs = self.policy(obs_tensor)
+                if self.policy.n_skills > 1:
+                    skill_counts += np.bincount(
+                        self.policy.skills_of(obs_tensor, actions_t).cpu().numpy(),
+                        minlength=self.policy.n_skills,
+                    )
+            actions = actions_t.cpu().numpy()
+            discrete_counts += np.bincount(actions[:, 0].astype(np.int64), minlength=adapter.n_discrete)
+            new_obs, rewards, dones, infos = env.step(adapter.to_env(actions[:, : adapter.internal_size]))
+            self.num_timesteps += env.num_envs
+            callback.update_locals(locals())
+            if not callback.on_step():
+                return False
+            self._update_info_buffer(infos, dones)
+            # A time-limit truncation is not a terminal state: bootstrap with the value of the last observation.
+            for index, done in enumerate(dones):
+                terminal_obs = infos[index].get("terminal_observation")
+                if done and terminal_obs is not None and infos[index].get("TimeLimit.truncated", False):
+                    with th.no_grad():
+                        terminal_value = self.policy.predict_values(
+                            self.policy.obs_to_tensor(terminal_obs)[0]
+                        )[0]
+                    rewards[index] += self.gamma * terminal_value.item()
+            rollout_buffer.add(self._last_obs, actions, rewards, self._last_episode_starts, values, log_probs)  # type: ignore[arg-type]
+            self._last_obs = new_obs  # type: ignore[assignment]
+            self._last_episode_starts = dones
+        with th.no_grad():
+            last_values = self.policy.predict_values(obs_as_tensor(new_obs, self.device))  # type: ignore[arg-type]
+        rollout_buffer.compute_returns_and_advantage(last_values=last_values, dones=dones)
+        total = max(int(discrete_counts.sum()), 1)
+        for name, count in zip(adapter.names, discrete_counts, strict=True):
+            self.logger.record(f"rollout/action_{name}_fraction", count / total)
+        if self.policy.n_skills > 1:
+            for skill, count in enumerate(skill_counts):
+                self.logger.record(f"rollout/skill_{skill}_fraction", count / total)
+        callback.update_locals(locals())
+        callback.on_rollout_end()
+        return True
+
+    def train(self) -> None:
+        """PPO's update over the rollout buffer: ``n_epochs`` passes of minibatches of ``batch_size``."""
+        self.policy.set_training_mode(True)
+        self._update_learning_rate(self.policy.optimizers)
+        clip_range = self.clip_range(self._current_progress_remaining)  # type: ignore[operator]
+        clip_range_vf = (
+            None if self.clip_range_vf is None else self.clip_range_vf(self._current_progress_remaining)
+        )  # type: ignore[operator]
+        entropy_losses, pg_losses, value_losses, clip_fractions, approx_kls = [], [], [], [], []
+        continue_training = True
+        for _epoch in range(self.n_epochs):
+            for batch in self.rollout_buffer.get(self.batch_size):
+                values, log_prob, entropy = self.policy.evaluate_actions(batch.observations, batch.actions)
+                values = values.flatten()
+                advantages = batch.advantages
+                if self.normalize_advantage and len(advantages) > 1:
+                    advantages = (advantages - advantages.mean()) / (advantages.std() + 1e-8)
+                # Clipped surrogate objective
+                ratio = th.exp(log_prob - batch.old_log_prob)
+                surrogate = th.min(
+                    advantages * ratio, advantages * th.clamp(ratio, 1 - clip_range, 1 + clip_range)
+                )
+                policy_loss = -surrogate.mean()
+                # Value loss, optionally clipped around the rollout's values
+                if clip_range_vf is not None:
+                    values = batch.old_values + th.clamp(
+                        values - batch.old_values, -clip_range_vf, clip_range_vf
+                    )
+                value_loss = th.nn.functional.mse_loss(batch.returns, values)
+                entropy_loss = -entropy.mean()
+                loss = policy_loss + self.ent_coef * entropy_loss + self.vf_coef * value_loss
+                with th.no_grad():
+                    log_ratio = log_prob - batch.old_log_prob
+                    approx_kl = th.mean(th.exp(log_ratio) - 1 - log_ratio).item()  # Schulman's k3 estimator
+                pg_losses.append(policy_loss.item())
+                value_losses.append(value_loss.item())
+                entropy_losses.append(entropy_loss.item())
+                clip_fractions.append(th.mean((th.abs(ratio - 1) > clip_range).float()).item())
+                approx_kls.append(approx_kl)
+                if self.target_kl is not None and approx_kl > 1.5 * self.target_kl:
+                    continue_training = False
+                    if self.verbose >= 1:
+                        print(f"Early stopping at epoch {_epoch} due to reaching max kl: {approx_kl:.2f}")
+                    break
+                for optimizer in self.policy.optimizers:
+                    optimizer.zero_grad(set_to_none=True)
+                loss.backward()
+                th.nn.utils.clip_grad_norm_(self.policy.parameters(), self.max_grad_norm)
+                self.policy.step_optimizers(self.policy.skills_of(batch.observations, batch.actions))
+            self._n_updates += 1
+            if not continue_training:
+                break
+        log_std = th.cat([head.log_std for head in self.policy.heads])
+        self.logger.record("train/entropy_loss", np.mean(entropy_losses))
+        self.logger.record("train/policy_gradient_loss", np.mean(pg_losses))
+        self.logger.record("train/value_loss", np.mean(value_losses))
+        self.logger.record("train/approx_kl", np.mean(approx_kls))
+        self.logger.record("train/clip_fraction", np.mean(clip_fractions))
+        self.logger.record("train/loss", loss.item())
+        self.logger.record(
+            "train/explained_variance",
+            explained_variance(self.rollout_buffer.values.flatten(), self.rollout_buffer.returns.flatten()),
+        )
+        if log_std.numel():
+            self.logger.record("train/std", th.exp(log_std).mean().item())
+        self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
+        self.logger.record("train/clip_range", clip_range)
+        if clip_range_vf is not None:
+            self.logger.record("train/clip_range_vf", clip_range_vf)
+
+    def learn(
+        self: SelfHybridPPO,
+        total_timesteps: int,
+        callback: Any = None,
+        log_interval: int = 1,
+        tb_log_name: str = "HybridPPO",
+        reset_num_timesteps: bool = True,
+        progress_bar: bool = False,
+    ) -> SelfHybridPPO:
+        return super().learn(
+            total_timesteps=total_timesteps,
+            callback=callback,
+            log_interval=log_interval,
+            tb_log_name=tb_log_name,
+            reset_num_timesteps=reset_num_timesteps,
+            progress_bar=progress_bar,
+        )
