@@ -182,3 +182,13 @@ def test_the_still_goalie_never_moves() -> None:
         assert info["keeper"][:2] == (52.5, 0.0)
         if terminated or truncated:
             break
+
+
+def test_an_unpickled_goalie_shares_the_binding_of_equal_params() -> None:
+    import pickle
+
+    env = _keeper_v1()
+    copy = pickle.loads(pickle.dumps(env))
+    assert copy._keeper_policy._server_params is env._keeper_policy._server_params
+    copy.step(DASH_AHEAD)
+    _assert_cache_decays(_goalie_ball_cache(copy), 0.94)

@@ -332,6 +332,12 @@ class Agent2dGoalie:
         self.skill = float(skill)
         self.restart()
 
+    def __setstate__(self, state: dict[str, object]) -> None:
+        """Unpickled: the params object becomes the canonical one again, so that goalies of equal params still
+        share one binding (:func:`~hfo2d.agent2d.common.canonical_params`)."""
+        self.__dict__.update(state)
+        self._server_params = canonical_params(self._server_params)
+
     def restart(self) -> None:
         """Forget the client state, as a goalie made afresh (the params, generator and skill stay)."""
         self.last_command: Command | None = None
