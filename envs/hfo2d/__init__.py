@@ -89,6 +89,11 @@ class RegisteredEnvCreator:
     def __repr__(self) -> str:
         return f"hfo2d.RegisteredEnvCreator({self.env_id!r})"
 
+    def __reduce__(self) -> tuple[type, tuple[str]]:
+        # Pickled by the module's current class, so that an env made before importlib.reload(hfo2d) (whose registry
+        # entry keeps this older instance) still pickles: a reload re-runs the module in the same globals.
+        return RegisteredEnvCreator, (self.env_id,)
+
 
 class RegisteredVectorEnvCreator:
     """What ``gym.make_vec(id, num_envs, vectorization_mode="vector_entry_point")`` calls for a registered HFO id:
@@ -110,6 +115,9 @@ class RegisteredVectorEnvCreator:
 
     def __repr__(self) -> str:
         return f"hfo2d.RegisteredVectorEnvCreator({self.env_id!r})"
+
+    def __reduce__(self) -> tuple[type, tuple[str]]:
+        return RegisteredVectorEnvCreator, (self.env_id,)  # as RegisteredEnvCreator.__reduce__
 
 
 # A re-import (importlib.reload, a second interpreter path) must not warn about re-registration.

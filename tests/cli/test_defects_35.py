@@ -45,7 +45,7 @@ def _installed_sampler(
     from rl_zoo3.exp_manager import ExperimentManager
     from rl_zoo3.hyperparams_opt import HYPERPARAMS_SAMPLER
 
-    from sb3_hfo import zoo
+    from sb3_hfo.cli import zoo
 
     zoo.register_with_rl_zoo()
     section = yaml.safe_load(config.read_text())[env_id]

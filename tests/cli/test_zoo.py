@@ -204,7 +204,10 @@ def test_zoo_configs_are_the_paper_s_and_one_per_committed_model() -> None:
 
 
 @pytest.mark.parametrize(
-    "config", [c for c in CONFIGS if not c.stem.startswith(EXPERIMENTS)], ids=lambda c: c.stem
+    "config",
+    # HybridPPO's configs are new here, not renamed research configs: they have no research ancestor
+    [c for c in CONFIGS if not c.stem.startswith(EXPERIMENTS) and c not in HYBRID_PPO_CONFIGS],
+    ids=lambda c: c.stem,
 )
 def test_a_committed_model_s_config_is_named_by_task_with_its_lineage(config: Path) -> None:
     """Named by its task, not by the research diary's id; its header's lineage names the research config it was

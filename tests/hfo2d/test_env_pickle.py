@@ -32,3 +32,15 @@ def test_a_pickled_env_continues_as_the_original(env_id: str) -> None:
             # the next start positions come from the env's own np_random, pickled with it
             assert np.array_equal(original.reset()[0], copy.reset()[0])
     assert episodes >= 1
+
+
+def test_an_env_pickles_after_hfo2d_is_reloaded() -> None:
+    """The registry keeps the creator made at the first import; a reload must not make its envs unpicklable."""
+    import importlib
+
+    importlib.reload(hfo2d)
+    env = gym.make("HFO/EmptyGoal-v0")
+    env.reset(seed=1)
+    copy = pickle.loads(pickle.dumps(env))
+    action = np.full(env.action_space.shape, 0.5, dtype=np.float32)
+    assert np.array_equal(env.step(action)[0], copy.step(action)[0])

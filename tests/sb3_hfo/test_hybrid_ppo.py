@@ -442,7 +442,7 @@ def test_learned_router_learns_to_avoid_a_useless_skill() -> None:
 
 def test_rl_zoo_name_and_load_model(tmp_path: Any) -> None:
     from sb3_hfo.cli.zoo import algo_classes
-    from sb3_hfo.evaluate import evaluate
+    from sb3_hfo.evaluation import evaluate
     from sb3_hfo.models import load_model
     from sb3_hfo.skill_ddpg import SkillDDPG
 

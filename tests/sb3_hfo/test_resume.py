@@ -25,6 +25,7 @@ from stable_baselines3.common.noise import NormalActionNoise
 from stable_baselines3.common.save_util import load_from_zip_file
 
 import hfo2d  # noqa: F401  (registers HFO/EmptyGoal-v0)
+from sb3_hfo.callbacks import ActionNoiseDecayCallback, HFOEpisodeStatsCallback
 from sb3_hfo.common.schedules import LinearToZero
 from sb3_hfo.resume import (
     TrainingCheckpointCallback,
@@ -33,7 +34,6 @@ from sb3_hfo.resume import (
     save_training_state,
 )
 from sb3_hfo.skill_ddpg import SkillDDPG
-from sb3_hfo.callbacks import ActionNoiseDecayCallback, HFOEpisodeStatsCallback
 
 #: Environment steps of the short run (2 envs) and where the stopped run's checkpoint is taken.
 TOTAL_STEPS = 600
