@@ -67,3 +67,32 @@ def test_the_default_run_leaves_the_research_tests_out() -> None:
     collected = [line for line in completed.stdout.splitlines() if ".py::" in line or ".py:" in line]
     assert collected and all(line.startswith("tests/") for line in collected), collected[:5]
     assert (REPO / "research" / "tests" / "test_probes.py").is_file()
+
+
+def test_hybrid_ppo_runs_smoke_writes_curve_run_record_and_final_model(tmp_path: Path) -> None:
+    """CI's tiny version of the E6 experiment: a curriculum run on the batched Keeper-v1, evaluated greedily."""
+    out = tmp_path / "e6"
+    command = [
+        sys.executable,
+        str(REPO / "benchmarks" / "hybrid_ppo_runs.py"),
+        "e6",
+        "--smoke",
+        "--out",
+        str(out),
+    ]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
+    assert [row["final"] for row in rows] == [False, False, True]
+    assert [row["steps"] for row in rows] == [1024, 2048, 2048]
+    for row in rows:
+        evaluation = row["eval"]
+        assert sum(evaluation["status"].values()) == evaluation["episodes"] == 4
+        assert evaluation["goals"] == evaluation["status"].get("GOAL", 0)
+    record = json.loads((out / "run.json").read_text())
+    assert record["env_id"] == "HFO/Keeper-v1" and record["curriculum"] == [0.0, 1.0, 0.5]
+    assert "reward" in record["method"] and "imitation" in record["method"]
+    assert (out / "final.zip").is_file()
+    # a second run into the same folder would mix two curves: refused
+    again = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert again.returncode == 2 and "already holds a run" in again.stderr
