@@ -14,6 +14,10 @@ A training run of :class:`sb3_hfo.hybrid_ppo.HybridPPO` on ``n_envs`` games of o
 * the final model (``final.zip``: the figures that count come from it, evaluated over 1,000 episodes with
   ``python -m sb3_hfo.evaluate RUN/final.zip --env ID --episodes 1000 --seed 0``).
 
+``--init RUN/model_N.zip`` starts a run from an earlier run's policy weights (its optimizers and reward
+normaliser start afresh): a run continued with other settings, e.g. a shorter curriculum; its wall clock adds to
+the earlier run's.
+
 How the model is made: from reward alone. No demonstrations, no scripted labels, no imitation term.
 
     python benchmarks/hybrid_ppo_runs.py e1 --seed 0 --out ~/runs/hppo/e1_s0
@@ -200,6 +204,12 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--env-kwargs", default="{}", help="JSON: env kwargs over the preset's")
     parser.add_argument("--curriculum", default=None, help="START:END:FRACTION of keeper_skill, or 'none'")
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
+    parser.add_argument(
+        "--init",
+        type=Path,
+        default=None,
+        help="start from this HybridPPO zip's policy weights (a run continued)",
+    )
     parser.add_argument("--smoke", action="store_true", help="a few seconds: tiny budget and evaluation")
     args = parser.parse_args(argv)
 
@@ -233,6 +243,7 @@ def main(argv: list[str] | None = None) -> None:
         "command": " ".join([Path(sys.argv[0]).name, *(argv if argv is not None else sys.argv[1:])]),
         "load1_at_start": load_average(),
         "method": "reinforcement learning from reward (no demonstrations, no imitation)",
+        "init": None if args.init is None else str(args.init),
     }
     (args.out / "run.json").write_text(json.dumps(record, indent=1))
 
@@ -246,6 +257,10 @@ def main(argv: list[str] | None = None) -> None:
     if norm_reward:  # rewards scaled by a running std of the discounted return; HFO's features are in [-1, 1]
         env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=hp.get("gamma", 0.99))
     model = HybridPPO("MlpPolicy", env, seed=args.seed, tensorboard_log=str(args.out / "tb"), **hp)
+    if (
+        args.init is not None
+    ):  # the weights of an earlier run of the same architecture (its optimizers start afresh)
+        model.policy.load_state_dict(HybridPPO.load(args.init, device="cpu").policy.state_dict())
 
     def evaluate(policy_model: HybridPPO) -> dict:
         # the evaluation env has the id's own goalie strength (the full goalie for Keeper-v1)

@@ -96,3 +96,10 @@ def test_hybrid_ppo_runs_smoke_writes_curve_run_record_and_final_model(tmp_path:
     # a second run into the same folder would mix two curves: refused
     again = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert again.returncode == 2 and "already holds a run" in again.stderr
+    # --init continues from the run's final weights: the first evaluation plays them
+    init = tmp_path / "e6_continued"
+    continued = [*command[:-1], str(init), "--init", str(out / "final.zip"), "--curriculum", "none"]
+    completed = subprocess.run(continued, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    record = json.loads((init / "run.json").read_text())
+    assert record["init"] == str(out / "final.zip") and record["curriculum"] is None
