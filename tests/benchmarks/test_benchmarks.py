@@ -106,3 +106,39 @@ def test_training_throughput_profile_shows_where_hybrid_ppo_spends_its_time(tmp_
     assert "HybridPPO on HFO/Keeper-v1: 4,096 steps" in completed.stdout
     for function in ("collect_rollouts", "step_games", "(train)"):
         assert function in completed.stdout
+
+
+def test_hybrid_ppo_runs_smoke_writes_curve_run_record_and_final_model(tmp_path: Path) -> None:
+    """CI's tiny version of the E6 experiment: a curriculum run on the batched Keeper-v1, evaluated greedily."""
+    out = tmp_path / "e6"
+    command = [
+        sys.executable,
+        str(REPO / "benchmarks" / "hybrid_ppo_runs.py"),
+        "e6",
+        "--smoke",
+        "--out",
+        str(out),
+    ]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
+    assert [row["final"] for row in rows] == [False, False, True]
+    assert [row["steps"] for row in rows] == [1024, 2048, 2048]
+    for row in rows:
+        evaluation = row["eval"]
+        assert sum(evaluation["status"].values()) == evaluation["episodes"] == 4
+        assert evaluation["goals"] == evaluation["status"].get("GOAL", 0)
+    record = json.loads((out / "run.json").read_text())
+    assert record["env_id"] == "HFO/Keeper-v1" and record["curriculum"] == [0.0, 1.0, 0.5]
+    assert "reward" in record["method"] and "imitation" in record["method"]
+    assert (out / "final.zip").is_file()
+    # a second run into the same folder would mix two curves: refused
+    again = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert again.returncode == 2 and "already holds a run" in again.stderr
+    # --init continues from the run's final weights: the first evaluation plays them
+    init = tmp_path / "e6_continued"
+    continued = [*command[:-1], str(init), "--init", str(out / "final.zip"), "--curriculum", "none"]
+    completed = subprocess.run(continued, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    record = json.loads((init / "run.json").read_text())
+    assert record["init"] == str(out / "final.zip") and record["curriculum"] is None
