@@ -1,4 +1,9 @@
-"""Gymnasium environment for RoboCup Half Field Offense (1v0 and 1v1 against a goalie) on the hfo2d simulator."""
+"""Gymnasium environment for RoboCup Half Field Offense (1v0 and 1v1 against a goalie) on the hfo2d simulator.
+
+The env plays the agent against a list of defense NPCs (:mod:`hfo2d.npc`; today at most the goalie), judged by one
+:class:`hfo2d.referee.Referee`; HFO's protocol (statuses, action bounds, episode rules, start state) lives in
+:mod:`hfo2d.protocol`, whose names this module re-exports.
+"""
 
 from __future__ import annotations
 
@@ -19,11 +24,93 @@ from hfo2d.features import (
     low_level_feature_list,
     num_features,
 )
-from hfo2d.physics import PITCH_HALF_LENGTH, PITCH_HALF_WIDTH, HFOReferee, PlayerState, ServerParams, World
+from hfo2d.npc import DefenseNPC, StillGoalie
+from hfo2d.physics import PlayerState, ServerParams, World
+from hfo2d.protocol import (
+    AGENT2D_FIRST_BODY_DEGS,
+    AGENT2D_FIRST_OBSERVATION_DELAY,
+    AGENT_SIDE,
+    AGENT_UNUM,
+    BALL_X_RANGE,
+    BALL_Y_RANGE,
+    CAPTURED_BY_DEFENSE,
+    DEFAULT_FRAMES_PER_TRIAL,
+    DEFAULT_UNTOUCHED_TIME,
+    DIRECTION_MAX,
+    DIRECTION_MIN,
+    GOAL,
+    GOAL_LINE_X,
+    GOAL_MOUTH_HALF_WIDTH,
+    IN_GAME,
+    KEEPER_SIDE,
+    KEEPER_START,
+    KEEPER_START_BODY_DEG,
+    KEEPER_UNUM,
+    OFFENSE_OFFSETS,
+    OFFENSE_SPREAD,
+    OFFENSE_X_RANGE,
+    OFFENSE_Y_RANGE,
+    OUT_OF_BOUNDS,
+    OUT_OF_TIME,
+    PITCH_MARGIN,
+    PLACEMENT_MAX_X,
+    PLACEMENT_MAX_Y,
+    POWER_MAX,
+    POWER_MIN,
+    TURNOVER_TIME,
+)
+from hfo2d.referee import Referee
 from hfo2d.reward import REWARD_NAMES, make_reward
 
+# The protocol's names this module has always offered (hfo2d.protocol holds them now)
+__all__ = [
+    "ACTION_FORMATS",
+    "ACTION_NAMES",
+    "AGENT2D_FIRST_BODY_DEGS",
+    "AGENT2D_FIRST_OBSERVATION_DELAY",
+    "AGENT_SIDE",
+    "AGENT_UNUM",
+    "BALL_X_RANGE",
+    "BALL_Y_RANGE",
+    "CAPTURED_BY_DEFENSE",
+    "DASH",
+    "DEFAULT_FRAMES_PER_TRIAL",
+    "DEFAULT_UNTOUCHED_TIME",
+    "DIRECTION_MAX",
+    "DIRECTION_MIN",
+    "FEATURE_SETS",
+    "FLAT_ACTION_DIRECTIONS",
+    "FLAT_ACTION_SIZE",
+    "GOAL",
+    "GOALIES",
+    "GOAL_LINE_X",
+    "GOAL_MOUTH_HALF_WIDTH",
+    "HFOEnv",
+    "IN_GAME",
+    "KEEPER_SIDE",
+    "KEEPER_START",
+    "KEEPER_START_BODY_DEG",
+    "KEEPER_UNUM",
+    "KICK",
+    "OFFENSE_OFFSETS",
+    "OFFENSE_SPREAD",
+    "OFFENSE_X_RANGE",
+    "OFFENSE_Y_RANGE",
+    "OUT_OF_BOUNDS",
+    "OUT_OF_TIME",
+    "PITCH_MARGIN",
+    "PLACEMENT_MAX_X",
+    "PLACEMENT_MAX_Y",
+    "POWER_MAX",
+    "POWER_MIN",
+    "RESET_OPTION_LENGTHS",
+    "TASKS",
+    "TURN",
+    "TURNOVER_TIME",
+]
+
 # ---------------------------------------------------------------------------------------------------------------
-# Tasks, actions, episode rules
+# Tasks, action formats, goalies (HFO's protocol itself: hfo2d.protocol, whose names this module re-exports)
 # ---------------------------------------------------------------------------------------------------------------
 TASKS: tuple[str, ...] = ("empty_goal", "static_keeper", "keeper")
 ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
@@ -33,58 +120,11 @@ FEATURE_SETS: tuple[str, ...] = ("paper", "hfo")
 # and its three directions (dash_dir, turn_dir, kick_dir), from its layout (hfo2d.action_layout).
 FLAT_ACTION_SIZE = HFO_FLAT_ACTION_LAYOUT.size
 FLAT_ACTION_DIRECTIONS: tuple[int, ...] = HFO_FLAT_ACTION_LAYOUT.direction_indices
-POWER_MIN, POWER_MAX = 0.0, 100.0  # gym-soccer / paper dash and kick power range (hfo_reference §3.3)
-DIRECTION_MIN, DIRECTION_MAX = -180.0, 180.0  # degrees relative to the body
-
-# HFO statuses (HFO's hfo::Status names)
-IN_GAME = "IN_GAME"
-GOAL = "GOAL"
-CAPTURED_BY_DEFENSE = "CAPTURED_BY_DEFENSE"
-OUT_OF_BOUNDS = "OUT_OF_BOUNDS"
-OUT_OF_TIME = "OUT_OF_TIME"
-
-DEFAULT_FRAMES_PER_TRIAL = 500  # gym-soccer and DQNHFO (hfo_reference §5.2)
-DEFAULT_UNTOUCHED_TIME = 100  # HFO default
-TURNOVER_TIME = 2  # cycles a defender must hold the ball before CAPTURED_BY_DEFENSE (HFORef)
-GOAL_LINE_X = 52.585  # pitch_half_length + ball_size: the ball's centre must cross it (rcssserver referee)
-GOAL_MOUTH_HALF_WIDTH = 7.07  # goal_width / 2 + goal post radius (hfo_reference §1)
-
-# Starting state (HFO resetField with bin/HFO defaults, hfo_reference §5.3)
-# (written out: 0.8 * 34 is 27.200000000000003 in floating point)
-BALL_X_RANGE = (0.0, 10.5)  # m: bin/HFO ball_x_min / max 0 / 0.2 of 52.5
-BALL_Y_RANGE = (-27.2, 27.2)  # m: ball_y_min / max -0.8 / 0.8 of 34
-OFFENSE_SPREAD = 10.5  # m per unit of offset: 0.2 * 52.5
-OFFENSE_OFFSETS: tuple[tuple[float, float], ...] = (
-    (-1.0, -1.0),
-    (-1.0, 1.0),
-    (1.0, 1.0),
-    (1.0, -1.0),
-    (0.0, 2.0),
-    (0.0, -2.0),
-    (-2.0, -2.0),
-    (-2.0, 2.0),
-    (2.0, 2.0),
-    (2.0, -2.0),
-)
-OFFENSE_X_RANGE = (-0.1, PITCH_HALF_LENGTH)
-OFFENSE_Y_RANGE = BALL_Y_RANGE
-KEEPER_START = (PITCH_HALF_LENGTH, 0.0)
-KEEPER_START_BODY_DEG = -180.0  # facing the field
 #: The goalies of task "keeper": hfo2d's own design (HFO/Keeper-v0) and HFO's agent2d goalie (HFO/Keeper-v1).
 GOALIES: tuple[str, ...] = ("hfo2d", "agent2d")
-# rcssserver's initial body angle is 0 (facing the goalie's own goal); agent2d's before-kick-off scan turns it by
-# 180 degrees every few cycles, so real HFO's first episode starts facing either way (agent2d goalie spec §2.5).
-AGENT2D_FIRST_BODY_DEGS = (0.0, -180.0)
-# Cycles between the trainer's placement and the agent's first observation in real HFO (hfo2d.real, measured).
-AGENT2D_FIRST_OBSERVATION_DELAY = 2
-AGENT_SIDE, AGENT_UNUM = "l", 11  # HFO's first offense agent
-KEEPER_SIDE, KEEPER_UNUM = "r", 1
-
-#: Hand placements (reset options) must lie on the pitch or within this margin of it (m): rcssserver
-#: serverparam.cpp PITCH_MARGIN 5.0 (stadium.cpp, placePlayersInField, keeps players within it).
-PITCH_MARGIN = 5.0
-PLACEMENT_MAX_X = PITCH_HALF_LENGTH + PITCH_MARGIN
-PLACEMENT_MAX_Y = PITCH_HALF_WIDTH + PITCH_MARGIN
+# The referee's rules that go with each goalie's id: Keeper-v1 is judged as real HFO judges (rcssserver's HFORef,
+# with real HFO's cycles between episodes and before the first observation), the v0 ids as they were measured.
+_GOALIE_RULES: dict[str, str] = {"agent2d": "rcssserver", "hfo2d": "hfo2d_v0"}
 
 RESET_OPTION_LENGTHS: dict[str, tuple[int, ...]] = {
     "player": (3, 5),  # (x, y, body_deg[, vx, vy])
@@ -211,9 +251,10 @@ class HFOEnv(gym.Env):
             next as in real HFO (one wait cycle is played after each episode), except after ``reset(seed=...)``,
             which starts the goalie afresh so that a seed repeats; its first body angle faces its own goal or the
             field (drawn). As in real HFO, the goalie plays two cycles after the placement before the agent's first
-            observation, and rcssserver's HFO referee judges the episode (``physics.HFOReferee``: the untouched
-            limit is checked before the cycle's count; the trial ends on cycle ``frames_per_trial + 1``, counted
-            from the placement, i.e. after ``frames_per_trial - 1`` agent steps, as a truncation).
+            observation, and rcssserver's HFO referee judges the episode (:class:`hfo2d.referee.Referee`, rules
+            "rcssserver": the untouched limit is checked before the cycle's count; the trial ends on cycle
+            ``frames_per_trial + 1``, counted from the placement, i.e. after ``frames_per_trial - 1`` agent steps,
+            as a truncation). The other ids are judged as described above (rules "hfo2d_v0").
         frames_per_trial: steps after which an episode is truncated.
         untouched_time: cycles without a player near the ball after which the episode ends.
 
@@ -280,13 +321,9 @@ class HFOEnv(gym.Env):
         self.noise = bool(noise)
         self.keeper_skill = 1.0 if keeper_skill is None else float(keeper_skill)
         self.goalie = goalie
-        self._hfo_referee: HFOReferee | None = None
-        self.frames_per_trial = int(frames_per_trial)
-        self.untouched_time = int(untouched_time)
         self.params: ServerParams = ServerParams.with_overrides(server_params)
         self.has_keeper = task != "empty_goal"
         self._kickable_distance = self.params.kickable_area - KICKABLE_BUFFER
-        self._capture_distance = self.params.kickable_area
 
         n_opponents = 1 if self.has_keeper else 0
         n_features = hfo_num_features(0, n_opponents) if self._hfo_layout else num_features(0, n_opponents)
@@ -324,15 +361,21 @@ class HFOEnv(gym.Env):
         self.world: World = World(self.params, rng, noise=self.noise)
         self.agent: PlayerState = self.world.add_player(AGENT_SIDE, AGENT_UNUM)
         self.keeper: PlayerState | None = None
-        self._keeper_policy: Any = None
+        #: The defense's scripted players (HFO's NPCs), each with the player it moves, the goalie first.
+        self.defense_npcs: list[tuple[PlayerState, DefenseNPC]] = []
         if self.has_keeper:
             self.keeper = self.world.add_player(KEEPER_SIDE, KEEPER_UNUM, goalie=True)
-            if task == "keeper":
-                self._keeper_policy = self._make_scripted_keeper(rng)
-            if goalie == "agent2d":
-                self._hfo_referee = HFOReferee(
-                    self.params, self.untouched_time, trial_time=self.frames_per_trial
-                )
+            self.defense_npcs.append((self.keeper, self._make_goalie(rng)))
+        rules = _GOALIE_RULES[goalie] if task == "keeper" else "hfo2d_v0"
+        #: HFO's referee, judging every player of the world.
+        self.referee = Referee(
+            self.params, int(untouched_time), trial_time=int(frames_per_trial), rules=rules
+        )
+        # Real HFO's timing (rules "rcssserver"): the server runs on between episodes, so one cycle is played after
+        # each episode and the NPCs' client state carries over; the agent first observes a few cycles after the
+        # placement. hfo2d's v0 ids start each episode afresh and observe at once.
+        self._server_runs_on = rules == "rcssserver"
+        self._first_observation_delay = AGENT2D_FIRST_OBSERVATION_DELAY if self._server_runs_on else 0
         self._opponents: tuple[PlayerState, ...] = (self.keeper,) if self.keeper is not None else ()
         self._rng_in_use = rng
         self._renderer: Any = None
@@ -345,8 +388,6 @@ class HFOEnv(gym.Env):
         self._goals = 0
         self._last_end: tuple[int, str] | None = None
         self._steps = 0
-        self._untouched = 0
-        self._take_time = 0
         self._status = IN_GAME
 
     # ------------------------------------------------------------------------------------------------------------
@@ -361,17 +402,21 @@ class HFOEnv(gym.Env):
         rng = self.np_random
         world = self.world
         agent = self.agent
+        defense = self.defense_npcs
         if rng is not self._rng_in_use:  # reseeded: every random draw must come from the new generator
             world.rng = rng
-            if self._keeper_policy is not None:
-                self._keeper_policy.rng = rng
+            for _, npc in defense:
+                npc.rng = rng
             self._rng_in_use = rng
-        carry_keeper = self.goalie == "agent2d" and seed is None and self._episode_started
-        if carry_keeper:
-            self._agent2d_wait_frame()
-        elif self.goalie == "agent2d" and self._episode_started:
-            # reset(seed=...) repeats: the goalie starts as in a fresh env, without real HFO's carry-over
-            self._keeper_policy = self._make_scripted_keeper(rng)
+        # the server's state (bodies, bans) and the NPCs' carry over from the last episode, as in real HFO
+        carry_over = self._server_runs_on and seed is None and self._episode_started
+        if carry_over:
+            self._wait_frame()
+        elif seed is not None and self._episode_started:
+            # reset(seed=...) repeats: the NPCs start as in a fresh env, without real HFO's carry-over
+            for _, npc in defense:
+                if npc.carries_over:
+                    npc.restart()
             self._clear_server_state()
 
         ball_x = rng.uniform(*BALL_X_RANGE)
@@ -389,43 +434,32 @@ class HFOEnv(gym.Env):
         world.place_ball(*ball)
         player = placements.get("player", (agent_x, agent_y, agent_body, 0.0, 0.0))
         world.place_player(agent, *player)
-        if self.keeper is not None:
-            keeper_body = KEEPER_START_BODY_DEG
-            if self.goalie == "agent2d":
-                # real HFO never resets the goalie's body angle (HFORef::resetField); the first episode starts
-                # facing its own goal or the field
-                if carry_keeper:
-                    keeper_body = self.keeper.body_deg
-                else:
-                    keeper_body = AGENT2D_FIRST_BODY_DEGS[int(rng.integers(len(AGENT2D_FIRST_BODY_DEGS)))]
-            keeper = placements.get("keeper", (*KEEPER_START, keeper_body))
-            world.place_player(self.keeper, *keeper)
+        for npc_player, npc in defense:  # (the goalie alone, today)
+            # real HFO never resets a body angle (HFORef::resetField): it carries over, or the NPC's own start
+            body = npc_player.body_deg if carry_over else npc.start_body_deg(rng)
+            world.place_player(npc_player, *placements.get("keeper", (*KEEPER_START, body)))
         world.recover_players()
         # collisions of the last episode's final cycle are not part of the new one
         for placed in world.players:
             placed.collided_ball = placed.collided_player = placed.collided_post = False
         world.ball.collided_post = False
-        if self._keeper_policy is not None:
-            if self._keeper_policy.skill != self.keeper_skill:  # set_keeper_skill() was called
-                if self.goalie == "agent2d":
-                    self._keeper_policy.skill = self.keeper_skill  # keeps its client state (catch time)
-                else:
-                    self._keeper_policy = self._make_scripted_keeper(rng)
-            self._keeper_policy.reset()
+        for _, npc in defense:  # (keeper_skill is the goalie's: the only NPC today)
+            if npc.skill != self.keeper_skill:  # set_keeper_skill() was called
+                npc.set_skill(self.keeper_skill)
+            npc.reset()
         self._steps = 0
-        self._untouched = 0
-        self._take_time = 0
         self._status = IN_GAME
         self._needs_reset = False
         self._episode_started = True
-        if self._hfo_referee is not None:
-            self._hfo_referee.reset(world)
-            # Real HFO's agent gets its first observation two cycles after the trainer places the players (measured
-            # with hfo2d.real); the goalie plays those cycles, the agent sends nothing.
-            for _ in range(AGENT2D_FIRST_OBSERVATION_DELAY):
-                self._keeper_policy.act(world, self.keeper)
-                world.step()
-                self._hfo_referee.analyse(world)
+        referee = self.referee
+        referee.reset(world)
+        # Real HFO's agent gets its first observation two cycles after the trainer places the players (measured
+        # with hfo2d.real); the NPCs play those cycles, the agent sends nothing.
+        for _ in range(self._first_observation_delay):
+            for player, npc in defense:
+                npc.act(world, player)
+            world.step()
+            referee.analyse(world)
         self._episode_over = False
         self._episode_number += 1
         features = self._features()
@@ -451,11 +485,11 @@ class HFOEnv(gym.Env):
             kind, power, direction = self._parse_flat_action(action)
         else:
             kind, power, direction = self._parse_parameterized_action(action)
-        goalie_command: Any = _NO_DECISION
-        if self.goalie == "agent2d" and self.keeper is not None:
-            # agent2d decides on the state after the last step, before this cycle's commands arrive (a turn of the
-            # agent changes its body angle at once in World)
-            goalie_command = self._keeper_policy.decide(world, self.keeper)
+        defense = self.defense_npcs
+        # the NPCs decide on the state after the last step, before this cycle's commands arrive (a turn of the
+        # agent changes its body angle at once in World)
+        for player, npc in defense:
+            npc.decide(world, player)
 
         success = True
         kick_power = 0.0
@@ -467,30 +501,16 @@ class HFOEnv(gym.Env):
             success = bool(world.client_kick(agent, power, direction))
             if success:
                 kick_power = min(max(power, POWER_MIN), POWER_MAX)
-        if goalie_command is not _NO_DECISION and self.keeper is not None:
-            self._keeper_policy.apply(world, self.keeper, goalie_command)
-        elif self._keeper_policy is not None and self.keeper is not None:
-            self._keeper_policy.act(world, self.keeper)
+        for player, npc in defense:
+            npc.apply(world, player)  # what it decided above
 
-        ball = world.ball
-        previous_ball_x = ball.x
-        previous_ball_y = ball.y
         world.step()
         self._steps += 1
 
-        if self._hfo_referee is not None:
-            # Keeper-v1: rcssserver's HFO referee exactly, including its trial time (the episode ends on cycle
-            # frames_per_trial + 1, a truncation) and its untouched count (checked before this cycle's count)
-            status = self._hfo_referee.analyse(world)
-            truncated = status == OUT_OF_TIME and self._hfo_referee.cycles > self.frames_per_trial
-            terminated = status != IN_GAME and not truncated
-        else:
-            status = self._referee(previous_ball_x, previous_ball_y)
-            terminated = status != IN_GAME
-            truncated = False
-            if not terminated and self._steps >= self.frames_per_trial:
-                status = OUT_OF_TIME
-                truncated = True
+        referee = self.referee
+        status = referee.analyse(world)
+        truncated = referee.truncated
+        terminated = status != IN_GAME and not truncated
         self._status = status
         if terminated or truncated:
             self._episode_over = True
@@ -513,11 +533,11 @@ class HFOEnv(gym.Env):
         observation_array = np.frombuffer(self._observation_packer.pack(*observation), np.float32).copy()
         return observation_array, reward, terminated, truncated, info
 
-    def _agent2d_wait_frame(self) -> None:
-        """Real HFO plays one more cycle after an episode ends and before the next reset; the goalie acts in it
-        (its body angle and bans carry over), the agent's command is not sent to an episode that has ended."""
-        assert self.keeper is not None
-        self._keeper_policy.act(self.world, self.keeper)
+    def _wait_frame(self) -> None:
+        """Real HFO plays one more cycle after an episode ends and before the next reset; the NPCs act in it
+        (their body angles and bans carry over), the agent's command is not sent to an episode that has ended."""
+        for player, npc in self.defense_npcs:
+            npc.act(self.world, player)
         self.world.step()
 
     def _clear_server_state(self) -> None:
@@ -527,14 +547,22 @@ class HFOEnv(gym.Env):
                 if hasattr(player, timer):
                     setattr(player, timer, 0)
 
-    def _make_scripted_keeper(self, rng: np.random.Generator) -> Any:
+    def _make_goalie(self, rng: np.random.Generator) -> DefenseNPC:
+        """The goalie NPC of this env's task and ``goalie``."""
+        if self.task != "keeper":
+            return StillGoalie(self.params, rng, skill=self.keeper_skill)
         if self.goalie == "agent2d":
-            from hfo2d.agent2d.goalie import Agent2dGoalie
+            from hfo2d.agent2d.goalie import Agent2dGoalie  # only HFO/Keeper-v1 needs it
 
             return Agent2dGoalie(self.params, rng, skill=self.keeper_skill)
-        from hfo2d.keeper import ScriptedKeeper  # only task "keeper" needs it
+        from hfo2d.keeper import ScriptedKeeper  # only HFO/Keeper-v0 needs it
 
         return ScriptedKeeper(self.params, rng, skill=self.keeper_skill)
+
+    @property
+    def _keeper_policy(self) -> DefenseNPC | None:
+        """The goalie NPC (None without a goalie); the name older tests and tools read."""
+        return self.defense_npcs[0][1] if self.defense_npcs else None
 
     def set_keeper_skill(self, skill: float) -> None:
         """Change the scripted goalie's quality (task "keeper" only), in [0, 1]; effective from the next reset.
@@ -608,6 +636,24 @@ class HFOEnv(gym.Env):
     # Internals
     # ------------------------------------------------------------------------------------------------------------
     @property
+    def frames_per_trial(self) -> int:
+        """Steps after which an episode is truncated (the referee's trial time)."""
+        return self.referee.trial_time
+
+    @frames_per_trial.setter
+    def frames_per_trial(self, value: int) -> None:
+        self.referee.trial_time = int(value)
+
+    @property
+    def untouched_time(self) -> int:
+        """Cycles without a player near the ball after which the episode ends (the referee's)."""
+        return self.referee.untouched_time
+
+    @untouched_time.setter
+    def untouched_time(self, value: int) -> None:
+        self.referee.untouched_time = int(value)
+
+    @property
     def status(self) -> str:
         """HFO status of the last step ("IN_GAME" after reset)."""
         return self._status
@@ -627,44 +673,6 @@ class HFOEnv(gym.Env):
         return low_level_feature_list(
             self.agent, self.world.ball, self._kickable_distance, (), self._opponents
         )
-
-    def _referee(self, previous_ball_x: float, previous_ball_y: float) -> str:
-        """HFO's referee after one cycle (HFORef order, hfo_reference §5.1); updates the counters."""
-        world = self.world
-        agent = self.agent
-        ball = world.ball
-        bx = ball.x
-        by = ball.y
-
-        # Counters first: they record who is on the ball this cycle (offense before defense, as HFORef iterates).
-        capture = self._capture_distance
-        agent_on_ball = math.hypot(agent.x - bx, agent.y - by) <= capture
-        keeper_on_ball = False
-        if agent_on_ball:
-            self._take_time = 0
-        keeper = self.keeper
-        if keeper is not None and math.hypot(keeper.x - bx, keeper.y - by) <= capture:
-            keeper_on_ball = True
-            self._take_time += 1
-        if agent_on_ball or keeper_on_ball:
-            self._untouched = 0
-        else:
-            self._untouched += 1
-
-        if previous_ball_x <= GOAL_LINE_X < bx:
-            crossing_y = previous_ball_y + (by - previous_ball_y) * (GOAL_LINE_X - previous_ball_x) / (
-                bx - previous_ball_x
-            )
-            if abs(crossing_y) <= GOAL_MOUTH_HALF_WIDTH:
-                return GOAL
-        if not (0.0 <= previous_ball_x <= PITCH_HALF_LENGTH and abs(previous_ball_y) <= PITCH_HALF_WIDTH):
-            return OUT_OF_BOUNDS
-        # The goalie being the latest player on the ball captures it at once; other defenders need TURNOVER_TIME.
-        if keeper_on_ball or self._take_time >= TURNOVER_TIME:
-            return CAPTURED_BY_DEFENSE
-        if self._untouched > self.untouched_time:
-            return OUT_OF_TIME
-        return IN_GAME
 
     def _info(self, features: Sequence[float]) -> dict[str, Any]:
         agent = self.agent
@@ -800,7 +808,6 @@ if (
 ] != [slice(3, 5), slice(5, 6), slice(6, 8)]:
     raise ImportError("HFO_FLAT_ACTION_LAYOUT changed: update HFOEnv._parse_flat_action's unrolled decode")
 
-_NO_DECISION = object()  # step(): the goalie (if any) decides in the usual place
 _NOT_REAL = (bool, np.bool_, complex, np.complexfloating)  # numbers an action or a placement must not hold
 
 

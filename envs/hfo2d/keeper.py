@@ -38,6 +38,7 @@ from hfo2d.physics import (
     ServerParams,
     World,
 )
+from hfo2d.protocol import KEEPER_START_BODY_DEG
 
 # --- agent2d goalie positioning geometry (hfo_reference §5.4), global frame, goal at x = +52.5 ---------------
 BASE_MOVE_X = 49.8  # the keeper's normal depth
@@ -167,11 +168,21 @@ class ScriptedKeeper:
         horizon = round(3 + 37 * skill) cycles of ball prediction; hesitation = 0.5 * (1 - skill) per cycle.
     """
 
+    #: its client state is forgotten between episodes (:class:`hfo2d.npc.DefenseNPC`)
+    carries_over = False
+
     def __init__(self, params: ServerParams, rng: np.random.Generator, skill: float = 1.0) -> None:
-        if not 0.0 <= skill <= 1.0 or not math.isfinite(skill):
-            raise ValueError(f"keeper skill must be in [0, 1], got {skill}")
         self.params = params
         self.rng = rng
+        self.set_skill(skill)
+        # What the keeper decided in the last call ("idle", "face", "position", "intercept"); for tests/debugging.
+        self.last_mode = "idle"
+
+    def set_skill(self, skill: float) -> None:
+        """Play with quality ``skill`` in [0, 1] from now on; the remembered ball states are forgotten."""
+        if not 0.0 <= skill <= 1.0 or not math.isfinite(skill):
+            raise ValueError(f"keeper skill must be in [0, 1], got {skill}")
+        params = self.params
         self.skill = float(skill)
         self.dash_power = params.maxpower * self.skill
         self.reaction_delay = round(MAX_REACTION_DELAY_CYCLES * (1.0 - self.skill))
@@ -188,17 +199,32 @@ class ScriptedKeeper:
         self._ball_series = [(1.0 - params.ball_decay**n) / (1.0 - params.ball_decay) for n in cycles]
         self._ball_decay_pow = [params.ball_decay**n for n in cycles]
         self._ball_memory: deque[tuple[float, float, float, float]] = deque(maxlen=self.reaction_delay + 1)
-        # What the keeper decided in the last call ("idle", "face", "position", "intercept"); for tests/debugging.
-        self.last_mode = "idle"
 
     def reset(self) -> None:
         """Forget the remembered ball states (call at the start of every episode)."""
         self._ball_memory.clear()
         self.last_mode = "idle"
 
-    # ---------------------------------------------------------------------------------------------------------
+    def restart(self) -> None:
+        """As a new keeper: nothing outlives an episode but the skill, so :meth:`reset`."""
+        self.reset()
+
+    def start_body_deg(self, rng: np.random.Generator) -> float:
+        """Facing the field (no draw)."""
+        return KEEPER_START_BODY_DEG
+
+    def decide(self, world: World, keeper: PlayerState) -> None:
+        """Nothing: this keeper looks at the world when its command is sent (:meth:`apply`), after the striker's
+        command of the cycle, as ``HFO/Keeper-v0`` was measured."""
+        return None
+
     def act(self, world: World, keeper: PlayerState) -> None:
         """Issue at most one server-side command (dash or turn) for ``keeper`` for the coming cycle."""
+        self.apply(world, keeper)
+
+    # ---------------------------------------------------------------------------------------------------------
+    def apply(self, world: World, keeper: PlayerState, decision: None = None) -> None:
+        """Decide on the world as it is and issue at most one server-side command (dash or turn) for ``keeper``."""
         ball = world.ball
         if self.reaction_delay > 0:
             self._ball_memory.append((ball.x, ball.y, ball.vx, ball.vy))

@@ -1207,168 +1207,26 @@ def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, 
     return False
 
 
-# --- HFO referee (rcssserver referee.cpp HFORef::analyse, spec §5.4) --------------------------------------------
-# HFORef's messages, also HFO's hfo::Status names
-HFO_IN_GAME = "IN_GAME"
-HFO_GOAL = "GOAL"
-HFO_CAPTURED_BY_DEFENSE = "CAPTURED_BY_DEFENSE"
-HFO_OUT_OF_BOUNDS = "OUT_OF_BOUNDS"
-HFO_OUT_OF_TIME = "OUT_OF_TIME"
-HFO_TURNOVER_TIME = 2  # referee.cpp HFORef::TURNOVER_TIME
+# The referee's names lived here before hfo2d.referee and hfo2d.protocol held them; importing them from this module
+# still works (read lazily: hfo2d.referee imports this module).
+_MOVED_TO_REFEREE = ("HFOReferee", "crosses_right_goal_line", "in_hfo_area")
+_MOVED_STATUSES = {
+    "HFO_IN_GAME": "IN_GAME",
+    "HFO_GOAL": "GOAL",
+    "HFO_CAPTURED_BY_DEFENSE": "CAPTURED_BY_DEFENSE",
+    "HFO_OUT_OF_BOUNDS": "OUT_OF_BOUNDS",
+    "HFO_OUT_OF_TIME": "OUT_OF_TIME",
+    "HFO_TURNOVER_TIME": "TURNOVER_TIME",
+}
 
 
-def crosses_right_goal_line(
-    prev_x: float, prev_y: float, x: float, y: float, params: ServerParams | None = None
-) -> bool:
-    """rcssserver ``Referee::crossGoalLine(RIGHT, prev)``: did the ball's centre cross into the right goal?
+def __getattr__(name: str) -> object:
+    if name in _MOVED_TO_REFEREE:
+        from hfo2d import referee
 
-    The centre must go from |x| <= 52.5 + ball_size to x > 52.5 + ball_size, a start behind the goal line
-    (|prev x| > 52.5) outside the mouth (|prev y| > goal_width/2 + post radius) never counts, and the crossing
-    y, computed as gradient * line_x + offset, must satisfy |y| <= goal_width/2 + post radius (7.069999...).
-    """
-    sp = params if params is not None else _DEFAULT_PARAMS
-    line_x = PITCH_HALF_LENGTH + sp.ball_size  # PITCH_LENGTH * 0.5 + ball_size
-    if prev_x == x:
-        return False
-    if abs(x) <= line_x or abs(prev_x) > line_x:
-        return False
-    if -x >= 0.0:  # side RIGHT is -1: side * x >= 0 is the wrong half
-        return False
-    mouth = sp.goal_width * 0.5 + GOAL_POST_RADIUS
-    if abs(prev_y) > mouth and abs(prev_x) > PITCH_HALF_LENGTH:
-        return False
-    gradient = (y - prev_y) / (x - prev_x)
-    offset = prev_y - gradient * prev_x
-    return abs(gradient * line_x + offset) <= mouth
+        return getattr(referee, name)
+    if name in _MOVED_STATUSES:
+        from hfo2d import protocol
 
-
-def in_hfo_area(x: float, y: float) -> bool:
-    """rcssserver ``HFORef::inHFOArea``: 0 <= x <= 52.5 and |y| <= 34 (bounds inclusive)."""
-    return x >= 0.0 and x <= PITCH_HALF_LENGTH and abs(y) <= PITCH_HALF_WIDTH
-
-
-class HFOReferee:
-    """rcssserver's HFO referee (``HFORef``), exactly: call :meth:`reset` after placing the field and
-    :meth:`analyse` after every :meth:`World.step`.
-
-    :meth:`analyse`, in PlayOn, checks in this order and returns the first that holds:
-
-    1. GOAL: :func:`crosses_right_goal_line` from the previous analysed ball position;
-    2. OUT_OF_BOUNDS: the *previous* ball position is outside :func:`in_hfo_area`;
-    3. CAPTURED_BY_DEFENSE: ``take_time >= 2`` as counted by the earlier cycles;
-    4. OUT_OF_TIME: ``untouched`` as counted by the earlier cycles exceeds ``untouched_time`` (if > 0), or more
-       than ``trial_time`` (if > 0) cycles were played since the reset;
-    5. otherwise ``untouched += 1``, then the players are walked in server order (``World.players``: the
-       offense connects first). Each with squared centre distance to the ball ``< kickable_area²`` (strict)
-       becomes the holder and zeroes ``untouched``; an offense ("l") player sets ``offense_possession``, a
-       defence ("r") player clears it, adds 1 to ``take_time`` and stops the walk. ``offense_possession``
-       then zeroes ``take_time``. If the holder (kept from earlier cycles) is defence unum 1:
-       CAPTURED_BY_DEFENSE, else IN_GAME.
-
-    The previous ball position is updated at the end of every call. Outside PlayOn (``world.play_on`` False)
-    nothing but that update happens.
-
-    Args:
-        params: server parameters (kickable_area, ball_size, goal_width).
-        untouched_time: HFO's ``hfo_max_untouched_time`` (bin/HFO ``--untouched-time``, default 100); <= 0 off.
-        trial_time: HFO's ``hfo_max_trial_time`` (bin/HFO ``--frames-per-trial``); <= 0 off (the default:
-            hfo2d's env truncates on its own).
-    """
-
-    __slots__ = (
-        "params",
-        "untouched_time",
-        "trial_time",
-        "take_time",
-        "untouched",
-        "holder_side",
-        "holder_unum",
-        "cycles",
-        "prev_ball_x",
-        "prev_ball_y",
-        "_limit_params",
-        "_kickable_limit2",
-    )
-
-    def __init__(self, params: ServerParams, untouched_time: int = 100, trial_time: int = 0) -> None:
-        self.params = params
-        self.untouched_time = int(untouched_time)
-        self.trial_time = int(trial_time)
-        self.take_time = 0
-        self.untouched = 0
-        self.holder_side = "U"
-        self.holder_unum = -1
-        self.cycles = 0
-        self.prev_ball_x = 0.0
-        self.prev_ball_y = 0.0
-        self._limit_params: ServerParams | None = None  # the params _kickable_limit2 was computed from
-        self._kickable_limit2 = 0.0
-
-    def reset(self, world: World) -> None:
-        """``HFORef::resetField``'s bookkeeping: counters zeroed, no holder, previous ball = the placed ball."""
-        self.take_time = 0
-        self.untouched = 0
-        self.holder_side = "U"
-        self.holder_unum = -1
-        self.cycles = 0
-        self.prev_ball_x = world.ball.x
-        self.prev_ball_y = world.ball.y
-
-    def analyse(self, world: World) -> str:
-        """The status after one step (see the class docstring); updates the counters."""
-        ball = world.ball
-        bx = ball.x
-        by = ball.y
-        status = HFO_IN_GAME
-        if world.play_on:
-            self.cycles += 1
-            # (crosses_right_goal_line is False while |x| <= its line_x; that test alone first, as it fails most cycles)
-            prev_x = self.prev_ball_x
-            prev_y = self.prev_ball_y
-            if abs(bx) > PITCH_HALF_LENGTH + self.params.ball_size and crosses_right_goal_line(
-                prev_x, prev_y, bx, by, self.params
-            ):
-                status = HFO_GOAL
-            # in_hfo_area(prev_x, prev_y), written out
-            elif not (prev_x >= 0.0 and prev_x <= PITCH_HALF_LENGTH and abs(prev_y) <= PITCH_HALF_WIDTH):
-                status = HFO_OUT_OF_BOUNDS
-            elif self.take_time >= HFO_TURNOVER_TIME:
-                status = HFO_CAPTURED_BY_DEFENSE
-            elif (self.untouched_time > 0 and self.untouched > self.untouched_time) or (
-                self.trial_time > 0 and self.cycles > self.trial_time
-            ):
-                status = HFO_OUT_OF_TIME
-            else:
-                self.untouched += 1
-                offense_possession = False
-                # ServerParam::kickableArea(): player_size + kickable_margin + ball_size, squared by std::pow
-                # (remembered per params object: the property costs more than the rest of the test)
-                if self._limit_params is not self.params:
-                    area = self.params.kickable_area
-                    self._kickable_limit2 = area * area
-                    self._limit_params = self.params
-                limit2 = self._kickable_limit2
-                for p in world.players:
-                    dx = p.x - bx
-                    dy = p.y - by
-                    if dx * dx + dy * dy < limit2:
-                        self.holder_unum = p.unum
-                        self.untouched = 0
-                        if p.side == "l":
-                            offense_possession = True
-                            self.holder_side = "L"
-                        else:
-                            offense_possession = False
-                            self.holder_side = "R"
-                            self.take_time += 1
-                            break
-                if offense_possession:
-                    self.take_time = 0
-                if self.holder_side == "R" and self.holder_unum == 1:
-                    status = HFO_CAPTURED_BY_DEFENSE
-        self.prev_ball_x = bx
-        self.prev_ball_y = by
-        return status
-
-
-_DEFAULT_PARAMS = ServerParams()
+        return getattr(protocol, _MOVED_STATUSES[name])
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

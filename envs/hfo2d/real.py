@@ -126,8 +126,8 @@ from hfo2d.features import (
     num_features,
     paper_from_hfo,
 )
-from hfo2d.hfo_env import (
-    ACTION_FORMATS,
+from hfo2d.hfo_env import ACTION_FORMATS, HFOEnv
+from hfo2d.protocol import (
     ACTION_NAMES,
     CAPTURED_BY_DEFENSE,
     DASH,
@@ -143,7 +143,6 @@ from hfo2d.hfo_env import (
     POWER_MAX,
     POWER_MIN,
     TURN,
-    HFOEnv,
 )
 from hfo2d.reward import REWARD_NAMES, make_reward
 

@@ -55,7 +55,7 @@ from hfo2d.features import (
     SELF_BODY_SIN,
     SELF_VEL_ANGLE_SIN,
 )
-from hfo2d.hfo_env import (
+from hfo2d.protocol import (
     OFFENSE_OFFSETS,
     OFFENSE_SPREAD,
     OFFENSE_Y_RANGE,

@@ -26,7 +26,7 @@ from typing import Any, NoReturn
 import gymnasium as gym
 
 import hfo2d
-from sb3_hfo.cli.zoo import ALGO_NAME, algo_classes
+from sb3_hfo.cli.zoo import ALGO_NAME, BATCH_CONFIG_KEYS, ConfigConflictError, algo_classes, batch_options
 
 # The library's errors and checks, also offered here (`as` marks them re-exported) for the command-line tools.
 from sb3_hfo.errors import UserError as UserError
@@ -302,7 +302,12 @@ def check_hyperparameter_keys(hyperparams: dict[str, Any], where: str, algo: str
             raise UserError(f"{where}: {name!r} is set by rl-zoo3's {option} option, not as a hyperparameter")
     arguments = [name for name in constructor_arguments(algo_class) if name not in ZOO_OPTION_ARGS]
     label = algo or ALGO_NAME
-    _check_names(list(hyperparams), sorted({*arguments, *ZOO_CONFIG_KEYS}), f"{label} hyperparameter", where)
+    valid_keys = sorted({*arguments, *ZOO_CONFIG_KEYS, *BATCH_CONFIG_KEYS})
+    _check_names(list(hyperparams), valid_keys, f"{label} hyperparameter", where)
+    try:
+        batch_options(hyperparams, partial=True)
+    except ConfigConflictError as error:
+        raise UserError(f"{where}: {error}") from None
     policy_kwargs = hyperparams.get("policy_kwargs")
     policy_class = algo_class.policy_aliases.get(hyperparams.get("policy", "MlpPolicy"))
     if isinstance(policy_kwargs, dict) and policy_class is not None:

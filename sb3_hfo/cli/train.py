@@ -24,7 +24,12 @@ from sb3_hfo.cli.errors import (
     fail,
     one_line_argparse_errors,
 )
-from sb3_hfo.cli.zoo import ResumeError, run_rl_zoo_entry_point, split_checkpoint_options
+from sb3_hfo.cli.zoo import (
+    ConfigConflictError,
+    ResumeError,
+    run_rl_zoo_entry_point,
+    split_checkpoint_options,
+)
 
 PROG = "python -m sb3_hfo.train"
 
@@ -54,7 +59,7 @@ def main(argv: Sequence[str] | None = None) -> None:
     with one_line_argparse_errors(PROG):
         try:
             run_rl_zoo_entry_point(rl_zoo3.train.train, args, False, True, checkpointing)
-        except ResumeError as error:
+        except (ResumeError, ConfigConflictError) as error:
             fail(error)
 
 

@@ -5,7 +5,7 @@ rl-zoo3 keeps its algorithms and Optuna samplers in module-level tables (``rl_zo
 from ``ALGOS`` *before* it imports ``--gym-packages``. So ``python -m sb3_hfo.train`` (and ``enjoy``,
 ``record_video``) call :func:`register_with_rl_zoo` first and then hand over to rl-zoo3's own entry points.
 
-Four rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimentManager`:
+Some rl-zoo3 behaviours need a nudge for sb3_hfo, done by :class:`HFOExperimentManager`:
 
 * rl-zoo3 turns ``"lin_<x>"`` strings into linear schedules only for the key ``learning_rate``; SkillDDPG has
   two learning rates (``learning_rate_actor``, ``learning_rate_critic``), so the same conversion is applied to
@@ -21,6 +21,12 @@ Four rl-zoo3 behaviours need a nudge for SkillDDPG, done by :class:`HFOExperimen
 * The algorithms know no task (:mod:`sb3_hfo.common.domain`): on an HFO env id a config's ``policy_kwargs`` get
   ``domain: hfo`` unless they name a domain, so that its ``skill_router: field_half``, ``acting: kick_mask`` and
   ``relative_to`` landmarks read HFO's columns.
+* ``vec_env: batch`` (a config key of sb3_hfo's, with ``num_workers: N``): the training envs are hfo2d's batch
+  (:func:`sb3_hfo.vec_env.make_hfo_vec_env`: the ``n_envs`` games stepped by one batch, in this process or
+  sharded over ``N`` processes, wrapped in ``VecMonitor``) instead of rl-zoo3's ``DummyVecEnv`` of
+  ``Monitor``-wrapped envs, which deep-copies every game's info dict every step. Seeds as rl-zoo3's (game i gets
+  ``--seed`` + i), one ``monitor.csv`` in the run folder; the evaluation env is a batch as well. Resumable training
+  (``--checkpoint-freq`` / ``--resume``) needs the ``DummyVecEnv`` and refuses a batch.
 * rl-zoo3 (2.9) hands a config's ``env_kwargs`` (e.g. ``reward: shaped_gap``) to the training envs but builds the
   evaluation env with the command line's ``--env-kwargs`` only, so ``--eval-freq`` evaluations would report a
   different reward and pick ``best_model.zip`` by it. Unless ``--eval-env-kwargs`` is given, the evaluation env
@@ -33,6 +39,7 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import numbers
 import shutil
 import sys
 import tempfile
@@ -41,7 +48,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import hfo2d  # registers the HFO/* Gymnasium ids
+import hfo2d  # noqa: F401  (registers the HFO/* Gymnasium ids)
+from hfo2d import ENV_IDS
 from sb3_hfo.common.schedules import SCHEDULE_KEYS, parse_schedule
 from sb3_hfo.hybrid_ppo import HybridPPO
 from sb3_hfo.models import full_model_buffer, is_stripped
@@ -78,6 +86,44 @@ class CheckpointOptions:
 
 class ResumeError(ValueError):
     """``--resume`` cannot continue that run folder (its checkpoint is of other hyperparameters)."""
+
+
+class ConfigConflictError(ValueError):
+    """A config's keys that cannot run together, or with the command line's options (reported in one line)."""
+
+
+#: sb3_hfo's own config keys, read by :class:`HFOExperimentManager` and not passed to the algorithm:
+#: ``vec_env`` (``dummy``: rl-zoo3's ``DummyVecEnv``, the default; ``batch``: hfo2d's batch) and ``num_workers``
+#: (processes that step the batch; only with ``vec_env: batch``).
+BATCH_CONFIG_KEYS: tuple[str, ...] = ("vec_env", "num_workers")
+VEC_ENV_KINDS: tuple[str, ...] = ("dummy", "batch")
+
+
+@dataclass(frozen=True)
+class BatchOptions:
+    """A config's ``vec_env`` / ``num_workers``: whether the training envs are hfo2d's batch, and its processes."""
+
+    batch: bool = False
+    num_workers: int = 1
+
+
+def batch_options(hyperparams: dict[str, Any], partial: bool = False) -> BatchOptions:
+    """The ``vec_env`` / ``num_workers`` keys of a run's hyperparameters.
+
+    :param partial: ``hyperparams`` is one source of them (the config section, or ``--hyperparams``, which rl-zoo3
+        merges over it): ``num_workers`` is not checked against a ``vec_env`` the other source may set.
+    :raises ConfigConflictError: an unknown ``vec_env``, a ``num_workers`` that is not a positive integer, or
+        ``num_workers`` without ``vec_env: batch``.
+    """
+    kind = hyperparams.get("vec_env", "dummy")
+    if kind not in VEC_ENV_KINDS:
+        raise ConfigConflictError(f"vec_env must be one of {', '.join(VEC_ENV_KINDS)}, got {kind!r}")
+    workers = hyperparams.get("num_workers", 1)
+    if isinstance(workers, bool) or not isinstance(workers, numbers.Integral) or workers < 1:
+        raise ConfigConflictError(f"num_workers must be a positive integer, got {workers!r}")
+    if "num_workers" in hyperparams and kind != "batch" and not (partial and "vec_env" not in hyperparams):
+        raise ConfigConflictError("num_workers applies to vec_env: batch only (hfo2d's batch of games)")
+    return BatchOptions(kind == "batch", int(workers))
 
 
 def split_checkpoint_options(argv: Sequence[str]) -> tuple[list[str], CheckpointOptions]:
@@ -129,14 +175,50 @@ def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) ->
         def __init__(self, *args: Any, **kwargs: Any) -> None:
             super().__init__(*args, **kwargs)
             self._run_info: dict[str, Any] = {}
+            self._batch = BatchOptions()
             if options.resume is not None:  # continue that run folder instead of numbering a new one
                 self.save_path = str(options.resume)
                 self.params_path = f"{self.save_path}/{self.env_name}"
 
         def create_envs(self, n_envs: int, eval_env: bool = False, no_log: bool = False) -> Any:
+            if self._batch.batch:
+                return self._create_batch(n_envs, eval_env, no_log)
             if options.resume is not None and not eval_env:  # append to the run's monitor.csv (cut at resume)
                 self.monitor_kwargs = {**self.monitor_kwargs, "override_existing": False}
             return super().create_envs(n_envs, eval_env=eval_env, no_log=no_log)
+
+        def _create_batch(self, n_envs: int, eval_env: bool, no_log: bool) -> Any:
+            """The envs as hfo2d's batch, wrapped as rl-zoo3 wraps its ``DummyVecEnv`` (after its ``Monitor`` s:
+            ``vec_env_wrapper``, ``VecNormalize``, frame stacking).
+
+            The evaluation env is a batch too: SB3's ``EvalCallback`` copies ``VecNormalize``'s statistics by
+            walking the training and evaluation envs' wrappers side by side, so both need the same chain."""
+            from stable_baselines3.common.vec_env import VecFrameStack, VecMonitor
+
+            from sb3_hfo.vec_env import make_hfo_vec_env
+
+            env = make_hfo_vec_env(
+                self.env_name.gym_id,
+                n_envs,
+                seed=self.seed,
+                # the evaluation's few games (rl-zoo3's --n-eval-envs) are not worth a worker process
+                num_workers=1 if eval_env else min(self._batch.num_workers, n_envs),
+                monitor=False,
+                **(self.eval_env_kwargs if eval_env else self.env_kwargs),
+            )
+            # One monitor.csv for all games (rl-zoo3's Monitors write one per env); rows in order of episode end.
+            # Like rl-zoo3, no file for the evaluation env.
+            env = VecMonitor(
+                env,
+                filename=None if no_log or eval_env else self.save_path,
+                info_keywords=tuple(self.monitor_kwargs.get("info_keywords", ())),
+            )
+            if self.vec_env_wrapper is not None:
+                env = self.vec_env_wrapper(env)
+            env = self._maybe_normalize(env, eval_env)
+            if self.frame_stack is not None:
+                env = VecFrameStack(env, self.frame_stack)
+            return env
 
         def _save_config(self, saved_hyperparams: dict[str, Any]) -> None:
             # What a resume must match (the seed only built what the checkpoint replaces).
@@ -194,6 +276,9 @@ def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) ->
                 raise
 
         def _preprocess_hyperparams(self, hyperparams: dict[str, Any]) -> Any:
+            self._batch = batch_options(hyperparams)
+            for key in BATCH_CONFIG_KEYS:
+                hyperparams.pop(key, None)
             processed = super()._preprocess_hyperparams(hyperparams)
             if self._eval_env_kwargs_args is None:
                 self.eval_env_kwargs = dict(self.env_kwargs)
@@ -201,7 +286,37 @@ def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) ->
                 processed[0]["policy_kwargs"] = with_hfo_domain(
                     processed[0].get("policy_kwargs"), self.env_name.gym_id
                 )
+            if self._batch.batch:
+                self._check_batch(env_wrapper=processed[1])
             return processed
+
+        def _check_batch(self, env_wrapper: Any) -> None:
+            """Refuse what ``vec_env: batch`` cannot do, before any folder or env is made."""
+            from stable_baselines3.common.vec_env import DummyVecEnv
+
+            if options.checkpointing or options.resume is not None:
+                raise ConfigConflictError(
+                    "--checkpoint-freq / --resume need rl-zoo3's DummyVecEnv; this config trains on hfo2d's batch "
+                    "(vec_env: batch): add --hyperparams \"vec_env:'dummy'\" to checkpoint it"
+                )
+            if self.vec_env_class is not DummyVecEnv:
+                raise ConfigConflictError(
+                    f"--vec-env {self.vec_env_class.__name__} and vec_env: batch (the config's) exclude each other; "
+                    "num_workers: 2 steps the batch on two processes"
+                )
+            if self.env_name.gym_id not in ENV_IDS:
+                raise ConfigConflictError(
+                    f"vec_env: batch needs an hfo2d id ({', '.join(ENV_IDS)}), got {self.env_name.gym_id}"
+                )
+            if env_wrapper is not None:
+                raise ConfigConflictError(
+                    "env_wrapper wraps each env, and vec_env: batch has no per-game wrappers: use vec_env_wrapper"
+                )
+            unsupported = sorted(set(self.monitor_kwargs) - {"info_keywords"})
+            if unsupported:
+                raise ConfigConflictError(
+                    f"monitor_kwargs {unsupported} do not apply to vec_env: batch (VecMonitor takes info_keywords)"
+                )
 
         @staticmethod
         def _preprocess_schedules(hyperparams: dict[str, Any]) -> dict[str, Any]:
@@ -245,7 +360,7 @@ HFO_DOMAIN_NAME = "hfo"
 
 def with_hfo_domain(policy_kwargs: dict[str, Any] | None, env_id: str) -> dict[str, Any] | None:
     """``policy_kwargs`` with ``domain="hfo"`` added for an HFO env id (a config's own ``domain`` is kept)."""
-    if env_id not in hfo2d.ENV_IDS:
+    if env_id not in ENV_IDS:
         return policy_kwargs
     return {"domain": HFO_DOMAIN_NAME, **(policy_kwargs or {})}
 

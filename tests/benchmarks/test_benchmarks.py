@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import statistics
 import subprocess
 import sys
 from pathlib import Path
@@ -67,3 +68,77 @@ def test_the_default_run_leaves_the_research_tests_out() -> None:
     collected = [line for line in completed.stdout.splitlines() if ".py::" in line or ".py:" in line]
     assert collected and all(line.startswith("tests/") for line in collected), collected[:5]
     assert (REPO / "research" / "tests" / "test_probes.py").is_file()
+
+
+def test_training_throughput_times_both_contestants_in_each_round(tmp_path: Path) -> None:
+    out = tmp_path / "training_throughput.json"
+    command = [sys.executable, str(REPO / "benchmarks" / "training_throughput.py"), "--smoke"]
+    command += ["--rounds", "2", "--seconds", "0.2", "--out", str(out)]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    results = json.loads(out.read_text())
+    samples = results["samples"]
+    assert set(samples) == {"hybrid_ppo", "skill_ddpg"}
+    assert all(len(runs) == 2 for runs in samples.values())
+    for runs in samples.values():
+        for sample in runs:
+            assert sample["seconds"] >= 0.2 and sample["steps"] > 0  # a slice of at least --seconds
+            assert sample["warmup_steps"] > 0  # timed after the warm-up
+    # HybridPPO trains on hfo2d's batch of 16 games, SkillDDPG on E6's 4 envs in rl-zoo3's DummyVecEnv
+    assert results["n_envs"] == {"hybrid_ppo": 16, "skill_ddpg": 4}
+    assert results["vec_env"]["hybrid_ppo"].endswith("HFOVecEnv")
+    assert results["vec_env"]["skill_ddpg"] == "DummyVecEnv"
+    assert results["torch_threads"] == {"hybrid_ppo": [1], "skill_ddpg": [1]}
+    rates = results["steps_per_s"]
+    assert results["ratio_hybrid_ppo_vs_skill_ddpg"] == rates["hybrid_ppo"] / rates["skill_ddpg"]
+    for name, runs in samples.items():
+        assert rates[name] == statistics.median(sample["steps_per_s"] for sample in runs)
+    assert "load average" in results["uptime_before"] and results["cpu_model"]
+
+
+def test_training_throughput_profile_shows_where_hybrid_ppo_spends_its_time(tmp_path: Path) -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "training_throughput.py"), "--profile"]
+    completed = subprocess.run(
+        [*command, "--profile-rollouts", "1"], capture_output=True, text=True, timeout=300, cwd=tmp_path
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    # one rollout of 16 games x 256 steps
+    assert "HybridPPO on HFO/Keeper-v1: 4,096 steps" in completed.stdout
+    for function in ("collect_rollouts", "step_games", "(train)"):
+        assert function in completed.stdout
+
+
+def test_hybrid_ppo_runs_smoke_writes_curve_run_record_and_final_model(tmp_path: Path) -> None:
+    """CI's tiny version of the E6 experiment: a curriculum run on the batched Keeper-v1, evaluated greedily."""
+    out = tmp_path / "e6"
+    command = [
+        sys.executable,
+        str(REPO / "benchmarks" / "hybrid_ppo_runs.py"),
+        "e6",
+        "--smoke",
+        "--out",
+        str(out),
+    ]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
+    assert [row["final"] for row in rows] == [False, False, True]
+    assert [row["steps"] for row in rows] == [1024, 2048, 2048]
+    for row in rows:
+        evaluation = row["eval"]
+        assert sum(evaluation["status"].values()) == evaluation["episodes"] == 4
+        assert evaluation["goals"] == evaluation["status"].get("GOAL", 0)
+    record = json.loads((out / "run.json").read_text())
+    assert record["env_id"] == "HFO/Keeper-v1" and record["curriculum"] == [0.0, 1.0, 0.5]
+    assert "reward" in record["method"] and "imitation" in record["method"]
+    assert (out / "final.zip").is_file()
+    # a second run into the same folder would mix two curves: refused
+    again = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert again.returncode == 2 and "already holds a run" in again.stderr
+    # --init continues from the run's final weights: the first evaluation plays them
+    init = tmp_path / "e6_continued"
+    continued = [*command[:-1], str(init), "--init", str(out / "final.zip"), "--curriculum", "none"]
+    completed = subprocess.run(continued, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    record = json.loads((init / "run.json").read_text())
+    assert record["init"] == str(out / "final.zip") and record["curriculum"] is None

@@ -67,14 +67,14 @@ def test_seeds_repeat_and_the_goalie_body_carries_over_without_one() -> None:
         place(player, x, y, body_deg, vx, vy)
 
     env.world.place_player = record
-    wait_frame = env._agent2d_wait_frame
+    wait_frame = env._wait_frame
     bodies_after_wait: list[float] = []
 
     def wait_and_record() -> None:
         wait_frame()
         bodies_after_wait.append(env.keeper.body_deg)
 
-    env._agent2d_wait_frame = wait_and_record
+    env._wait_frame = wait_and_record
     env.reset()
     assert placed == bodies_after_wait and len(placed) == 1
     env.reset(seed=5)  # a seed: the first-episode rule (facing its own goal or the field)

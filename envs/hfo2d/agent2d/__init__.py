@@ -4,4 +4,9 @@
 they reproduce: :mod:`~hfo2d.agent2d.decision` (HFO's goalie behaviours), :mod:`~hfo2d.agent2d.intercept`
 (librcsc's intercept table), :mod:`~hfo2d.agent2d.actions` (librcsc's body actions and client conversions),
 :mod:`~hfo2d.agent2d.tackle` (agent2d's tackle), over the vocabulary of :mod:`~hfo2d.agent2d.common`.
+
+The server's parameters reach every module as librcsc's ``server_param`` message reaches the client: the modules
+read them from module constants, which :func:`~hfo2d.agent2d.common.bind_server_params` sets from the
+:class:`~hfo2d.physics.ServerParams` of the world the goalie plays in (the goalie binds its own before each
+decision; rcssserver 15.2.2's defaults at import).
 """

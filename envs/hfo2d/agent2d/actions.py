@@ -20,24 +20,17 @@ from __future__ import annotations
 
 import math
 
+from hfo2d.physics import ServerParams
+
+from . import common as _common
 from .common import (
-    BALL_DECAY,
-    CATCHABLE_AREA,
     EXHAUST,
-    EXTRA_STAMINA,
     GOAL_HALF_WIDTH,
-    INERTIA_MOMENT,
-    KICKABLE_AREA,
     NORMAL,
     PENALTY_AREA_HALF_WIDTH,
     PENALTY_AREA_X,
     PITCH_HALF_LENGTH,
     PITCH_HALF_WIDTH,
-    PLAYER_DECAY,
-    PLAYER_SPEED_MAX,
-    REAL_SPEED_MAX,
-    STAMINA_INC_MAX,
-    STAMINA_MAX,
     Effector,
     GoalieView,
     InterceptEntry,
@@ -45,22 +38,15 @@ from .common import (
     angle_of,
     dir_rate,
     norm_deg,
+    register_binder,
 )
 
-# --- parameters (rcssserver 15.2.2 defaults as the client receives them; player type 0) ---------------------
-DASH_POWER_RATE = 0.006  # rcssserver serverparam.cpp: dash_power_rate (player type 0)
-MIN_DASH_POWER = -100.0  # rcssserver serverparam.cpp: minpower
-MAX_DASH_POWER = 100.0  # rcssserver serverparam.cpp: maxpower
-MAX_MOMENT = 180.0  # rcssserver serverparam.cpp: maxmoment (minmoment -180)
-DASH_ANGLE_STEP = 45.0  # rcssserver serverparam.cpp: dash_angle_step
-PLAYER_SPEED_MAX2 = PLAYER_SPEED_MAX * PLAYER_SPEED_MAX  # librcsc PlayerType::playerSpeedMax2
-RECOVER_DEC_THR_VALUE = 0.3 * STAMINA_MAX  # librcsc ServerParam::recoverDecThrValue: recover_dec_thr 0.3
-SAFETY_STAMINA_THR = RECOVER_DEC_THR_VALUE + 1.0  # librcsc stamina_model.cpp getSafetyDashPower: thr + 1
-RECOVER_MIN = 0.5  # rcssserver serverparam.cpp: recover_min
-RECOVER_DEC = 0.002  # rcssserver serverparam.cpp: recover_dec
-BALL_RAND = 0.05  # rcssserver serverparam.cpp: ball_rand (0 under HFO's --deterministic)
-GOAL_POST_RADIUS = 0.06  # rcssserver serverparam.cpp: goal_post_radius
-PLAYER_SIZE = 0.3  # rcssserver serverparam.cpp: player_size
+# --- parameters (the server's as the client receives them, set by _bind; rcssserver 15.2.2 defaults for player
+# type 0 in the comments) ----------------------------------------------------------------------------------------
+GOAL_POST_RADIUS = 0.06  # rcssserver serverparam.cpp: goal_post_radius (fixed in hfo2d.physics)
+# rcssserver serverparam.cpp: ball_rand 0.05, body_intercept's default; the goalie passes its view's (the world's
+# ball_rand, 0 without noise as under HFO's --deterministic)
+BALL_RAND = 0.05
 MAX_NECK_ANGLE = 90.0  # rcssserver serverparam.cpp: maxneckang (minneckang -90)
 # librcsc view_mode.cpp ViewWidth::width(NORMAL) with synch_see (HFO's player.conf): visible_angle 90 * 2 *
 # simulator_step 100 / send_step 150
@@ -74,18 +60,15 @@ _RAD2DEG = 180.0 / math.pi
 _ALL_DASH_DIRS = (-180.0, -135.0, -90.0, -45.0, 0.0, 45.0, 90.0, 135.0)
 _ADJUST_DASH_DIRS = (-90.0, -45.0, 45.0, 90.0)
 
-# librcsc body_go_to_point2010.cpp checkGoalPost: posts of the own goal and the collision distance
+# librcsc body_go_to_point2010.cpp checkGoalPost: posts of the own goal (the collision distances: _bind)
 _POST_X = -PITCH_HALF_LENGTH + GOAL_POST_RADIUS
 _POST_Y = GOAL_HALF_WIDTH + GOAL_POST_RADIUS
-_POST_COLLISION_DIST = PLAYER_SIZE + GOAL_POST_RADIUS + 0.2
-_POST_CHECK_DIST2 = _POST_COLLISION_DIST + REAL_SPEED_MAX + 0.5  # (quirk) compared with a *squared* distance
 
 # librcsc body_intercept2009.cpp getBestIntercept
 _MAX_PITCH_X = PITCH_HALF_LENGTH - 1.0
 _MAX_PITCH_Y = PITCH_HALF_WIDTH - 1.0
 _PENALTY_X = PENALTY_AREA_X  # ServerParam::ourPenaltyAreaLineX
 _PENALTY_Y = PENALTY_AREA_HALF_WIDTH  # ServerParam::penaltyAreaHalfWidth
-_SPEED_MAX_09 = REAL_SPEED_MAX * 0.9
 _MATE_MIN = 1000  # no teammates: InterceptTable::teammateReachCycle
 
 
@@ -148,7 +131,45 @@ def _simulate_dash(stamina: float, recovery: float, power: float) -> tuple[float
     return min(stamina, STAMINA_MAX), recovery
 
 
-_ALL_DASH_DIR_RATES = tuple((d, dash_dir_rate(d)) for d in _ALL_DASH_DIRS)
+def _bind(sp: ServerParams) -> None:
+    global BALL_DECAY, CATCHABLE_AREA, EXTRA_STAMINA, INERTIA_MOMENT, KICKABLE_AREA, PLAYER_DECAY
+    global PLAYER_SPEED_MAX, REAL_SPEED_MAX, STAMINA_INC_MAX, STAMINA_MAX, DASH_POWER_RATE, MIN_DASH_POWER
+    global MAX_DASH_POWER, MAX_MOMENT, DASH_ANGLE_STEP, PLAYER_SPEED_MAX2, RECOVER_DEC_THR_VALUE
+    global SAFETY_STAMINA_THR, RECOVER_MIN, RECOVER_DEC, PLAYER_SIZE, _POST_COLLISION_DIST, _POST_CHECK_DIST2
+    global _SPEED_MAX_09, _ALL_DASH_DIR_RATES
+    # the ones hfo2d.agent2d.common derives
+    BALL_DECAY = _common.BALL_DECAY
+    CATCHABLE_AREA = _common.CATCHABLE_AREA
+    EXTRA_STAMINA = _common.EXTRA_STAMINA
+    INERTIA_MOMENT = _common.INERTIA_MOMENT
+    KICKABLE_AREA = _common.KICKABLE_AREA
+    PLAYER_DECAY = _common.PLAYER_DECAY
+    PLAYER_SPEED_MAX = _common.PLAYER_SPEED_MAX
+    REAL_SPEED_MAX = _common.REAL_SPEED_MAX
+    STAMINA_INC_MAX = _common.STAMINA_INC_MAX
+    STAMINA_MAX = _common.STAMINA_MAX
+    DASH_POWER_RATE = sp.dash_power_rate  # rcssserver serverparam.cpp: dash_power_rate 0.006 (player type 0)
+    MIN_DASH_POWER = sp.minpower  # rcssserver serverparam.cpp: minpower -100
+    MAX_DASH_POWER = sp.maxpower  # rcssserver serverparam.cpp: maxpower 100
+    MAX_MOMENT = sp.max_moment  # rcssserver serverparam.cpp: maxmoment 180 (minmoment -180)
+    DASH_ANGLE_STEP = sp.dash_angle_step  # rcssserver serverparam.cpp: dash_angle_step 45
+    PLAYER_SPEED_MAX2 = PLAYER_SPEED_MAX * PLAYER_SPEED_MAX  # librcsc PlayerType::playerSpeedMax2
+    # librcsc ServerParam::recoverDecThrValue: recover_dec_thr 0.3 * stamina_max
+    RECOVER_DEC_THR_VALUE = sp.recover_dec_thr * STAMINA_MAX
+    SAFETY_STAMINA_THR = RECOVER_DEC_THR_VALUE + 1.0  # librcsc stamina_model.cpp getSafetyDashPower: thr + 1
+    RECOVER_MIN = sp.recover_min  # rcssserver serverparam.cpp: recover_min 0.5
+    RECOVER_DEC = sp.recover_dec  # rcssserver serverparam.cpp: recover_dec 0.002
+    PLAYER_SIZE = sp.player_size  # rcssserver serverparam.cpp: player_size 0.3
+    # librcsc body_go_to_point2010.cpp checkGoalPost: the collision distance
+    _POST_COLLISION_DIST = PLAYER_SIZE + GOAL_POST_RADIUS + 0.2
+    _POST_CHECK_DIST2 = (
+        _POST_COLLISION_DIST + REAL_SPEED_MAX + 0.5
+    )  # (quirk) compared with a *squared* distance
+    _SPEED_MAX_09 = REAL_SPEED_MAX * 0.9  # librcsc body_intercept2009.cpp getBestIntercept
+    _ALL_DASH_DIR_RATES = tuple((d, dash_dir_rate(d)) for d in _ALL_DASH_DIRS)
+
+
+register_binder(_bind)
 
 
 # --- client-side conversions (librcsc ActionEffector) -------------------------------------------------------

@@ -13,9 +13,13 @@ checked against those sources and the real program.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from hfo2d.physics import ServerParams
+
 # --- constants (GF) -------------------------------------------------------------------------------------------
+# The field's geometry is not a server parameter hfo2d lets one change (hfo2d.physics fixes it too).
 PITCH_HALF_LENGTH = 52.5
 PITCH_HALF_WIDTH = 34.0
 GOAL_HALF_WIDTH = 7.01
@@ -24,21 +28,83 @@ PENALTY_AREA_X = (
 )  # GF penalty-area line (36 m from the halfway line: rcssserver penalty_area_length 16.5)
 PENALTY_AREA_HALF_WIDTH = 20.16
 OWN_GOAL = (-52.5, 0.0)  # G0
-KICKABLE_AREA = 1.085  # player_size 0.3 + kickable_margin 0.7 + ball_size 0.085
-SELF_KICKABLE_DIST = KICKABLE_AREA - 0.055  # librcsc's fullstate kickable buffer
-CATCHABLE_AREA = math.hypot(1.2, 0.5)  # librcsc ServerParam::catchableArea(): 1.3
-CATCH_DIR_OFFSET = math.degrees(math.atan2(0.5, 1.2))  # 22.62: the diagonal of the catch rectangle
-PLAYER_DECAY = 0.4
-BALL_DECAY = 0.94
-DASH_RATE = 0.006  # dash_power_rate * effort (effort 1.0)
-PLAYER_SPEED_MAX = 1.05
-REAL_SPEED_MAX = 1.0  # librcsc PlayerType::realSpeedMax: min(1.05, 100 * 0.006 / (1 - 0.4))
-INERTIA_MOMENT = 5.0
-STAMINA_MAX = 8000.0
-EXTRA_STAMINA = 50.0
-STAMINA_INC_MAX = 45.0
-CATCH_BAN_CYCLE = 5
-TACKLE_CYCLES = 10
+
+
+# --- server parameters -----------------------------------------------------------------------------------------
+# The goalie's code reads the server's parameters from module constants, as librcsc reads them from the
+# server_param message: bind_server_params() sets them (here and in every module of hfo2d.agent2d) from the
+# ServerParams of the world the goalie plays in; at import they hold rcssserver 15.2.2's defaults.
+_BINDERS: list[Callable[[ServerParams], None]] = []
+_CANONICAL: dict[ServerParams, ServerParams] = {}
+#: The ServerParams the constants of hfo2d.agent2d hold now (read it, do not assign it: bind_server_params).
+BOUND_PARAMS: ServerParams | None = None
+
+
+def canonical_params(params: ServerParams) -> ServerParams:
+    """The first ServerParams seen equal to ``params``: goalies of equal parameters share one object, so that
+    :func:`bind_server_params` tells them apart by identity alone."""
+    found = _CANONICAL.get(params)
+    if found is None:
+        found = _CANONICAL[params] = params
+    return found
+
+
+def bind_server_params(params: ServerParams) -> None:
+    """Set the server constants of every :mod:`hfo2d.agent2d` module from ``params`` (nothing to do when they
+    hold them already). Pass a :func:`canonical_params` object: the test is by identity."""
+    global BOUND_PARAMS
+    if params is BOUND_PARAMS:
+        return
+    for bind in _BINDERS:
+        bind(params)
+    BOUND_PARAMS = params
+
+
+def register_binder(bind: Callable[[ServerParams], None]) -> None:
+    """Add a module's binder (called in import order, so that a module finds this one's constants set) and
+    bind it to the parameters bound now."""
+    _BINDERS.append(bind)
+    assert BOUND_PARAMS is not None, "common binds its defaults before any module registers"
+    bind(BOUND_PARAMS)
+
+
+def decimal_difference(a: float, b: float) -> float:
+    """``a - b`` as the decimal it is: the server's parameters are decimals in its configuration, and this port
+    uses e.g. 0.6 - 0.4 as 0.2 (floating point gives 0.19999999999999996) where it was checked so."""
+    return round(a - b, 12)
+
+
+def _bind(sp: ServerParams) -> None:
+    global KICKABLE_AREA, SELF_KICKABLE_DIST, CATCHABLE_AREA, CATCH_DIR_OFFSET, PLAYER_DECAY, BALL_DECAY
+    global DASH_RATE, PLAYER_SPEED_MAX, REAL_SPEED_MAX, INERTIA_MOMENT, STAMINA_MAX, EXTRA_STAMINA
+    global STAMINA_INC_MAX, CATCH_BAN_CYCLE, TACKLE_CYCLES, SIDE_DASH_RATE, BACK_DASH_RATE, MAX_DASH_POWER
+    global _BACK_SIDE_GAP, _SIDE_GAP, DASH_DISTANCE_TABLE
+    # player_size 0.3 + kickable_margin 0.7 + ball_size 0.085 = 1.085
+    KICKABLE_AREA = sp.player_size + sp.kickable_margin + sp.ball_size
+    SELF_KICKABLE_DIST = KICKABLE_AREA - 0.055  # librcsc's fullstate kickable buffer
+    # librcsc ServerParam::catchableArea(): the diagonal of catchable_area_l 1.2 x catchable_area_w / 2 0.5: 1.3
+    CATCHABLE_AREA = math.hypot(sp.catchable_area_l, sp.catchable_area_w * 0.5)
+    # 22.62: the direction of that diagonal
+    CATCH_DIR_OFFSET = math.degrees(math.atan2(sp.catchable_area_w * 0.5, sp.catchable_area_l))
+    PLAYER_DECAY = sp.player_decay  # 0.4
+    BALL_DECAY = sp.ball_decay  # 0.94
+    DASH_RATE = sp.dash_power_rate * sp.effort_init  # dash_power_rate 0.006 * effort (effort_init 1.0)
+    PLAYER_SPEED_MAX = sp.player_speed_max  # 1.05
+    MAX_DASH_POWER = sp.maxpower  # 100
+    # librcsc PlayerType::realSpeedMax: min(player_speed_max 1.05, maxpower 100 * 0.006 * effort 1 / (1 - 0.4)) = 1
+    REAL_SPEED_MAX = min(PLAYER_SPEED_MAX, MAX_DASH_POWER * DASH_RATE / (1.0 - PLAYER_DECAY))
+    INERTIA_MOMENT = sp.inertia_moment  # 5
+    STAMINA_MAX = sp.stamina_max  # 8000
+    EXTRA_STAMINA = sp.extra_stamina  # 50
+    STAMINA_INC_MAX = sp.stamina_inc_max  # 45
+    CATCH_BAN_CYCLE = int(sp.catch_ban_cycle)  # 5
+    TACKLE_CYCLES = int(sp.tackle_cycles)  # 10
+    SIDE_DASH_RATE = sp.side_dash_rate  # 0.4
+    BACK_DASH_RATE = sp.back_dash_rate  # 0.6
+    _BACK_SIDE_GAP = decimal_difference(BACK_DASH_RATE, SIDE_DASH_RATE)  # 0.2
+    _SIDE_GAP = decimal_difference(1.0, SIDE_DASH_RATE)  # 0.6
+    DASH_DISTANCE_TABLE = tuple(_dash_distance_table())
+
 
 # intercept entry modes (librcsc InterceptInfo)
 NORMAL = 0
@@ -79,8 +145,8 @@ def dir_rate(d: float) -> float:
     """rcssserver's dash-direction rate for a direction already rounded to a multiple of 45 degrees."""
     a = abs(d)
     if a > 90.0:
-        return 0.6 - 0.2 * (1.0 - (a - 90.0) / 90.0)
-    return 0.4 + 0.6 * (1.0 - a / 90.0)
+        return BACK_DASH_RATE - _BACK_SIDE_GAP * (1.0 - (a - 90.0) / 90.0)
+    return SIDE_DASH_RATE + _SIDE_GAP * (1.0 - a / 90.0)
 
 
 def eff_turn(speed: float) -> float:
@@ -88,8 +154,11 @@ def eff_turn(speed: float) -> float:
     return 180.0 / (1.0 + INERTIA_MOMENT * speed)
 
 
-def first_term(dist: float, n: int, decay: float = PLAYER_DECAY) -> float:
-    """The first speed of a geometric series (ratio ``decay``) that covers ``dist`` in ``n`` terms."""
+def first_term(dist: float, n: int, decay: float | None = None) -> float:
+    """The first speed of a geometric series (ratio ``decay``, default the player decay) that covers ``dist`` in
+    ``n`` terms."""
+    if decay is None:
+        decay = PLAYER_DECAY
     return dist * (1.0 - decay) / (1.0 - decay**n)
 
 
@@ -110,7 +179,7 @@ def _dash_distance_table() -> list[float]:
     table: list[float] = []
     speed = 0.0
     dist = 0.0
-    accel = 100.0 * DASH_RATE  # 0.6
+    accel = MAX_DASH_POWER * DASH_RATE  # 0.6
     for _ in range(50):
         speed = min(speed + accel, REAL_SPEED_MAX)
         dist += speed
@@ -119,7 +188,9 @@ def _dash_distance_table() -> list[float]:
     return table
 
 
-DASH_DISTANCE_TABLE: tuple[float, ...] = tuple(_dash_distance_table())
+_DEFAULT_PARAMS = ServerParams()
+BOUND_PARAMS = canonical_params(_DEFAULT_PARAMS)
+register_binder(_bind)
 
 
 def cycles_to_reach(dist: float) -> int:

@@ -14,6 +14,8 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+from hfo2d.agent2d import common as _common
+from hfo2d.agent2d import tackle as _tackle
 from hfo2d.agent2d.actions import (
     body_go_to_point,
     body_intercept,
@@ -23,19 +25,11 @@ from hfo2d.agent2d.actions import (
     go_to_point_look_ball,
 )
 from hfo2d.agent2d.common import (
-    BALL_DECAY,
-    CATCH_DIR_OFFSET,
-    CATCHABLE_AREA,
-    DASH_RATE,
-    EXTRA_STAMINA,
     GOAL_HALF_WIDTH,
     OWN_GOAL,
     PENALTY_AREA_HALF_WIDTH,
     PENALTY_AREA_X,
     PITCH_HALF_LENGTH,
-    PLAYER_DECAY,
-    STAMINA_INC_MAX,
-    STAMINA_MAX,
     Command,
     Effector,
     GoalieView,
@@ -43,16 +37,16 @@ from hfo2d.agent2d.common import (
     angle_of,
     ball_at,
     norm_deg,
+    register_binder,
     rotate,
 )
 from hfo2d.agent2d.intercept import build_intercept_table
 from hfo2d.agent2d.tackle import basic_tackle
+from hfo2d.physics import ServerParams
 
 # --- RoleGoalie::execute: the catch rectangle (our penalty area shrunk by 1 m: x in [-52.5, -37], |y| <= 19.16)
 CATCH_RECT_MAX_X = PENALTY_AREA_X - 1.0
 CATCH_RECT_HALF_WIDTH = PENALTY_AREA_HALF_WIDTH - 1.0
-CATCH_DIST = CATCHABLE_AREA - 0.05  # role_goalie.cpp: catchableArea() - 0.05
-CATCH_BAN_CYCLE = 5  # rcssserver catch_ban_cycle, compared by the client with its last catch time
 
 # --- Bhv_GoalieBasicMove (bhv_goalie_basic_move.cpp) ---------------------------------------------------------------
 BASE_MOVE_X = -49.8
@@ -62,16 +56,12 @@ BALL_PRED_CYCLE = 5
 Y_BUF = 0.5
 X_BUF = 0.5  # doCorrectX / doMoveForDangerousState
 
-_ONE_MINUS_PD = 1.0 - PLAYER_DECAY
 # constant bounds of the hot rules, computed once (the same floats as written inline)
 _NEAR_GOAL_X = -PITCH_HALF_LENGTH + 8.0  # is_ball_chase_situation A, getTargetPoint
 _NEAR_GOAL_Y = GOAL_HALF_WIDTH + 3.0
 _SIDE_Y = GOAL_HALF_WIDTH + 2.0  # getTargetPoint
 _DEEP_CROSS_Y = GOAL_HALF_WIDTH - 0.8  # doPrepareDeepCross
 _SHOOT_MAX_DIST = 30.0  # is_ball_shoot_moving: no shot farther than 30 m from the goalie
-# Bhv_BasicTackle (tackle.basic_tackle) sees no tackle chance beyond 2.5 m (its squared-distance test); a ball
-# measured farther than this is surely beyond it
-_TACKLE_SURE_FAR = 2.6
 _DANGER_X = -PITCH_HALF_LENGTH + 11.0  # doMoveForDangerousState
 _DANGER_Y = GOAL_HALF_WIDTH + 1.0
 _ANCHOR_X = -PITCH_HALF_LENGTH - LINE_ANCHOR_X_BACK  # getTargetPoint's line anchor
@@ -81,8 +71,46 @@ _MOVE_Y_MAX = GOAL_HALF_WIDTH - Y_BUF
 # ballAt(n) of a resting ball without n (so without reading the table's reach cycles): the same floats; False
 # takes the general code (the tests compare both)
 _RESTING_SHORTCUTS = True
-# ball_at's factors (1 - 0.94**n) / (1 - 0.94) for the reach cycles 0 .. 1000 of the intercept table, the same floats
-_BALL_FACTORS = tuple((1.0 - BALL_DECAY**n) / (1.0 - BALL_DECAY) for n in range(1001))
+
+
+# --- server parameters (set by _bind; rcssserver 15.2.2 defaults in the comments) --------------------------------
+def _bind(sp: ServerParams) -> None:
+    global \
+        BALL_DECAY, \
+        CATCH_DIR_OFFSET, \
+        CATCHABLE_AREA, \
+        DASH_RATE, \
+        EXTRA_STAMINA, \
+        PLAYER_DECAY, \
+        STAMINA_INC_MAX
+    global STAMINA_MAX, MAX_DASH_POWER, CATCH_DIST, CATCH_BAN_CYCLE, _ONE_MINUS_PD, _TACKLE_SURE_FAR
+    global _BALL_FACTORS, FREE_KICK_FACE_LINE_X
+    # the ones hfo2d.agent2d.common derives
+    BALL_DECAY = _common.BALL_DECAY
+    CATCH_DIR_OFFSET = _common.CATCH_DIR_OFFSET
+    CATCHABLE_AREA = _common.CATCHABLE_AREA
+    DASH_RATE = _common.DASH_RATE
+    EXTRA_STAMINA = _common.EXTRA_STAMINA
+    PLAYER_DECAY = _common.PLAYER_DECAY
+    STAMINA_INC_MAX = _common.STAMINA_INC_MAX
+    STAMINA_MAX = _common.STAMINA_MAX
+    MAX_DASH_POWER = _common.MAX_DASH_POWER
+    CATCH_DIST = CATCHABLE_AREA - 0.05  # role_goalie.cpp: catchableArea() - 0.05
+    # rcssserver catch_ban_cycle 5, compared by the client with its last catch time
+    CATCH_BAN_CYCLE = _common.CATCH_BAN_CYCLE
+    _ONE_MINUS_PD = 1.0 - PLAYER_DECAY
+    # Bhv_BasicTackle (tackle.basic_tackle) sees no tackle chance beyond tackle.NO_TACKLE_DIST (2.5 m, its
+    # squared-distance test); a ball measured farther than this is surely beyond it
+    _TACKLE_SURE_FAR = _tackle.NO_TACKLE_DIST + 0.1
+    # ball_at's factors (1 - 0.94**n) / (1 - 0.94) for the reach cycles 0 .. 1000 of the intercept table, the same
+    # floats
+    _BALL_FACTORS = tuple((1.0 - BALL_DECAY**n) / (1.0 - BALL_DECAY) for n in range(1001))
+    # doWait: face (ourPenaltyAreaLineX - 1, 0) when beyond ourPenaltyAreaLineX - ball_size - player_size - 0.5
+    # (rcssserver serverparam.cpp: ball_size 0.085, player_size 0.3)
+    FREE_KICK_FACE_LINE_X = PENALTY_AREA_X - sp.ball_size - sp.player_size - 0.5
+
+
+register_binder(_bind)
 
 
 class Line:
@@ -206,9 +234,7 @@ FREE_KICK_MIN_WAIT = 50  # time_diff < 50 -> wait after the first move
 FREE_KICK_DROP_WAIT = 100 - 15  # rcssserver serverparam.cpp drop_ball_time 100, less 15
 FREE_KICK_KICK_POINTS = ((-43.0, 10.0), (-43.0, -10.0), (-43.0, 0.0))  # getKickPoint candidates, in order
 FREE_KICK_SECOND_WAITS = 5  # s_second_wait_count < 5 -> wait
-# doWait: face (ourPenaltyAreaLineX - 1, 0) when beyond ourPenaltyAreaLineX - ball_size - player_size - 0.5
-# (rcssserver serverparam.cpp: ball_size 0.085, player_size 0.3)
-FREE_KICK_FACE_LINE_X = PENALTY_AREA_X - 0.085 - 0.3 - 0.5
+# doWait's FREE_KICK_FACE_LINE_X: set by _bind
 
 
 @dataclass(slots=True)
@@ -415,11 +441,11 @@ def go_to_catch_point(eff: Effector, v: GoalieView, tx: float, ty: float) -> Non
     rel_angle = angle_of(rx, ry)
     angle_buf = abs(math.degrees(math.atan2(CATCHABLE_AREA * 0.9, math.hypot(rx, ry))))
     if abs(rel_angle) < angle_buf:
-        eff.dash(min(v.stamina + EXTRA_STAMINA, 100.0))
+        eff.dash(min(v.stamina + EXTRA_STAMINA, MAX_DASH_POWER))
     elif abs(rel_angle) > 180.0 - angle_buf:
-        power = -100.0
+        power = -MAX_DASH_POWER
         if v.stamina + EXTRA_STAMINA < 200.0:
-            power = max(-100.0, (v.stamina + EXTRA_STAMINA) * -0.5)
+            power = max(-MAX_DASH_POWER, (v.stamina + EXTRA_STAMINA) * -0.5)
         eff.dash(power)
     elif abs(rel_angle) < 90.0:
         eff.turn(rel_angle)

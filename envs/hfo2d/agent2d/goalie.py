@@ -19,20 +19,23 @@ import struct
 
 import numpy as np
 
+from hfo2d.agent2d import common as _common
 from hfo2d.agent2d.actions import client_dash, client_turn_moment
 from hfo2d.agent2d.common import (
-    KICKABLE_AREA,
-    SELF_KICKABLE_DIST,
     Command,
     Effector,
     GoalieView,
     angle_of,
+    bind_server_params,
+    canonical_params,
     norm_deg,
+    register_binder,
 )
 from hfo2d.agent2d.decision import FreeKickState, decide
 from hfo2d.agent2d.intercept import build_intercept_table
 from hfo2d.agent2d.tackle import client_tackle_dir
 from hfo2d.physics import PlayerState, ServerParams, World
+from hfo2d.protocol import AGENT2D_FIRST_BODY_DEGS
 
 # librcsc world_model.cpp updatePlayerStateCache: an opponent counts as kickable within
 # kickable_area + min(0.25, 0.02 * ball distance from self) + min(0.25, 0.02 * its distance from self).
@@ -157,7 +160,18 @@ if tuple(f.name for f in dataclasses.fields(GoalieView)) != _VIEW_FIELDS:
 # The kickable-opponent test (opponent-ball distance < 1.085 + 0.25 + 0.25 at most) is False for sure when the
 # attacker's unrounded position is farther than this from the ball: the fullstate's 6 significant digits move a
 # coordinate below 1000 m by at most 5e-3
-_KICK_OPP_SURE_FAR = KICKABLE_AREA + 2.0 * KICKABLE_OPP_ERROR_MAX + 0.1
+# (set by _bind, with the server parameters below)
+
+
+def _bind(sp: ServerParams) -> None:
+    global KICKABLE_AREA, SELF_KICKABLE_DIST, BALL_DECAY, _KICK_OPP_SURE_FAR
+    KICKABLE_AREA = _common.KICKABLE_AREA  # 1.085
+    SELF_KICKABLE_DIST = _common.SELF_KICKABLE_DIST  # 1.03
+    BALL_DECAY = _common.BALL_DECAY  # 0.94
+    _KICK_OPP_SURE_FAR = KICKABLE_AREA + 2.0 * KICKABLE_OPP_ERROR_MAX + 0.1
+
+
+register_binder(_bind)
 
 
 class _FullstateView(GoalieView):
@@ -285,6 +299,14 @@ class _FullstateView(GoalieView):
         self._obody = value
 
 
+_DECIDED = object()  # Agent2dGoalie.apply's default command: the last decision's
+
+
+def _check_skill(skill: object) -> None:
+    if isinstance(skill, bool) or not isinstance(skill, (int, float, np.number)) or not 0.0 <= skill <= 1.0:
+        raise ValueError(f"keeper skill must be a number in [0, 1], got {skill!r}")
+
+
 class Agent2dGoalie:
     """HFO's default defence goalie (agent2d "base" team, role Goalie), defending the goal at x = +52.5.
 
@@ -296,18 +318,28 @@ class Agent2dGoalie:
             stands where it is. This weakening is this project's design, for curricula; HFO has no such knob.
 
     ``last_command`` is the body command of the last decision (None: nothing sent), ``last_view`` its world model.
+    It is a :class:`hfo2d.npc.DefenseNPC` whose client state carries over between episodes, as in real HFO.
     """
 
+    carries_over = True
+
     def __init__(self, params: ServerParams, rng: np.random.Generator, skill: float = 1.0) -> None:
-        if (
-            isinstance(skill, bool)
-            or not isinstance(skill, (int, float, np.number))
-            or not 0.0 <= skill <= 1.0
-        ):
-            raise ValueError(f"keeper skill must be a number in [0, 1], got {skill!r}")
+        _check_skill(skill)
         self.params = params
+        # the object bind_server_params knows these params by (goalies of equal params share it)
+        self._server_params = canonical_params(params)
         self.rng = rng
         self.skill = float(skill)
+        self.restart()
+
+    def __setstate__(self, state: dict[str, object]) -> None:
+        """Unpickled: the params object becomes the canonical one again, so that goalies of equal params still
+        share one binding (:func:`~hfo2d.agent2d.common.canonical_params`)."""
+        self.__dict__.update(state)
+        self._server_params = canonical_params(self._server_params)
+
+    def restart(self) -> None:
+        """Forget the client state, as a goalie made afresh (the params, generator and skill stay)."""
         self.last_command: Command | None = None
         self.last_view: GoalieView | None = None
         # client state that outlives an episode in real HFO (the trainer resets only the server's objects)
@@ -329,6 +361,17 @@ class Agent2dGoalie:
         self._body_key: bytes | None = None
         self._body_numbers: tuple[float, float, float, float] = (0.0, 0.0, 0.0, 0.0)
 
+    def set_skill(self, skill: float) -> None:
+        """Play with quality ``skill`` in [0, 1] from now on; the client state (catch time...) stays."""
+        _check_skill(skill)
+        self.skill = float(skill)
+
+    def start_body_deg(self, rng: np.random.Generator) -> float:
+        """The body angle of a goalie that no episode has moved yet: rcssserver starts it at 0 (facing its own
+        goal) and agent2d's before-kick-off scan turns it by 180 degrees every few cycles, so real HFO's first
+        episode starts facing either way (drawn from ``rng``; agent2d goalie spec §2.5)."""
+        return AGENT2D_FIRST_BODY_DEGS[int(rng.integers(len(AGENT2D_FIRST_BODY_DEGS)))]
+
     def reset(self) -> None:
         """A new episode: the referee's before_kick_off / play_on messages put the world model back in PlayOn."""
         self._play_on = True
@@ -344,6 +387,8 @@ class Agent2dGoalie:
 
     def decide(self, world: World, keeper: PlayerState) -> Command | None:
         """The goalie's body command for the coming cycle, from the state after the last server step."""
+        if self._server_params is not _common.BOUND_PARAMS:  # another world's parameters: the goalie's own
+            bind_server_params(self._server_params)
         cycle = world.cycle
         # SelfObject::updateAfterSenseBody: the sense body after a catch command marks the catch time.
         if self._last_body_kind == "catch":
@@ -372,10 +417,15 @@ class Agent2dGoalie:
         self.last_command = command
         return command
 
-    def apply(self, world: World, keeper: PlayerState, command: Command | None) -> None:
-        """Send ``command`` through librcsc's conversions (:func:`client_turn_moment`, :func:`client_dash`)."""
+    def apply(self, world: World, keeper: PlayerState, command: Command | None | object = _DECIDED) -> None:
+        """Send ``command`` (by default the last :meth:`decide`'s) through librcsc's conversions
+        (:func:`client_turn_moment`, :func:`client_dash`)."""
+        if command is _DECIDED:
+            command = self.last_command
         if command is None:
             return
+        if self._server_params is not _common.BOUND_PARAMS:
+            bind_server_params(self._server_params)
         view = self.last_view
         kind = command.kind
         if kind == "turn":
@@ -523,7 +573,7 @@ class Agent2dGoalie:
         angle_diff = abs(norm_deg(angle_of(view.true_wx, view.true_wy) - angle_of(*prev)))
         changed = (
             cur_speed > prev_speed + BALL_VEL_CHANGE_SPEED
-            or cur_speed < prev_speed * 0.94 * 0.5
+            or cur_speed < prev_speed * BALL_DECAY * 0.5
             or (prev_speed > 0.5 and angle_diff > BALL_VEL_CHANGE_ANGLE)
         )
         if changed and math.hypot(view.ox - view.bx, view.oy - view.by) < LAST_KICKER_DIST:

@@ -28,13 +28,16 @@ from __future__ import annotations
 import math
 from bisect import bisect_left
 
+from hfo2d.physics import ServerParams
+
+from . import common as _common
 from .common import (
-    DASH_DISTANCE_TABLE,
     EXHAUST,
     NORMAL,
     GoalieView,
     InterceptEntry,
     InterceptTable,
+    register_binder,
 )
 
 _sqrt = math.sqrt
@@ -49,51 +52,12 @@ _fmod = math.fmod
 _D2R = math.pi / 180.0  # librcsc AngleDeg::DEG2RAD
 _R2D = 180.0 / math.pi  # librcsc AngleDeg::RAD2DEG
 
-# --- server / player-type constants (rcssserver 15.2.2 defaults; player type 0) -------------------------------
+# --- librcsc intercept constants (not server parameters) ------------------------------------------------------
 _PITCH_HALF_LENGTH = 52.5  # rcssserver serverparam: pitch_length 105
 _PITCH_HALF_WIDTH = 34.0  # rcssserver serverparam: pitch_width 68
 # librcsc ServerParam::ourPenaltyAreaLineX (penalty_area_length 16.5): x = -36
 _PEN_LINE_X = -_PITCH_HALF_LENGTH + 16.5
 _PEN_HALF_W = 40.32 * 0.5  # librcsc ServerParam::penaltyAreaHalfWidth (penalty_area_width 40.32)
-_BALL_DECAY = 0.94  # rcssserver ball_decay
-_BALL_SPEED_MAX = 3.0  # rcssserver serverparam.cpp BALL_SPEED_MAX (v12+)
-_BALL_SIZE = 0.085  # rcssserver ball_size
-_PLAYER_SIZE = 0.3  # rcssserver player_size
-_KICKABLE_MARGIN = 0.7  # rcssserver kickable_margin
-_KICKABLE_AREA = _PLAYER_SIZE + _KICKABLE_MARGIN + _BALL_SIZE  # librcsc PlayerType::kickableArea (1.085)
-# librcsc ServerParam::catchableArea: the diagonal of the catch area 1.2 x 1.0 (std::pow(x, 2) folds to x * x)
-_CATCHABLE_AREA = _sqrt((1.0 * 0.5) * (1.0 * 0.5) + 1.2 * 1.2)
-_KICK_POWER_RATE = 0.027  # rcssserver kick_power_rate
-_MAX_POWER = 100.0  # rcssserver maxpower (also max_dash_power)
-_MIN_DASH_POWER = -100.0  # rcssserver minpower / min_dash_power
-_DASH_POWER_RATE = 0.006  # rcssserver dash_power_rate (type 0)
-_PLAYER_DECAY = 0.4  # rcssserver player_decay (type 0)
-_PLAYER_SPEED_MAX = 1.05  # rcssserver player_speed_max (type 0)
-_PLAYER_SPEED_MAX2 = _PLAYER_SPEED_MAX * _PLAYER_SPEED_MAX
-_INERTIA_MOMENT = 5.0  # rcssserver inertia_moment (type 0)
-_MAX_MOMENT = 180.0  # rcssserver maxmoment
-# librcsc PlayerType::realSpeedMax: min(player_speed_max, 100 * 0.006 * effort_max / (1 - decay)) = 1.0
-_REAL_SPEED_MAX = min(_PLAYER_SPEED_MAX, _MAX_POWER * _DASH_POWER_RATE * 1.0 / (1.0 - _PLAYER_DECAY))
-_SIDE_DASH_RATE = 0.4  # rcssserver side_dash_rate (v14)
-_BACK_DASH_RATE = 0.6  # rcssserver back_dash_rate (v14)
-_DASH_ANGLE_STEP = 45.0  # rcssserver dash_angle_step (v14)
-_TACKLE_CYCLES = 10  # rcssserver tackle_cycles
-
-# stamina model (rcssserver serverparam.cpp defaults, librcsc stamina_model.cpp)
-_STAMINA_MAX = 8000.0  # stamina_max
-_STAMINA_INC_MAX = 45.0  # stamina_inc_max (type 0)
-_RECOVER_DEC_THR_VALUE = 0.3 * _STAMINA_MAX  # recover_dec_thr 0.3 -> 2400
-_EFFORT_DEC_THR_VALUE = 0.3 * _STAMINA_MAX  # effort_dec_thr 0.3 -> 2400
-_EFFORT_INC_THR_VALUE = 0.6 * _STAMINA_MAX  # effort_inc_thr 0.6 -> 4800
-_RECOVER_DEC = 0.002  # recover_dec
-_RECOVER_MIN = 0.5  # recover_min
-_EFFORT_DEC = 0.005  # effort_dec
-_EFFORT_INC = 0.01  # effort_inc
-_EFFORT_MIN = 0.6  # effort_min (type 0)
-_EFFORT_MAX = 1.0  # effort_max (type 0)
-_SAFE_STAMINA = _RECOVER_DEC_THR_VALUE + 1.0  # self_intercept_v13.cpp: recover_dec_thr + 1 (2401)
-
-# --- librcsc intercept constants -------------------------------------------------------------------------------
 _MAX_CYCLE = 30  # intercept_table.cpp InterceptTable::MAX_CYCLE
 _CACHE_X_MAX = _PITCH_HALF_LENGTH + 5.0  # intercept_table.cpp createBallCache: pitch half length + 5
 _CACHE_Y_MAX = _PITCH_HALF_WIDTH + 5.0  # intercept_table.cpp createBallCache: pitch half width + 5
@@ -101,35 +65,95 @@ _CONTROL_AREA_BUF = 0.15  # self_intercept_v13.cpp control_area_buf
 _MAX_SHORT_STEP = 5  # self_intercept_v13.cpp MAX_SHORT_STEP
 _MIN_TURN_THR = 12.5  # self_intercept_v13.cpp MIN_TURN_THR
 _BACK_DASH_THR_ANGLE = 100.0  # self_intercept_v13.cpp BACK_DASH_THR_ANGLE
-# self_intercept_v13.cpp safety ball distance floor: player_size + ball_size + 0.4 * kickable_margin (0.665)
-_SAFETY_MIN = _PLAYER_SIZE + _BALL_SIZE + _KICKABLE_MARGIN * 0.4
-# self_intercept_v13.cpp getOneStepDashPower: best control distances in front of / behind the body
-_BEST_CTRL_FWD = _PLAYER_SIZE + 0.5 * _KICKABLE_MARGIN + _BALL_SIZE
-_BEST_CTRL_BACK = _PLAYER_SIZE + 0.3 * _KICKABLE_MARGIN + _BALL_SIZE
-_BEST_CTRL_FWD2 = _BEST_CTRL_FWD * _BEST_CTRL_FWD
-_BEST_CTRL_BACK2 = _BEST_CTRL_BACK * _BEST_CTRL_BACK
-
-# inertia factors (1 - d^n) / (1 - d), decay powers d^n (librcsc soccer_math.h inertia_n_step_*); n = 0 .. 100
-_PF = tuple((1.0 - _PLAYER_DECAY**n) / (1.0 - _PLAYER_DECAY) for n in range(101))
-_PD = tuple(_PLAYER_DECAY**n for n in range(101))
-_BF = tuple((1.0 - _BALL_DECAY**n) / (1.0 - _BALL_DECAY) for n in range(101))
-_BD = tuple(_BALL_DECAY**n for n in range(101))
-_ONE_MINUS_PD = 1.0 - _PLAYER_DECAY
-# calc_first_term_geom_series denominators 1 - 0.4^n
-_FT_DEN = tuple(1.0 - _PLAYER_DECAY**n for n in range(101))
-
-# A resting ball farther than this (squared) from the goalie: predictOneStep's reach test (|B - P| > ball speed max
-# 3 + real speed max 1 + control area <= 1.3) and predictShortStep's (|P - B| > control area + 1 * cycle for
-# every cycle <= 5) both fail, computed as _short_step computes its bound
-_RESTING_FAR = _CATCHABLE_AREA + _REAL_SPEED_MAX * _MAX_SHORT_STEP
-_RESTING_FAR2 = _RESTING_FAR * _RESTING_FAR
+_EFFORT_MAX = 1.0  # effort_max (type 0; not a server parameter hfo2d has)
 # The resting-ball shortcuts (cache, frame, short-step and opponent skips, predictFinal-only table) give the same
 # floats as the general code; False takes the general code everywhere (the tests compare both)
 _RESTING_SHORTCUTS = True
 
-_DASH_TABLE = DASH_DISTANCE_TABLE
-_DASH_TABLE_LAST = DASH_DISTANCE_TABLE[-1]
-_DASH_TABLE_LEN = len(DASH_DISTANCE_TABLE)
+
+# --- server / player-type parameters (set by _bind from the goalie's ServerParams; rcssserver 15.2.2 defaults,
+# player type 0, in the comments) ------------------------------------------------------------------------------
+def _bind(sp: ServerParams) -> None:
+    global _BALL_DECAY, _BALL_SPEED_MAX, _BALL_SIZE, _PLAYER_SIZE, _KICKABLE_MARGIN, _KICKABLE_AREA
+    global _CATCHABLE_AREA, _KICK_POWER_RATE, _MAX_POWER, _MIN_DASH_POWER, _DASH_POWER_RATE, _PLAYER_DECAY
+    global _PLAYER_SPEED_MAX, _PLAYER_SPEED_MAX2, _INERTIA_MOMENT, _MAX_MOMENT, _REAL_SPEED_MAX
+    global _SIDE_DASH_RATE, _BACK_DASH_RATE, _DASH_ANGLE_STEP, _TACKLE_CYCLES, _STAMINA_MAX, _STAMINA_INC_MAX
+    global _RECOVER_DEC_THR_VALUE, _EFFORT_DEC_THR_VALUE, _EFFORT_INC_THR_VALUE, _RECOVER_DEC, _RECOVER_MIN
+    global _EFFORT_DEC, _EFFORT_INC, _EFFORT_MIN, _SAFE_STAMINA, _SAFETY_MIN, _BEST_CTRL_FWD, _BEST_CTRL_BACK
+    global _BEST_CTRL_FWD2, _BEST_CTRL_BACK2, _PF, _PD, _BF, _BD, _ONE_MINUS_PD, _FT_DEN, _RESTING_FAR
+    global _RESTING_FAR2, _DASH_TABLE, _DASH_TABLE_LAST, _DASH_TABLE_LEN, _ONE_DASH_RATES, _OMNI_DIRS
+    _BALL_DECAY = sp.ball_decay  # rcssserver ball_decay 0.94
+    _BALL_SPEED_MAX = sp.ball_speed_max  # rcssserver serverparam.cpp BALL_SPEED_MAX 3 (v12+)
+    _BALL_SIZE = sp.ball_size  # rcssserver ball_size 0.085
+    _PLAYER_SIZE = sp.player_size  # rcssserver player_size 0.3
+    _KICKABLE_MARGIN = sp.kickable_margin  # rcssserver kickable_margin 0.7
+    _KICKABLE_AREA = _PLAYER_SIZE + _KICKABLE_MARGIN + _BALL_SIZE  # librcsc PlayerType::kickableArea (1.085)
+    # librcsc ServerParam::catchableArea: the diagonal of the catch area catchable_area_l 1.2 x catchable_area_w 1
+    # (std::pow(x, 2) folds to x * x)
+    half_w = sp.catchable_area_w * 0.5
+    _CATCHABLE_AREA = _sqrt(half_w * half_w + sp.catchable_area_l * sp.catchable_area_l)
+    _KICK_POWER_RATE = sp.kick_power_rate  # rcssserver kick_power_rate 0.027
+    _MAX_POWER = sp.maxpower  # rcssserver maxpower 100 (also max_dash_power)
+    _MIN_DASH_POWER = sp.minpower  # rcssserver minpower / min_dash_power -100
+    _DASH_POWER_RATE = sp.dash_power_rate  # rcssserver dash_power_rate 0.006 (type 0)
+    _PLAYER_DECAY = sp.player_decay  # rcssserver player_decay 0.4 (type 0)
+    _PLAYER_SPEED_MAX = sp.player_speed_max  # rcssserver player_speed_max 1.05 (type 0)
+    _PLAYER_SPEED_MAX2 = _PLAYER_SPEED_MAX * _PLAYER_SPEED_MAX
+    _INERTIA_MOMENT = sp.inertia_moment  # rcssserver inertia_moment 5 (type 0)
+    _MAX_MOMENT = sp.max_moment  # rcssserver maxmoment 180
+    # librcsc PlayerType::realSpeedMax: min(player_speed_max, 100 * 0.006 * effort_max / (1 - decay)) = 1.0
+    _REAL_SPEED_MAX = min(
+        _PLAYER_SPEED_MAX, _MAX_POWER * _DASH_POWER_RATE * _EFFORT_MAX / (1.0 - _PLAYER_DECAY)
+    )
+    _SIDE_DASH_RATE = sp.side_dash_rate  # rcssserver side_dash_rate 0.4 (v14)
+    _BACK_DASH_RATE = sp.back_dash_rate  # rcssserver back_dash_rate 0.6 (v14)
+    _DASH_ANGLE_STEP = sp.dash_angle_step  # rcssserver dash_angle_step 45 (v14)
+    _TACKLE_CYCLES = int(sp.tackle_cycles)  # rcssserver tackle_cycles 10
+
+    # stamina model (rcssserver serverparam.cpp defaults, librcsc stamina_model.cpp)
+    _STAMINA_MAX = sp.stamina_max  # stamina_max 8000
+    _STAMINA_INC_MAX = sp.stamina_inc_max  # stamina_inc_max 45 (type 0)
+    _RECOVER_DEC_THR_VALUE = sp.recover_dec_thr * _STAMINA_MAX  # recover_dec_thr 0.3 -> 2400
+    _EFFORT_DEC_THR_VALUE = sp.effort_dec_thr * _STAMINA_MAX  # effort_dec_thr 0.3 -> 2400
+    _EFFORT_INC_THR_VALUE = sp.effort_inc_thr * _STAMINA_MAX  # effort_inc_thr 0.6 -> 4800
+    _RECOVER_DEC = sp.recover_dec  # recover_dec 0.002
+    _RECOVER_MIN = sp.recover_min  # recover_min 0.5
+    _EFFORT_DEC = sp.effort_dec  # effort_dec 0.005
+    _EFFORT_INC = sp.effort_inc  # effort_inc 0.01
+    _EFFORT_MIN = sp.effort_min  # effort_min 0.6 (type 0)
+    _SAFE_STAMINA = _RECOVER_DEC_THR_VALUE + 1.0  # self_intercept_v13.cpp: recover_dec_thr + 1 (2401)
+
+    # self_intercept_v13.cpp safety ball distance floor: player_size + ball_size + 0.4 * kickable_margin (0.665)
+    _SAFETY_MIN = _PLAYER_SIZE + _BALL_SIZE + _KICKABLE_MARGIN * 0.4
+    # self_intercept_v13.cpp getOneStepDashPower: best control distances in front of / behind the body
+    _BEST_CTRL_FWD = _PLAYER_SIZE + 0.5 * _KICKABLE_MARGIN + _BALL_SIZE
+    _BEST_CTRL_BACK = _PLAYER_SIZE + 0.3 * _KICKABLE_MARGIN + _BALL_SIZE
+    _BEST_CTRL_FWD2 = _BEST_CTRL_FWD * _BEST_CTRL_FWD
+    _BEST_CTRL_BACK2 = _BEST_CTRL_BACK * _BEST_CTRL_BACK
+
+    # inertia factors (1 - d^n) / (1 - d), decay powers d^n (librcsc soccer_math.h inertia_n_step_*); n = 0 .. 100
+    _PF = tuple((1.0 - _PLAYER_DECAY**n) / (1.0 - _PLAYER_DECAY) for n in range(101))
+    _PD = tuple(_PLAYER_DECAY**n for n in range(101))
+    _BF = tuple((1.0 - _BALL_DECAY**n) / (1.0 - _BALL_DECAY) for n in range(101))
+    _BD = tuple(_BALL_DECAY**n for n in range(101))
+    _ONE_MINUS_PD = 1.0 - _PLAYER_DECAY
+    # calc_first_term_geom_series denominators 1 - 0.4^n
+    _FT_DEN = tuple(1.0 - _PLAYER_DECAY**n for n in range(101))
+
+    # A resting ball farther than this (squared) from the goalie: predictOneStep's reach test (|B - P| > ball speed
+    # max 3 + real speed max 1 + control area <= 1.3) and predictShortStep's (|P - B| > control area + 1 * cycle for
+    # every cycle <= 5) both fail, computed as _short_step computes its bound
+    _RESTING_FAR = _CATCHABLE_AREA + _REAL_SPEED_MAX * _MAX_SHORT_STEP
+    _RESTING_FAR2 = _RESTING_FAR * _RESTING_FAR
+
+    _DASH_TABLE = _common.DASH_DISTANCE_TABLE
+    _DASH_TABLE_LAST = _DASH_TABLE[-1]
+    _DASH_TABLE_LEN = len(_DASH_TABLE)
+
+    # relative dash directions of predictOneDash: -180, -135, ..., 135 (dash_angle_step 45, range [-180, 179))
+    _ONE_DASH_RATES = tuple(_dash_dir_rate(d) for d in _ONE_DASH_DIRS)
+    # predictOmniDashShort: the same grid (step max(15, 45)) without 0
+    _OMNI_DIRS = tuple((d, r) for d, r in zip(_ONE_DASH_DIRS, _ONE_DASH_RATES, strict=True) if abs(d) >= 1.0)
 
 
 def _norm(a: float) -> float:
@@ -177,11 +201,10 @@ def _dash_dir_rate(d: float) -> float:
     return min(max(1.0e-5, r), 1.0)
 
 
-# relative dash directions of predictOneDash: -180, -135, ..., 135 (dash_angle_step 45, range [-180, 179))
+# relative dash directions of predictOneDash: -180, -135, ..., 135 (dash_angle_step 45, range [-180, 179)); their
+# rates and the omni-dash grid are set by _bind
 _ONE_DASH_DIRS = tuple(-180.0 + 45.0 * i for i in range(8))
-_ONE_DASH_RATES = tuple(_dash_dir_rate(d) for d in _ONE_DASH_DIRS)
-# predictOmniDashShort: the same grid (step max(15, 45)) without 0
-_OMNI_DIRS = tuple((d, r) for d, r in zip(_ONE_DASH_DIRS, _ONE_DASH_RATES, strict=True) if abs(d) >= 1.0)
+register_binder(_bind)
 
 
 def cycles_to_reach_distance(dist: float) -> int:

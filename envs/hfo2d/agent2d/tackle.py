@@ -14,16 +14,14 @@ from __future__ import annotations
 
 import math
 
+from hfo2d.agent2d import common as _common
 from hfo2d.agent2d.common import (
-    BALL_DECAY,
     GOAL_HALF_WIDTH,
-    KICKABLE_AREA,
     OWN_GOAL,
     PENALTY_AREA_HALF_WIDTH,
     PENALTY_AREA_X,
     PITCH_HALF_LENGTH,
     PITCH_HALF_WIDTH,
-    REAL_SPEED_MAX,
     Effector,
     GoalieView,
     InterceptTable,
@@ -32,22 +30,11 @@ from hfo2d.agent2d.common import (
     cycles_to_reach,
     eff_turn,
     norm_deg,
+    register_binder,
     rotate,
 )
+from hfo2d.physics import ServerParams
 
-# --- server parameters the tackle uses (rcssserver serverparam.cpp defaults, HFO does not change them) ----------
-TACKLE_DIST = 2.0
-TACKLE_BACK_DIST = 0.0
-TACKLE_WIDTH = 1.25
-TACKLE_EXPONENT = 6.0
-FOUL_EXPONENT = 10.0
-TACKLE_POWER_RATE = 0.027
-MAX_TACKLE_POWER = 100.0
-MAX_BACK_TACKLE_POWER = 0.0
-BALL_SPEED_MAX = 3.0
-MIN_MOMENT = -180.0
-MAX_MOMENT = 180.0
-PLAYER_DECAY_OPP = 0.4  # the attacker is player type 0 too
 # TackleGenerator: ANGLE_DIVS 40 candidate directions over [min_moment, max_moment)
 ANGLE_DIVS = 40
 
@@ -189,10 +176,10 @@ def ball_move_step(speed: float, dist: float) -> int:
     return int(math.ceil(_length_geom_series(speed, dist, BALL_DECAY)) + 1.0e-10)
 
 
-# A ball farther than 2.5 m (squared here) from the goalie lies outside the tackle rectangle: the rotated offset
-# (r.x, r.y) has |r| > 2.5 > hypot(2.0, 1.25), so |r.x| > 2.0 or |r.y| > 1.25, a failure term >= 1 and both
+# A ball farther than NO_TACKLE_DIST (set by _bind) from the goalie lies outside the tackle rectangle: the rotated
+# offset (r.x, r.y) has |r| > 2.5 > hypot(2.0, 1.25), so |r.x| > 2.0 or |r.y| > 1.25, a failure term >= 1 and both
 # probabilities 0 (the rotation's rounding is far below the margin)
-_NO_TACKLE_DIST2 = 2.5 * 2.5
+_NO_TACKLE_DIST_DEFAULT = 2.5
 
 
 # --- probabilities (librcsc SelfObject::updateBallInfo / updateKickableState) ------------------------------------
@@ -282,9 +269,40 @@ def _opponent_reach_step(
 
 
 _FACTOR_CACHE = 64
-# (1 - decay^n) / (1 - decay) exactly as common.ball_at / inertia_point compute them
-_BALL_FACTORS = [(1.0 - BALL_DECAY**n) / (1.0 - BALL_DECAY) for n in range(_FACTOR_CACHE)]
-_PLAYER_FACTORS = [(1.0 - PLAYER_DECAY_OPP**n) / (1.0 - PLAYER_DECAY_OPP) for n in range(_FACTOR_CACHE)]
+
+
+# --- server parameters the tackle uses (rcssserver serverparam.cpp defaults in the comments) --------------------
+def _bind(sp: ServerParams) -> None:
+    global BALL_DECAY, KICKABLE_AREA, REAL_SPEED_MAX, TACKLE_DIST, TACKLE_BACK_DIST, TACKLE_WIDTH
+    global TACKLE_EXPONENT, FOUL_EXPONENT, TACKLE_POWER_RATE, MAX_TACKLE_POWER, MAX_BACK_TACKLE_POWER
+    global BALL_SPEED_MAX, MIN_MOMENT, MAX_MOMENT, PLAYER_DECAY_OPP, NO_TACKLE_DIST, _NO_TACKLE_DIST2
+    global _BALL_FACTORS, _PLAYER_FACTORS
+    BALL_DECAY = _common.BALL_DECAY
+    KICKABLE_AREA = _common.KICKABLE_AREA
+    REAL_SPEED_MAX = _common.REAL_SPEED_MAX
+    TACKLE_DIST = sp.tackle_dist  # 2
+    TACKLE_BACK_DIST = sp.tackle_back_dist  # 0
+    TACKLE_WIDTH = sp.tackle_width  # 1.25
+    TACKLE_EXPONENT = sp.tackle_exponent  # 6
+    FOUL_EXPONENT = sp.foul_exponent  # 10
+    TACKLE_POWER_RATE = sp.tackle_power_rate  # 0.027
+    MAX_TACKLE_POWER = sp.max_tackle_power  # 100
+    MAX_BACK_TACKLE_POWER = sp.max_back_tackle_power  # 0
+    BALL_SPEED_MAX = sp.ball_speed_max  # 3
+    MIN_MOMENT = sp.min_moment  # -180
+    MAX_MOMENT = sp.max_moment  # 180
+    PLAYER_DECAY_OPP = sp.player_decay  # 0.4: the attacker is player type 0 too
+    # beyond the tackle rectangle's far corner, with a margin (2.5 for the defaults)
+    NO_TACKLE_DIST = max(
+        _NO_TACKLE_DIST_DEFAULT, math.hypot(max(TACKLE_DIST, TACKLE_BACK_DIST), TACKLE_WIDTH) + 0.1
+    )
+    _NO_TACKLE_DIST2 = NO_TACKLE_DIST * NO_TACKLE_DIST
+    # (1 - decay^n) / (1 - decay) exactly as common.ball_at / inertia_point compute them
+    _BALL_FACTORS = [(1.0 - BALL_DECAY**n) / (1.0 - BALL_DECAY) for n in range(_FACTOR_CACHE)]
+    _PLAYER_FACTORS = [(1.0 - PLAYER_DECAY_OPP**n) / (1.0 - PLAYER_DECAY_OPP) for n in range(_FACTOR_CACHE)]
+
+
+register_binder(_bind)
 
 
 def _ball_factor(n: int) -> float:

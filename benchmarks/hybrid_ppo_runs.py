@@ -1,0 +1,282 @@
+"""HybridPPO experiments on the batched hfo2d (issue 33): E1 from scratch and E6 from reward alone.
+
+A training run of :class:`sb3_hfo.hybrid_ppo.HybridPPO` on ``n_envs`` games of one hfo2d id stepped in one process
+(:func:`sb3_hfo.vec_env.make_hfo_vec_env`), with what the experiments need and rl-zoo3 does not give:
+
+* a wall-clock budget (``--minutes``) besides the step budget (``--steps``), and the wall clock and load average
+  recorded with every row;
+* periodic greedy evaluations against the *evaluation* env (``--eval-every`` steps, ``--eval-episodes``
+  episodes; for E6 the full-strength goalie whatever the training curriculum says), written to ``curve.jsonl``
+  with the end-status counts, and a checkpoint of each evaluated model, so curves show where a run stalls;
+* an optional curriculum on the goalie's strength (``--curriculum START:END:FRACTION``: ``keeper_skill`` rises
+  linearly from START to END over the first FRACTION of the steps, by
+  :class:`sb3_hfo.callbacks.KeeperSkillCurriculumCallback`);
+* the final model (``final.zip``: the figures that count come from it, evaluated over 1,000 episodes with
+  ``python -m sb3_hfo.evaluate RUN/final.zip --env ID --episodes 1000 --seed 0``).
+
+``--init RUN/model_N.zip`` starts a run from an earlier run's policy weights (its optimizers and reward
+normaliser start afresh): a run continued with other settings, e.g. a shorter curriculum; its wall clock adds to
+the earlier run's.
+
+How the model is made: from reward alone. No demonstrations, no scripted labels, no imitation term.
+
+    python benchmarks/hybrid_ppo_runs.py e1 --seed 0 --out ~/runs/hppo/e1_s0
+    python benchmarks/hybrid_ppo_runs.py e6 --seed 0 --out ~/runs/hppo/e6_s0 --minutes 110
+    python benchmarks/hybrid_ppo_runs.py e1 --smoke --out /tmp/smoke   # seconds: what the test runs
+
+Presets (``--hp JSON`` overrides any hyperparameter; ``--env-kwargs JSON`` the env's):
+
+* ``e1``: HFO/EmptyGoal-v0, HFO's shaped reward, zoo_configs/hybrid_ppo_empty_goal.yml's recipe.
+* ``e6``: HFO/Keeper-v1 (agent2d's goalie), the shaped reward toward the goalie gap with lost shots refunded
+  (``reward="shaped_gap_refund"``, hfo2d.reward; not HFO's own reward, documented there), and a curriculum from a
+  goalie that never moves (``keeper_skill`` 0) to the full goalie over the first half of the steps.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from collections import Counter
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import torch as th
+from stable_baselines3.common.callbacks import BaseCallback, CallbackList
+from stable_baselines3.common.vec_env import VecNormalize
+
+from sb3_hfo.callbacks import KeeperSkillCurriculumCallback
+from sb3_hfo.common.schedules import parse_schedule
+from sb3_hfo.evaluation import wilson_interval
+from sb3_hfo.hybrid_ppo import HybridPPO
+from sb3_hfo.vec_env import make_hfo_vec_env
+
+#: The experiments' presets: env id, env kwargs, hyperparameters, curriculum and step budget.
+PRESETS: dict[str, dict[str, Any]] = {
+    "e1": {
+        "env_id": "HFO/EmptyGoal-v0",
+        "env_kwargs": {},
+        "steps": 1_600_000,
+        "curriculum": None,
+        "hp": {
+            "n_envs": 16,
+            "n_steps": 256,
+            "batch_size": 512,
+            "n_epochs": 10,
+            "learning_rate": "lin_5e-4",
+            "gamma": 0.99,
+            "gae_lambda": 0.95,
+            "ent_coef": 0.0,
+            "norm_reward": True,
+            "policy_kwargs": {"net_arch": [64, 64], "log_std_init": -0.5},
+        },
+    },
+    "e6": {
+        "env_id": "HFO/Keeper-v1",
+        "env_kwargs": {"reward": "shaped_gap_refund"},
+        "steps": 30_000_000,
+        "curriculum": (0.0, 1.0, 0.5),
+        "hp": {
+            "n_envs": 16,
+            "n_steps": 256,
+            "batch_size": 1024,
+            "n_epochs": 10,
+            "learning_rate": "lin_5e-4",
+            "gamma": 0.99,
+            "gae_lambda": 0.95,
+            "ent_coef": 0.001,
+            "norm_reward": True,
+            "policy_kwargs": {"net_arch": [128, 128], "log_std_init": -0.5},
+        },
+    },
+}
+
+#: Tiny settings for ``--smoke`` (CI runs the script for seconds).
+SMOKE = {
+    "steps": 2048,
+    "eval_every": 1024,
+    "eval_episodes": 4,
+    "hp": {"n_envs": 4, "n_steps": 256, "batch_size": 256},
+}
+
+
+def load_average() -> float:
+    """The 1-minute load average (other jobs on the machine slow a run down; every row records it)."""
+    return os.getloadavg()[0]
+
+
+def greedy_evaluation(
+    model: HybridPPO, env_id: str, env_kwargs: dict[str, Any], episodes: int, seed: int
+) -> dict:
+    """``episodes`` greedy episodes on 16 (or fewer) games of ``env_id``: goals, end statuses, Wilson interval."""
+    n_games = min(16, episodes)
+    env = make_hfo_vec_env(env_id, n_games, seed=seed, monitor=False, **env_kwargs)
+    statuses: Counter[str] = Counter()
+    started = n_games
+    active = np.ones(n_games, dtype=bool)
+    obs = env.reset()
+    while active.any():
+        actions, _ = model.predict(obs, deterministic=True)
+        obs, _, dones, infos = env.step(actions)
+        for game in np.flatnonzero(dones):
+            if not active[game]:
+                continue
+            statuses[infos[game]["status"]] += 1
+            if started < episodes:
+                started += 1  # the game's auto-reset episode counts
+            else:
+                active[game] = False
+    env.close()
+    goals = statuses.get("GOAL", 0)
+    low, high = wilson_interval(goals, episodes)
+    return {
+        "episodes": episodes,
+        "goals": goals,
+        "rate": goals / episodes,
+        "ci95": [low, high],
+        "status": dict(statuses),
+    }
+
+
+class RunRecorder(BaseCallback):
+    """Stops the run at its wall-clock budget; every ``eval_every`` steps evaluates the greedy policy on the
+    evaluation env, saves that model and appends a row (steps, seconds, steps/s, load, training goal rate, the
+    evaluation) to ``curve.jsonl``."""
+
+    def __init__(self, out: Path, minutes: float, eval_every: int, evaluate: Any) -> None:
+        super().__init__()
+        self.out, self.budget_s, self.eval_every, self.evaluate = out, minutes * 60.0, eval_every, evaluate
+        self.started = time.time()
+        self.next_eval = eval_every
+        self.train_seconds = 0.0  # wall clock without the periodic evaluations
+        self._eval_seconds = 0.0
+
+    def _on_step(self) -> bool:
+        return self.train_seconds_now() < self.budget_s
+
+    def train_seconds_now(self) -> float:
+        return time.time() - self.started - self._eval_seconds
+
+    def _on_rollout_end(self) -> None:
+        if self.num_timesteps < self.next_eval:
+            return
+        self.next_eval += self.eval_every
+        self.row(final=False)
+
+    def row(self, final: bool) -> dict[str, Any]:
+        seconds = self.train_seconds_now()
+        eval_started = time.time()
+        evaluation = self.evaluate(self.model)
+        self._eval_seconds += time.time() - eval_started
+        buffer = self.model.ep_success_buffer
+        row = {
+            "steps": int(self.num_timesteps),
+            "train_seconds": round(seconds, 1),
+            "steps_per_s": round(self.num_timesteps / max(seconds, 1e-9), 1),
+            "load1": round(load_average(), 2),
+            "train_goal_rate": round(float(np.mean(buffer)), 3) if len(buffer) else None,
+            "eval": evaluation,
+            "final": final,
+        }
+        name = "final.zip" if final else f"model_{self.num_timesteps}.zip"
+        self.model.save(self.out / name)
+        with open(self.out / "curve.jsonl", "a") as file:
+            file.write(json.dumps(row) + "\n")
+        for key in ("rate", "goals"):
+            self.logger.record(f"eval/greedy_{key}", evaluation[key])
+        print(json.dumps(row), flush=True)
+        return row
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("preset", choices=sorted(PRESETS))
+    parser.add_argument("--out", type=Path, required=True, help="run folder (created; must not hold a curve)")
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--steps", type=int, default=None, help="step budget (default: the preset's)")
+    parser.add_argument("--minutes", type=float, default=600.0, help="wall-clock budget of training")
+    parser.add_argument("--eval-every", type=int, default=1_000_000)
+    parser.add_argument("--eval-episodes", type=int, default=100)
+    parser.add_argument("--hp", default="{}", help="JSON: hyperparameters over the preset's")
+    parser.add_argument("--env-kwargs", default="{}", help="JSON: env kwargs over the preset's")
+    parser.add_argument("--curriculum", default=None, help="START:END:FRACTION of keeper_skill, or 'none'")
+    parser.add_argument("--threads", type=int, default=1, help="torch threads")
+    parser.add_argument(
+        "--init",
+        type=Path,
+        default=None,
+        help="start from this HybridPPO zip's policy weights (a run continued)",
+    )
+    parser.add_argument("--smoke", action="store_true", help="a few seconds: tiny budget and evaluation")
+    args = parser.parse_args(argv)
+
+    preset = json.loads(json.dumps(PRESETS[args.preset]))  # a deep copy
+    hp = {**preset["hp"], **json.loads(args.hp)}
+    env_kwargs = {**preset["env_kwargs"], **json.loads(args.env_kwargs)}
+    steps, eval_every, eval_episodes = args.steps or preset["steps"], args.eval_every, args.eval_episodes
+    if args.smoke:
+        hp.update(SMOKE["hp"])
+        steps, eval_every, eval_episodes = SMOKE["steps"], SMOKE["eval_every"], SMOKE["eval_episodes"]
+    curriculum = preset["curriculum"]
+    if args.curriculum is not None:
+        curriculum = (
+            None if args.curriculum == "none" else tuple(float(v) for v in args.curriculum.split(":"))
+        )
+    if (args.out / "curve.jsonl").exists():
+        parser.error(f"{args.out} already holds a run (curve.jsonl); choose another --out")
+    args.out.mkdir(parents=True, exist_ok=True)
+    th.set_num_threads(args.threads)
+
+    record = {
+        "preset": args.preset,
+        "env_id": preset["env_id"],
+        "env_kwargs": env_kwargs,
+        "hp": hp,
+        "seed": args.seed,
+        "steps": steps,
+        "minutes": args.minutes,
+        "curriculum": curriculum,
+        "torch_threads": args.threads,
+        "command": " ".join([Path(sys.argv[0]).name, *(argv if argv is not None else sys.argv[1:])]),
+        "load1_at_start": load_average(),
+        "method": "reinforcement learning from reward (no demonstrations, no imitation)",
+        "init": None if args.init is None else str(args.init),
+    }
+    (args.out / "run.json").write_text(json.dumps(record, indent=1))
+
+    n_envs = hp.pop("n_envs")
+    norm_reward = hp.pop("norm_reward", False)
+    hp["learning_rate"] = parse_schedule(hp["learning_rate"])
+    train_kwargs = dict(env_kwargs)
+    if curriculum is not None:
+        train_kwargs["keeper_skill"] = curriculum[0]
+    env = make_hfo_vec_env(preset["env_id"], n_envs, seed=args.seed, **train_kwargs)
+    if norm_reward:  # rewards scaled by a running std of the discounted return; HFO's features are in [-1, 1]
+        env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=hp.get("gamma", 0.99))
+    model = HybridPPO("MlpPolicy", env, seed=args.seed, tensorboard_log=str(args.out / "tb"), **hp)
+    if (
+        args.init is not None
+    ):  # the weights of an earlier run of the same architecture (its optimizers start afresh)
+        model.policy.load_state_dict(HybridPPO.load(args.init, device="cpu").policy.state_dict())
+
+    def evaluate(policy_model: HybridPPO) -> dict:
+        # the evaluation env has the id's own goalie strength (the full goalie for Keeper-v1)
+        return greedy_evaluation(
+            policy_model, preset["env_id"], env_kwargs, eval_episodes, seed=10_000 + args.seed
+        )
+
+    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate)
+    callbacks: list[BaseCallback] = [recorder]
+    if curriculum is not None:
+        start, end, fraction = curriculum
+        callbacks.append(KeeperSkillCurriculumCallback(start, end, ramp_fraction=fraction))
+    model.learn(steps, callback=CallbackList(callbacks), progress_bar=False)
+    recorder.row(final=True)
+    env.close()
+
+
+if __name__ == "__main__":
+    main()
