@@ -222,6 +222,10 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
 
     torch.set_num_threads(1)
     full = load_model(resolved.path, device="cpu", buffer_size=1)
+    if args.acting is not None and not hasattr(full.policy, "acting"):
+        raise UserError(
+            f"--acting: {type(full.policy).__name__} has no acting strategies (SkillDDPG's option)"
+        )
     try:
         if args.acting is not None:
             full.policy.acting = args.acting
@@ -261,7 +265,8 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
         "config": args.config,
         "seed": args.seed,
         "source": args.source_note or str(args.source),
-        "acting": format_acting(stripped.policy.acting),
+        # HybridPPO's policy acts by its own distribution: no acting strategies to record
+        "acting": format_acting(stripped.policy.acting) if hasattr(stripped.policy, "acting") else None,
         "evaluation_command": f"python -m sb3_hfo.evaluate {args.name} --episodes {args.episodes} "
         f"--seed {args.eval_seed} --json {args.name}.json",
         "evaluation": evaluation,

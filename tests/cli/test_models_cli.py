@@ -184,3 +184,28 @@ def test_playback_names_the_render_extra_when_its_modules_are_missing(
         UserError, match=rf'needs {missing}, from the \[render\] extra: pip install -e "\.\[render\]"'
     ):
         check_render_extra(video=video)
+
+
+def test_add_takes_a_hybrid_ppo_model(tmp_path: Path) -> None:
+    """A HybridPPO zip is stripped, checked, evaluated and recorded like a SkillDDPG one (no acting strategies)."""
+    from sb3_hfo.cli.models import add
+    from sb3_hfo.hybrid_ppo import HybridPPO
+
+    full_path = tmp_path / "hybrid.zip"
+    HybridPPO("MlpPolicy", "HFO/EmptyGoal-v0", n_steps=32, batch_size=32, seed=0).save(full_path)
+    manifest = tmp_path / "models" / "manifest.json"
+    command = [
+        "add",
+        "hybrid",
+        str(full_path),
+        "--config",
+        "zoo_configs/hybrid_ppo_empty_goal.yml",
+        "--seed",
+        "0",
+    ]
+    command += ["--env", "HFO/EmptyGoal-v0", "--episodes", "2"]
+    entry = add(build_parser().parse_args(command), manifest_path=manifest)
+    assert entry["acting"] is None and entry["evaluation"]["episodes"] == 2
+    assert isinstance(load_model(manifest.parent / "hybrid.zip"), HybridPPO)
+    with pytest.raises(UserError, match="no acting strategies"):
+        add(build_parser().parse_args([*command, "--acting", "critic"]), manifest_path=manifest)

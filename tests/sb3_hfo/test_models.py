@@ -118,7 +118,7 @@ MANIFEST = read_manifest()
 def test_models_holds_only_the_manifest_and_its_models() -> None:
     files = {path.name for path in MODELS_DIR.iterdir()}
     assert files == {MANIFEST_PATH.name, *(entry["file"] for entry in MANIFEST.values())}
-    assert 1 <= len(MANIFEST) <= 6
+    assert 1 <= len(MANIFEST) <= 8  # a handful of small files, not a model zoo
 
 
 @pytest.mark.parametrize("name", sorted(MANIFEST))
@@ -141,8 +141,11 @@ def test_a_committed_model_is_small_stripped_and_matches_its_manifest_entry(name
     env = gym.make(entry["env_id"], **entry["env_kwargs"])
     assert model.observation_space.shape == env.observation_space.shape
     env.close()
-    assert model.policy.acting == parse_acting(entry["acting"])
-    assert format_acting(model.policy.acting) == entry["acting"] == evaluation["acting"]  # the text form
+    if hasattr(model.policy, "acting"):  # SkillDDPG's acting strategies; HybridPPO acts by its distribution
+        assert model.policy.acting == parse_acting(entry["acting"])
+        assert format_acting(model.policy.acting) == entry["acting"] == evaluation["acting"]  # the text form
+    else:
+        assert entry["acting"] is None
     real = entry["real_hfo"]
     if real:
         assert real["env_id"].startswith("HFO/Real") and real["source"]
