@@ -27,7 +27,7 @@ from stable_baselines3.common.noise import NormalActionNoise
 import hfo2d  # noqa: F401  (registers the envs)
 from sb3_hfo import SkillDDPG
 from sb3_hfo.callbacks import HFOEpisodeStatsCallback
-from sb3_hfo.models import load_model
+from sb3_hfo.models import MODELS_DIR, load_model
 
 
 class AnchoredSkillDDPG(SkillDDPG):
@@ -62,9 +62,7 @@ def delayed_rate(rate: float, warmup: float):  # noqa: ANN201  (an SB3 schedule)
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument(
-        "--model", type=Path, default=Path(__file__).resolve().parents[2] / "models" / "e6.zip"
-    )
+    parser.add_argument("--model", type=Path, default=MODELS_DIR / "e6.zip")
     parser.add_argument("--steps", type=int, default=200_000)
     parser.add_argument(
         "--critic-warmup", type=float, default=0.25, help="fraction of the run with actor lr 0"

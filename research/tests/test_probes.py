@@ -1,7 +1,7 @@
 """The research probes (research/probes/) run end to end at tiny settings on the committed models.
 
 Not part of the default test run (pyproject's testpaths is tests/): ``pytest research/tests``. A probe whose model
-is not committed (models/manifest.json) is skipped with the reason.
+is not committed (sb3_hfo/pretrained/manifest.json) is skipped with the reason.
 """
 
 from __future__ import annotations
@@ -18,11 +18,11 @@ PROBES = REPO / "research" / "probes"
 
 
 def committed(name: str) -> str:
-    """``name`` when it is a committed model (models/manifest.json); the test is skipped otherwise."""
+    """``name`` when it is a committed model (sb3_hfo/pretrained/manifest.json); the test is skipped otherwise."""
     from sb3_hfo.models import read_manifest
 
     if name not in read_manifest():
-        pytest.skip(f"model {name!r} is not committed (models/manifest.json)")
+        pytest.skip(f"model {name!r} is not committed (sb3_hfo/pretrained/manifest.json)")
     return name
 
 
@@ -171,7 +171,7 @@ def test_weight_layout_times_both_layouts_of_every_shape() -> None:
 
 def test_critic_kick_scan_reports_both_outcomes_and_writes_a_png(tmp_path: Path) -> None:
     out = tmp_path / "scan.png"
-    model = REPO / "models" / f"{committed('e3')}.zip"
+    model = REPO / "sb3_hfo" / "pretrained" / f"{committed('e3')}.zip"
     command = [sys.executable, str(PROBES / "critic_kick_scan.py"), str(model), "--labels", "x3"]
     command += ["--episodes", "8", "--out", str(out)]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
@@ -231,7 +231,7 @@ def test_shot_aim_projects_kicks_onto_the_goal_line_and_reports_outcomes() -> No
     assert shot_aim.goal_line_y(40.0, -2.0, 0.0) == pytest.approx(-2.0)
     assert math.isnan(shot_aim.goal_line_y(40.0, 0.0, math.pi))  # away from the goal
 
-    model = REPO / "models" / f"{committed('e3')}.zip"
+    model = REPO / "sb3_hfo" / "pretrained" / f"{committed('e3')}.zip"
     command = [sys.executable, str(PROBES / "shot_aim.py"), str(model), "--episodes", "10"]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=REPO)
     assert completed.returncode == 0, completed.stderr[-2000:]
