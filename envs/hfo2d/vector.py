@@ -312,7 +312,24 @@ def _validate(index: int, parse: Callable[[Any], Any], action: Any) -> None:
 # -----------------------------------------------------------------------------------------------------------------
 # One process
 # -----------------------------------------------------------------------------------------------------------------
-class HFOVectorEnv(gym.vector.VectorEnv):
+class _AllGamesAccess:
+    """Gymnasium's ``call`` / ``get_attr`` / ``set_attr`` over every game, through a batch's per-game methods
+    (``call_games``, ``get_attr_games``, ``set_attr_games``: SB3's indices), shared by both batches."""
+
+    def call(self, name: str, *args: Any, **kwargs: Any) -> tuple[Any, ...]:
+        """Each game's attribute ``name``, called with the arguments if it is callable (SyncVectorEnv's call)."""
+        return tuple(self.call_games(name, args, kwargs))  # type: ignore[attr-defined]
+
+    def get_attr(self, name: str) -> tuple[Any, ...]:
+        """Each game's attribute ``name``."""
+        return tuple(self.get_attr_games(name))  # type: ignore[attr-defined]
+
+    def set_attr(self, name: str, values: Any) -> None:
+        """Set attribute ``name`` of every game: one value for all, or a list / tuple of one per game."""
+        self.set_attr_games(name, values)  # type: ignore[attr-defined]
+
+
+class HFOVectorEnv(_AllGamesAccess, gym.vector.VectorEnv):
     """N hfo2d games stepped in one process, each an unwrapped :class:`hfo2d.HFOEnv` (see the module docstring
     for the seeding, auto-reset and info conventions).
 
@@ -392,18 +409,6 @@ class HFOVectorEnv(gym.vector.VectorEnv):
     def close_extras(self, **kwargs: Any) -> None:
         for env in self.envs:
             env.close()
-
-    def call(self, name: str, *args: Any, **kwargs: Any) -> tuple[Any, ...]:
-        """Each game's attribute ``name``, called with the arguments if it is callable (SyncVectorEnv's call)."""
-        return tuple(self.call_games(name, args, kwargs))
-
-    def get_attr(self, name: str) -> tuple[Any, ...]:
-        """Each game's attribute ``name``."""
-        return tuple(self.get_attr_games(name))
-
-    def set_attr(self, name: str, values: Any) -> None:
-        """Set attribute ``name`` of every game: one value for all, or a list / tuple of one per game."""
-        self.set_attr_games(name, values)
 
     # --- the same for some games (SB3's indices) -------------------------------------------------------------
     def call_games(
@@ -630,7 +635,7 @@ def _worker(
             connection.send_bytes(_RAISED + pickle.dumps(error, protocol=pickle.HIGHEST_PROTOCOL))
 
 
-class ShardedHFOVectorEnv(gym.vector.VectorEnv):
+class ShardedHFOVectorEnv(_AllGamesAccess, gym.vector.VectorEnv):
     """The games of :class:`HFOVectorEnv` in ``num_workers`` shards stepped in parallel, one batch per process (one
     per core): by default this process steps the first shard and ``num_workers - 1`` worker processes the others.
 
@@ -786,15 +791,6 @@ class ShardedHFOVectorEnv(gym.vector.VectorEnv):
             )
             return None
         return tuple(frame for part in self._broadcast("render", None) for frame in part)
-
-    def call(self, name: str, *args: Any, **kwargs: Any) -> tuple[Any, ...]:
-        return tuple(self.call_games(name, args, kwargs))
-
-    def get_attr(self, name: str) -> tuple[Any, ...]:
-        return tuple(self.get_attr_games(name))
-
-    def set_attr(self, name: str, values: Any) -> None:
-        self.set_attr_games(name, values)
 
     def call_games(
         self,
