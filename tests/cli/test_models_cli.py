@@ -25,7 +25,9 @@ def test_add_strips_checks_evaluates_and_writes_the_manifest_entry(tmp_path: Pat
     from sb3_hfo.cli.models import add
 
     full_path = tmp_path / "full.zip"
-    load_model("e1_skill_pdqn", device="cpu", buffer_size=1).save(full_path)  # a full zip (target networks, optimizers)
+    load_model("e1_skill_pdqn", device="cpu", buffer_size=1).save(
+        full_path
+    )  # a full zip (target networks, optimizers)
     manifest = tmp_path / "models" / "manifest.json"
     args = build_parser().parse_args(
         ["add", "tiny", str(full_path), "--config", "zoo_configs/e1_empty_goal_fast.yml", "--seed", "3"]

@@ -186,7 +186,9 @@ def test_a_committed_model_continues_training_with_any_number_of_envs(
     saved = load_model("e1_skill_pdqn", device="cpu", buffer_size=1).action_noise
     assert isinstance(saved, VectorizedActionNoise) and saved.n_envs == 4  # the premise
     env = gym.make("HFO/EmptyGoal-v0") if n_envs == 1 else make_vec_env("HFO/EmptyGoal-v0", n_envs=n_envs)
-    model = load_model("e1_skill_pdqn", env=env, device="cpu", buffer_size=500, learning_starts=0, batch_size=8)
+    model = load_model(
+        "e1_skill_pdqn", env=env, device="cpu", buffer_size=500, learning_starts=0, batch_size=8
+    )
     model.learn(40)
     noises = getattr(model.action_noise, "noises", [model.action_noise])
     assert len(noises) == n_envs
@@ -206,7 +208,9 @@ def test_a_loaded_model_logs_to_tensorboard_only_where_told(
     model.learn(5)
     assert list(tmp_path.iterdir()) == []  # no stray log folder in the working directory
     logs = tmp_path / "my_logs"
-    told = load_model("e1_skill_pdqn", env=gym.make("HFO/EmptyGoal-v0"), buffer_size=500, tensorboard_log=str(logs))
+    told = load_model(
+        "e1_skill_pdqn", env=gym.make("HFO/EmptyGoal-v0"), buffer_size=500, tensorboard_log=str(logs)
+    )
     assert told.tensorboard_log == str(logs)
     told.learn(5)
     assert [path.name for path in tmp_path.iterdir()] == ["my_logs"] and any(logs.rglob("events.out.*"))
