@@ -40,7 +40,9 @@ class TeamVecEnv(VecEnv):
     several slots per game, a method called on all slots runs once per slot.
     """
 
-    def __init__(self, games: Sequence[TeamGame], side: str = "offense", render_mode: str | None = None) -> None:
+    def __init__(
+        self, games: Sequence[TeamGame], side: str = "offense", render_mode: str | None = None
+    ) -> None:
         if side not in SIDES:
             raise ValueError(f"unknown side {side!r}; choose one of {SIDES}")
         if len(games) == 0:
@@ -71,7 +73,9 @@ class TeamVecEnv(VecEnv):
         self.side = side
         self.slots = slots
         self._render_mode = render_mode
-        self._first_slot = {game: slots.index((game, games[game].agent_names[0])) for game in range(len(games))}
+        self._first_slot = {
+            game: slots.index((game, games[game].agent_names[0])) for game in range(len(games))
+        }
         self._actions: np.ndarray | None = None
         super().__init__(len(slots), first.observation_space, first.action_space)
         self._observations = np.zeros((self.num_envs, *first.observation_space.shape), dtype=np.float32)
@@ -182,9 +186,9 @@ class TeamVecEnv(VecEnv):
 
 def make_team_vec_env(
     n_games: int,
-    offense_agents: int = 2,
+    offense_agents: int = 1,
     defense_agents: int = 0,
-    defense_npcs: int = 1,
+    defense_npcs: int = 0,
     seed: int | None = None,
     monitor: bool = True,
     side: str | None = None,
@@ -206,7 +210,9 @@ def make_team_vec_env(
     if isinstance(n_games, bool) or not isinstance(n_games, (int, np.integer)) or n_games < 1:
         raise ValueError(f"n_games must be a positive integer, got {n_games!r}")
     render_mode = game_kwargs.pop("render_mode", None)
-    games = [TeamGame(offense_agents, defense_agents, defense_npcs, **game_kwargs) for _ in range(int(n_games))]
+    games = [
+        TeamGame(offense_agents, defense_agents, defense_npcs, **game_kwargs) for _ in range(int(n_games))
+    ]
     if side is None:
         side = "offense" if offense_agents > 0 else "defense"
     vec_env: VecEnv = TeamVecEnv(games, side=side, render_mode=render_mode)

@@ -174,7 +174,7 @@ def parallel_env(
 
     Raises:
         ValueError: an unknown backend, or team sizes bin/HFO rejects.
-        ImportError: PettingZoo is not installed (``pip install "sb3-hfo[teams]"``), or the backend's module is
+        ImportError: PettingZoo is not installed (the ``[teams]`` extra: ``pip install -e ".[teams]"``), or the backend's module is
             missing.
     """
     if backend == "hfo2d":

@@ -1,6 +1,6 @@
 """HFO's team game (:class:`hfo2d.team.TeamGame`) as a PettingZoo ``ParallelEnv``: :func:`hfo2d.parallel_env`.
 
-This module imports PettingZoo (the ``teams`` extra: ``pip install "sb3-hfo[teams]"``); ``hfo2d`` imports it only
+This module imports PettingZoo (the ``[teams]`` extra: ``pip install -e ".[teams]"``); ``hfo2d`` imports it only
 when :func:`hfo2d.parallel_env` is called, so hfo2d works without PettingZoo.
 """
 
@@ -20,7 +20,8 @@ except ModuleNotFoundError as error:  # pragma: no cover - the test extra instal
     if error.name != "pettingzoo":
         raise
     raise ImportError(
-        "hfo2d.parallel_env needs PettingZoo: pip install 'sb3-hfo[teams]' (or pip install 'pettingzoo>=1.24')"
+        'hfo2d.parallel_env needs PettingZoo, from the [teams] extra: pip install -e ".[teams]" (in the sb3-hfo '
+        "folder), or pip install 'pettingzoo>=1.24'"
     ) from None
 
 __all__ = ["HFOTeamParallelEnv"]

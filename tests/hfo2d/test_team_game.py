@@ -470,4 +470,4 @@ def test_hfo2d_imports_without_pettingzoo() -> None:
     result = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True
     )
-    assert "pip install 'sb3-hfo[teams]'" in result.stdout
+    assert 'pip install -e ".[teams]"' in result.stdout
