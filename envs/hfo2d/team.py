@@ -9,9 +9,9 @@ env, :func:`hfo2d.parallel_env` all of them a PettingZoo ParallelEnv (:mod:`hfo2
 HFO's rules, with their sources (LARG/HFO b8b2a1d ``bin/HFO``, ``bin/Trainer.py``, ``bin/Teams.py``; rcssserver's
 HFO fork ``src/referee.cpp`` ``HFORef``; librcsc ``rcsc/player/*``):
 
-* Team sizes: bin/HFO ``parseArgs`` allows 0-10 offense agents and 0-11 defense agents / NPCs, with 1-10 offense
-  players and 0-11 defense players in all. hfo2d has no offense NPCs yet (agent2d's offense is not ported), so
-  ``offense_agents`` is 1-10 here.
+* Team sizes: bin/HFO ``parseArgs`` allows 0-10 offense agents / NPCs and 0-11 defense agents / NPCs, with 1-10
+  offense players and 0-11 defense players in all. agent2d's offense is not ported: hfo2d's offense NPCs are its
+  own scripted strikers (:mod:`hfo2d.strikers`), which take the offense unums after the agents' as HFO's NPCs do.
 * Uniform numbers (Trainer.py ``getTeams`` and ``run``; Teams.py ``Agent2d``): the offense's players are the first
   ``n`` of ``11, 7, 8, 9, 10, 6, 3, 2, 4, 5``, its agents the first ``offense_agents`` of them, sorted (agent ``i``
   gets the ``i``-th smallest). The defense's players are the first ``m`` of ``1, 2, 3, 4, 5, 6, 7, 8, 11, 9, 10``,
@@ -413,6 +413,7 @@ class TeamGame:
         self.episodes_ended = 0
         self.goals = 0
         self.last_end: tuple[int, str] | None = None
+        self._mirror_cache: Any = None
         self._renderer: Any = None
         self._renderer_mode: str | None = None
 
@@ -657,11 +658,21 @@ class TeamGame:
         if agent.offense:
             teammates = [other for other in self.offense_players if other is not player]
             return player, self.world.ball, teammates, self.defense_players
-        mirror = _mirrored_player
-        teammates = [mirror(other) for other in self.defense_players if other is not player]
-        ball = self.world.ball
-        mirrored_ball = BallState(x=-ball.x, y=-ball.y, vx=-ball.vx, vy=-ball.vy)
-        return mirror(player), mirrored_ball, teammates, [mirror(other) for other in self.offense_players]
+        world = self.world
+        # the mirrored field, made once per cycle for every defense agent (and both feature sets)
+        cache = self._mirror_cache
+        if cache is None or cache[0] != (self.episode_number, world.cycle):
+            ball = world.ball
+            cache = (
+                (self.episode_number, world.cycle),
+                BallState(x=-ball.x, y=-ball.y, vx=-ball.vx, vy=-ball.vy),
+                {id(other): _mirrored_player(other) for other in world.players},
+            )
+            self._mirror_cache = cache
+        _, mirrored_ball, mirrored = cache
+        teammates = [mirrored[id(other)] for other in self.defense_players if other is not player]
+        opponents = [mirrored[id(other)] for other in self.offense_players]
+        return mirrored[id(player)], mirrored_ball, teammates, opponents
 
     def _observation(self, agent: _Agent, paper: list[float]) -> np.ndarray:
         if self._hfo_layout:
@@ -751,7 +762,10 @@ class TeamGame:
         """(index of the action in the agent's layout, its parameters in HFO's units); ValueError if invalid."""
         layout = agent.layout
         if self.action_format == "flat":
-            values = _as_float_list(action, f"{agent.name}'s flat action")
+            if type(action) is np.ndarray and action.dtype.kind == "f" and action.shape == (layout.size,):
+                values = action.tolist()  # the usual case, without _as_float_list's checks
+            else:
+                values = _as_float_list(action, f"{agent.name}'s flat action")
             if len(values) != layout.size:
                 raise ValueError(
                     f"{agent.name}'s flat action must have shape ({layout.size},) ({', '.join(layout.names)}), "

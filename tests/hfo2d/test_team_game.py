@@ -4,6 +4,7 @@ actions (TACKLE, CATCH), the defense's view and rewards, seeds, rendering, and t
 from __future__ import annotations
 
 import math
+import pickle
 import subprocess
 import sys
 import warnings
@@ -317,6 +318,20 @@ def test_reset_with_a_seed_repeats() -> None:
         for a, b in zip(first, run, strict=True):
             assert repr(a) == repr(b)
     assert repr(_rollout(game, 7)[0]) != repr(first[0])
+
+
+def test_a_pickled_game_plays_on_the_same() -> None:
+    game = TeamGame(2, 1, 1, offense_npcs=1, seed=0)
+    game.reset(seed=0)
+    actions = {agent.name: np.full(agent.layout.size, 0.3, np.float32) for agent in game.agents}
+    for _ in range(5):
+        game.step(actions)
+    copy = pickle.loads(pickle.dumps(game))
+    for _ in range(30):
+        ours, theirs = game.step(actions), copy.step(actions)
+        assert repr(ours) == repr(theirs)
+        if ours[2] or ours[3]:
+            break
 
 
 def test_spaces_and_feature_sets() -> None:
