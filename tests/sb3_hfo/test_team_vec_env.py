@@ -2,9 +2,14 @@
 
 from __future__ import annotations
 
+import warnings
+
+import gymnasium as gym
 import numpy as np
 import pytest
+from stable_baselines3.common.env_checker import check_env
 
+import hfo2d  # noqa: F401  (registers HFO/HalfFieldOffense-v0)
 from hfo2d.team import TeamGame
 from sb3_hfo.hybrid_ppo import HybridPPO
 from sb3_hfo.multi_agent import TeamVecEnv, make_team_vec_env
@@ -82,3 +87,18 @@ def test_a_learning_goalie_against_scripted_strikers() -> None:
     model = HybridPPO("MlpPolicy", env, n_steps=16, batch_size=32, n_epochs=1, seed=0)
     model.learn(32)
     assert model.num_timesteps == 32
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        {"offense_agents": 1, "defense_npcs": 1},
+        {"offense_agents": 0, "defense_agents": 1, "offense_npcs": 2, "feature_set": "hfo"},
+    ],
+)
+def test_half_field_offense_passes_sb3_s_checker(kwargs: dict) -> None:
+    env = gym.make("HFO/HalfFieldOffense-v0", **kwargs)
+    with warnings.catch_warnings():
+        warnings.filterwarnings("ignore", message=".*symmetric and normalized.*")
+        check_env(env.unwrapped, warn=True)
+    env.close()
