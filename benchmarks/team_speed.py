@@ -20,6 +20,7 @@ import importlib.util
 import json
 import os
 import platform
+import sys
 import time
 from typing import Any
 
@@ -103,7 +104,9 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
             }
         )
     result = {
-        "command": "python benchmarks/team_speed.py " + " ".join(argv or []),
+        "command": " ".join(
+            ["python", "benchmarks/team_speed.py", *(sys.argv[1:] if argv is None else argv)]
+        ),
         "steps": args.steps,
         "repeat": args.repeat,
         "defender_npc_port": _defender_port_present(),
