@@ -48,7 +48,8 @@ catch rule (:meth:`hfo2d.physics.World.catch`: ban cycles, catchable area, proba
 
 Observations: HFO's low-level features (:mod:`hfo2d.features`) with one block per teammate (the other players of
 the agent's side) and per opponent, ``feature_set`` "paper" (58 + 8 per other player) or "hfo" (HFO master's 58 +
-9 per other player + 1). A defense agent sees the field as librcsc shows a right-side player
+9 per other player + 1); or HFO's high-level features, ``"high_level"`` (10 + 6 per teammate + 3 per opponent + 2,
+:func:`hfo2d.features.high_level_feature_list`, where this hfo2d has it). A defense agent sees the field as librcsc shows a right-side player
 (``PlayerAgent::parse`` -> ``FullstateSensor::reverse``: positions and velocities negated, body angle + 180), so
 its landmarks are those of the goal *it* attacks; HFO's listing test (``pos().x > 0``, in that frame) then hides
 every player inside the HFO half from a defense agent, as in real HFO. The frozen flag (feature 8) is +1 while
@@ -78,6 +79,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import seeding
 
+from hfo2d import features as features_module
 from hfo2d.action_layout import (
     HFO_FLAT_ACTION_LAYOUT,
     HybridActionBox,
@@ -185,7 +187,8 @@ _PARAMETER_BOUNDS: dict[str, tuple[tuple[float, float], ...]] = {
 # (AngleDeg::atan2_deg(catchAreaWidth() * 0.5, catchAreaLength()); computed from the params in TeamGame)
 
 TEAM_ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
-TEAM_FEATURE_SETS: tuple[str, ...] = ("paper", "hfo")
+#: "high_level" is HFO's high-level feature set, offered when hfo2d.features has it (high_level_feature_list).
+TEAM_FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
 TEAM_OFFENSE_REWARDS: tuple[str, ...] = ("shaped", "sparse")
 TEAM_DEFENSE_REWARDS: tuple[str, ...] = ("sparse", "shaped")
 #: The statuses that end an episode in the defense's favour (its sparse reward +1).
@@ -302,7 +305,7 @@ class TeamGame:
         action_format: ``"flat"`` (a :class:`~hfo2d.action_layout.HybridActionBox`: the preferences, then every
             action's parameters, all in [0, 1]) or ``"parameterized"`` (``Tuple(Discrete(n), Box(params of each
             action that has any))`` in HFO's units).
-        feature_set: ``"paper"`` or ``"hfo"`` (see :mod:`hfo2d.features`).
+        feature_set: ``"paper"``, ``"hfo"`` or ``"high_level"`` (see :mod:`hfo2d.features`).
         reward: the offense's, one of :data:`TEAM_OFFENSE_REWARDS`.
         defense_reward: the defense's, one of :data:`TEAM_DEFENSE_REWARDS`.
         noise: False turns off player, ball and kick noise (HFO's ``--deterministic``).
@@ -342,6 +345,11 @@ class TeamGame:
         ):
             if value not in choices:
                 raise ValueError(f"unknown {name} {value!r}; choose one of {choices}")
+        if feature_set == "high_level" and not hasattr(features_module, "high_level_feature_list"):
+            raise ValueError(
+                "feature_set='high_level' needs hfo2d.features.high_level_feature_list (HFO's high-level features), "
+                "which this hfo2d does not have yet: use 'paper' or 'hfo'"
+            )
         if not isinstance(noise, (bool, np.bool_)):
             raise ValueError(f"noise must be True or False, got {noise!r}")
         for name, value in (("frames_per_trial", frames_per_trial), ("untouched_time", untouched_time)):
@@ -358,6 +366,7 @@ class TeamGame:
         self.noise = bool(noise)
         self.params = params
         self._hfo_layout = feature_set == "hfo"
+        self._high_level = feature_set == "high_level"
         self._kickable_distance = params.kickable_area - KICKABLE_BUFFER
         # librcsc ActionEffector::setCatch's diagonal angle of the catch area
         self._catch_diagonal_deg = math.degrees(
@@ -425,12 +434,18 @@ class TeamGame:
             layout = HFO_FLAT_ACTION_LAYOUT
         else:
             layout = GOALIE_FLAT_ACTION_LAYOUT if player.goalie else DEFENDER_FLAT_ACTION_LAYOUT
-        size = (
-            hfo_num_features(n_teammates, n_opponents)
-            if self._hfo_layout
-            else num_features(n_teammates, n_opponents)
-        )
-        observation_space = spaces.Box(-1.0, 1.0, shape=(size,), dtype=np.float32)
+        if self._high_level:
+            low, high = features_module.high_level_bounds(n_teammates, n_opponents)
+            observation_space = spaces.Box(
+                np.array(low, dtype=np.float32), np.array(high, dtype=np.float32), dtype=np.float32
+            )
+        else:
+            size = (
+                hfo_num_features(n_teammates, n_opponents)
+                if self._hfo_layout
+                else num_features(n_teammates, n_opponents)
+            )
+            observation_space = spaces.Box(-1.0, 1.0, shape=(size,), dtype=np.float32)
         action_space = (
             HybridActionBox(layout) if self.action_format == "flat" else _parameterized_space(layout)
         )
@@ -675,7 +690,21 @@ class TeamGame:
         return mirrored[id(player)], mirrored_ball, teammates, opponents
 
     def _observation(self, agent: _Agent, paper: list[float]) -> np.ndarray:
-        if self._hfo_layout:
+        if self._high_level:
+            # the server's frame: high_level_feature_list mirrors the field itself for a defender
+            player = agent.player
+            own = self.offense_players if agent.offense else self.defense_players
+            others = self.defense_players if agent.offense else self.offense_players
+            features = features_module.high_level_feature_list(
+                player,
+                self.world.ball,
+                self._kickable_distance,
+                [other for other in own if other is not player],
+                others,
+                agent.last_action_succeeded,
+                playing_offense=agent.offense,
+            )
+        elif self._hfo_layout:
             player, ball, teammates, opponents = self._view(agent)
             features = hfo_feature_list(
                 player, ball, self._kickable_distance, teammates, opponents, agent.last_action_succeeded
@@ -832,7 +861,7 @@ def _mirrored_player(player: PlayerState) -> PlayerState:
         y=-player.y,
         vx=-player.vx,
         vy=-player.vy,
-        body_deg=normalize_deg(player.body_deg + 180.0),
+        body_deg=_reversed_body_deg(player.body_deg),
         stamina=player.stamina,
         effort=player.effort,
         recovery=player.recovery,
@@ -843,6 +872,17 @@ def _mirrored_player(player: PlayerState) -> PlayerState:
         catch_ban=player.catch_ban,
         tackle_cycles=player.tackle_cycles,
     )
+
+
+def _reversed_body_deg(body_deg: float) -> float:
+    """A body angle in [-180, 180) turned round as librcsc's FullstateSensor::reverse does (AngleDeg folds into
+    [-180, 180] by +-360 only beyond the ends, so a body of 0 becomes +180, not -180)."""
+    turned = body_deg + 180.0
+    if turned > 180.0:
+        turned -= 360.0
+    elif turned < -180.0:
+        turned += 360.0
+    return turned
 
 
 def _parameterized_space(layout: HybridActionLayout) -> spaces.Tuple:

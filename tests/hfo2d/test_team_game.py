@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import hfo2d
+from hfo2d import features as features_module
 from hfo2d.features import (
     BALL_PROXIMITY,
     SELF_BODY_COS,
@@ -29,6 +30,7 @@ from hfo2d.team import (
     GOALIE_FLAT_ACTION_LAYOUT,
     HalfFieldOffenseEnv,
     TeamGame,
+    _reversed_body_deg,
     team_roster,
 )
 
@@ -243,6 +245,44 @@ def test_defense_agents_see_the_field_mirrored() -> None:
     # HFO lists a player only at x > 0 in the observer's frame: in the defender's, the HFO half is x < 0
     assert not observation[num_features(0, 0) :].any()
     assert observations["offense_0"][num_features(0, 0) :].any()  # the striker sees the goalie
+
+
+def test_a_defenders_body_angle_turns_round_as_librcsc_folds_it() -> None:
+    # AngleDeg folds by 360 only beyond +-180: a body of 0 reads +180 (sin +1.2e-16, not -1.2e-16)
+    assert [_reversed_body_deg(body) for body in (0.0, -180.0, 90.0, -90.0, 179.0)] == [
+        180.0,
+        0.0,
+        -90.0,
+        90.0,
+        -1.0,
+    ]
+
+
+@pytest.mark.skipif(
+    not hasattr(features_module, "high_level_feature_list"),
+    reason="hfo2d.features has no high-level features",
+)
+def test_high_level_features_for_both_sides() -> None:
+    game = TeamGame(2, 1, 1, feature_set="high_level", seed=0)
+    observations, _ = game.reset(seed=0)
+    for _ in range(3):
+        for agent in game.agents:
+            teammates, opponents = 1, 2  # 2v2: each agent has one teammate and two opponents
+            assert agent.observation_space.shape == (
+                features_module.high_level_num_features(teammates, opponents),
+            )
+            assert agent.observation_space.contains(observations[agent.name]), agent.name
+        observations, *_ = game.step(_idle(game))
+    # the defender's own x lies in the defense's (mirrored) range, the striker's in the offense's
+    assert observations["defense_0"][0] < 0.0 < observations["offense_0"][0]
+
+
+@pytest.mark.skipif(
+    hasattr(features_module, "high_level_feature_list"), reason="hfo2d.features has the high-level features"
+)
+def test_high_level_features_need_their_port() -> None:
+    with pytest.raises(ValueError, match="high_level_feature_list"):
+        TeamGame(2, 0, 1, feature_set="high_level")
 
 
 def test_collisions_between_defenders() -> None:
