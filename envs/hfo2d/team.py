@@ -977,8 +977,10 @@ class HalfFieldOffenseEnv(gym.Env):
 
     HFO's low-level features, fullstate, in [-1, 1] (:mod:`hfo2d.features`): 58 basic features plus one 8-feature
     block per teammate and per opponent, nearest first (``feature_set="paper"``), or HFO master's layout, 58 + 9
-    per other player + 1 (``feature_set="hfo"``). 2 strikers against 2 defenders: 82 (paper) / 86 (hfo). A
-    defender sees the field in its own frame, as librcsc shows a right-side player.
+    per other player + 1 (``feature_set="hfo"``), or HFO's high-level features (``feature_set="high_level"``,
+    where hfo2d has them). 2 strikers against 2 defenders: 82 (paper) / 86 (hfo). A defender sees the field in its
+    own frame, as librcsc shows a right-side player (so HFO lists no other player in its low-level blocks while
+    everyone is in the HFO half).
 
     ## Rewards
 
