@@ -526,3 +526,25 @@ def test_hfo2d_imports_without_pettingzoo() -> None:
         [sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=True
     )
     assert 'pip install -e ".[teams]"' in result.stdout
+
+
+def test_a_game_of_npcs_alone_plays_to_the_end() -> None:
+    """No learning agent: scripted strikers against agent2d's goalie, or an empty goal (scripted evaluations)."""
+    statuses = []
+    goalie_travel = 0.0
+    for defense_npcs in (0, 1):
+        game = TeamGame(0, 0, defense_npcs, offense_npcs=1, seed=0)
+        observations, infos = game.reset(seed=0)
+        assert observations == {} and infos == {}
+        for _ in range(10):
+            for _ in range(500):
+                _, rewards, terminated, truncated, _ = game.step({})
+                for player, _npc in game.defense_npcs:
+                    goalie_travel = max(goalie_travel, math.hypot(player.x - 52.5, player.y))
+                if terminated or truncated:
+                    break
+            assert rewards == {} and game.status != IN_GAME
+            statuses.append(game.status)
+            game.reset()
+    assert statuses[:10].count(GOAL) >= 9  # the dribbling striker hardly misses an empty goal
+    assert goalie_travel > 1.0  # agent2d's goalie came out to meet it
