@@ -144,12 +144,12 @@ __all__ = [
 ]
 
 # --- team sizes and uniform numbers -----------------------------------------------------------------------------
-#: bin/HFO parseArgs: offense players (agents + NPCs) 1-10, defense players 0-11.
+#: bin/HFO parseArgs (b8b2a1d lines 214-238): offense players (agents + NPCs) 1-10, defense players 0-11.
 MAX_OFFENSE_PLAYERS = 10
 MAX_DEFENSE_PLAYERS = 11
-#: bin/Teams.py Agent2d ``offenseOrder``: the offense's unums in the order the trainer fills them.
+#: bin/Teams.py Agent2d ``offenseOrder`` (line 65): the offense's unums in the order the trainer fills them.
 OFFENSE_ORDER: tuple[int, ...] = (11, 7, 8, 9, 10, 6, 3, 2, 4, 5)
-#: bin/Trainer.py getTeams: ``[1] + defenseOrder`` (Teams.py Agent2d ``defenseOrder``), the goalie first.
+#: bin/Trainer.py getTeams (line 117): ``[1] + defenseOrder`` (Teams.py line 66), the goalie first.
 DEFENSE_ORDER: tuple[int, ...] = (1, 2, 3, 4, 5, 6, 7, 8, 11, 9, 10)
 
 # --- start positions (referee.cpp HFORef::resetField, bin/HFO defaults) -------------------------------------------
@@ -260,7 +260,8 @@ def team_roster(
         raise ValueError(
             "agent_play_goalie needs a defense agent (bin/HFO: 'You must add a --defense-agent')"
         )
-    # Trainer.run: offense_unums = offenseOrder[1 : numOffense + 1], agents sorted(offenseOrder[1 : agents + 1])
+    # Trainer.run (lines 385-390): offense_unums = offenseOrder[1 : numOffense + 1], agents
+    # sorted(offenseOrder[1 : agents + 1])
     offense_agent_unums = tuple(sorted(OFFENSE_ORDER[:offense]))
     offense_npc_unums = tuple(sorted(OFFENSE_ORDER[offense : offense + offense_scripted]))
     # defense_unums = sorted(defenseOrder[:numDefense]); agents take its tail, or its head with --agent-play-goalie
@@ -491,6 +492,9 @@ class TeamGame:
                 player.catch_ban = 0
                 player.tackle_cycles = 0
 
+        # referee.cpp HFORef::resetField (mhauskn/rcssserver, lines 3226-3316): the ball (3236-3245), the offsets
+        # shuffled (3249), the offense around the ball and clamped (3286-3294), the goalie at (52.5, 0) and the
+        # other defenders drawn (3299-3305), then recoveryPlayers (3309)
         ball_x = rng.uniform(*BALL_X_RANGE)
         ball_y = rng.uniform(*BALL_Y_RANGE)
         offsets = [OFFENSE_OFFSETS[int(k)] for k in rng.permutation(len(OFFENSE_OFFSETS))]
@@ -646,7 +650,8 @@ class TeamGame:
             direction = round(normalize_deg(float(parameters[0])) * 1000.0) * 0.001
             world.tackle(player, direction, foul=False)
             return True
-        # CATCH (the goalie's only): librcsc ActionEffector::setCatch aims at the ball plus the diagonal angle
+        # CATCH (the goalie's only): librcsc ActionEffector::setCatch (action_effector.cpp lines 1031-1064) aims at
+        # the ball plus the diagonal angle
         ball = world.ball
         ball_angle = math.degrees(math.atan2(ball.y - player.y, ball.x - player.x))
         world.catch(player, normalize_deg(ball_angle - player.body_deg + self._catch_diagonal_deg))
