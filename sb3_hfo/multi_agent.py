@@ -200,7 +200,7 @@ def make_team_vec_env(
     Args:
         n_games: the number of games (the VecEnv has ``n_games`` times the side's agents slots).
         offense_agents, defense_agents, defense_npcs: bin/HFO's team sizes; the learning agents must all be on one
-            side (e.g. 2 strikers against agent2d's goalie, or 1 goalie agent against ``offense_npcs`` strikers).
+            side (e.g. 2 strikers against agent2d's goalie, or 1 goalie agent against ``scripted_strikers``).
         seed: game ``g``'s first episode is seeded with ``seed`` plus its first slot's index (None: unseeded).
         monitor: wrap in SB3's ``VecMonitor`` (per-slot episode returns and lengths).
         side: "offense" or "defense"; None: the side of the learning agents.

@@ -170,7 +170,7 @@ def parallel_env(
             ``--defense-npcs``.
         backend: ``"hfo2d"`` (this simulator, :class:`hfo2d.team_parallel.HFOTeamParallelEnv`) or ``"real"`` (a
             real HFO build, ``hfo2d.real_teams.RealTeamParallelEnv``; ``hfo_dir`` or ``$HFO_DIR``).
-        **kwargs: the backend's other arguments (e.g. ``render_mode``, ``feature_set``, ``offense_npcs``).
+        **kwargs: the backend's other arguments (e.g. ``render_mode``, ``feature_set``, ``agent_play_goalie``).
 
     Raises:
         ValueError: an unknown backend, or team sizes bin/HFO rejects.

@@ -10,8 +10,9 @@ HFO's rules, with their sources (LARG/HFO b8b2a1d ``bin/HFO``, ``bin/Trainer.py`
 HFO fork ``src/referee.cpp`` ``HFORef``; librcsc ``rcsc/player/*``):
 
 * Team sizes: bin/HFO ``parseArgs`` allows 0-10 offense agents / NPCs and 0-11 defense agents / NPCs, with 1-10
-  offense players and 0-11 defense players in all. agent2d's offense is not ported: hfo2d's offense NPCs are its
-  own scripted strikers (:mod:`hfo2d.strikers`), which take the offense unums after the agents' as HFO's NPCs do.
+  offense players and 0-11 defense players in all. agent2d's offense (``--offense-npcs``) is not ported: in its
+  places hfo2d can put its own scripted strikers (``scripted_strikers``, :mod:`hfo2d.strikers`), which take the
+  offense unums after the agents' as HFO's offense NPCs do.
 * Uniform numbers (Trainer.py ``getTeams`` and ``run``; Teams.py ``Agent2d``): the offense's players are the first
   ``n`` of ``11, 7, 8, 9, 10, 6, 3, 2, 4, 5``, its agents the first ``offense_agents`` of them, sorted (agent ``i``
   gets the ``i``-th smallest). The defense's players are the first ``m`` of ``1, 2, 3, 4, 5, 6, 7, 8, 11, 9, 10``,
@@ -247,8 +248,8 @@ def team_roster(
     npcs = _check_count("defense_npcs", defense_npcs, 0, MAX_DEFENSE_PLAYERS)
     if not 1 <= offense + offense_scripted <= MAX_OFFENSE_PLAYERS:
         raise ValueError(
-            f"offense_agents + offense_npcs must lie in [1, {MAX_OFFENSE_PLAYERS}] (bin/HFO), got "
-            f"{offense + offense_scripted}: the offense needs a player (offense_npcs=1 adds a scripted striker)"
+            f"the offense needs 1 to {MAX_OFFENSE_PLAYERS} players (bin/HFO: offense agents + offense NPCs; hfo2d's "
+            f"NPCs are its scripted_strikers), got {offense + offense_scripted}"
         )
     if agents + npcs > MAX_DEFENSE_PLAYERS:
         raise ValueError(
@@ -298,10 +299,12 @@ class TeamGame:
         offense_agents: learning strikers, 1-10 (bin/HFO ``--offense-agents``).
         defense_agents: learning defenders, 0-11 (``--defense-agents``).
         defense_npcs: agent2d's defenders, 0-11 (``--defense-npcs``); with ``defense_agents`` at most 11.
-        offense_npcs: scripted strikers on the offense (``--offense-npcs``, but hfo2d's own strikers of
-            :mod:`hfo2d.strikers`, not agent2d's offense, which is not ported); they take the offense's unums after
-            the agents'. Each decides on its paper features with the goalie's block alone.
-        offense_npc: which striker (a name of :data:`hfo2d.strikers.STRIKERS`; default ``"soft_dribble"``).
+        scripted_strikers: hfo2d's own scripted strikers (:mod:`hfo2d.strikers`) on the offense, in the places
+            bin/HFO gives offense NPCs (the offense's unums after the agents'); each decides on its paper features
+            with the goalie's block alone. They are not agent2d's offense, bin/HFO's ``--offense-npcs``, which is
+            not ported: ``offense_npcs`` > 0 is a ValueError here (``backend="real"`` plays agent2d's).
+        striker: which scripted striker (a name of :data:`hfo2d.strikers.STRIKERS`; default ``"soft_dribble"``).
+        offense_npcs: agent2d's offense NPCs: only 0 (see ``scripted_strikers``).
         agent_play_goalie: a defense agent plays goalie (``--agent-play-goalie``).
         action_format: ``"flat"`` (a :class:`~hfo2d.action_layout.HybridActionBox`: the preferences, then every
             action's parameters, all in [0, 1]) or ``"parameterized"`` (``Tuple(Discrete(n), Box(params of each
@@ -322,8 +325,9 @@ class TeamGame:
         defense_agents: int = 0,
         defense_npcs: int = 0,
         *,
+        scripted_strikers: int = 0,
+        striker: str = "soft_dribble",
         offense_npcs: int = 0,
-        offense_npc: str = "soft_dribble",
         agent_play_goalie: bool = False,
         action_format: str = "flat",
         feature_set: str = "paper",
@@ -335,9 +339,20 @@ class TeamGame:
         untouched_time: int = DEFAULT_UNTOUCHED_TIME,
         seed: int | None = None,
     ) -> None:
-        roster = team_roster(offense_agents, defense_agents, defense_npcs, agent_play_goalie, offense_npcs)
-        if offense_npc not in STRIKERS:
-            raise ValueError(f"unknown offense_npc {offense_npc!r}; choose one of {tuple(STRIKERS)}")
+        if (
+            not (isinstance(offense_npcs, (int, np.integer)) and not isinstance(offense_npcs, bool))
+            or offense_npcs
+        ):
+            raise ValueError(
+                f"offense_npcs={offense_npcs!r}: agent2d's offense (bin/HFO --offense-npcs) is not ported to hfo2d "
+                "(backend 'real' plays it); hfo2d's own scripted strikers take those places with scripted_strikers=N"
+            )
+        # the scripted strikers stand where bin/HFO puts offense NPCs
+        roster = team_roster(
+            offense_agents, defense_agents, defense_npcs, agent_play_goalie, scripted_strikers
+        )
+        if striker not in STRIKERS:
+            raise ValueError(f"unknown striker {striker!r}; choose one of {tuple(STRIKERS)}")
         for name, value, choices in (
             ("action_format", action_format, TEAM_ACTION_FORMATS),
             ("feature_set", feature_set, TEAM_FEATURE_SETS),
@@ -391,10 +406,10 @@ class TeamGame:
             (players_by_unum[unum], npc_classes[unum](unum, params, rng)) for unum in roster.defense_npcs
         ]
         offense_by_unum = {player.unum: player for player in self.offense_players}
-        self.offense_npc_name = offense_npc
+        self.striker_name = striker
         #: The offense's scripted players (hfo2d's scripted strikers, not agent2d's offense) with their players.
-        self.offense_npcs: list[tuple[PlayerState, Striker]] = [
-            (offense_by_unum[unum], make_striker(offense_npc)) for unum in roster.offense_npcs
+        self.scripted_strikers: list[tuple[PlayerState, Striker]] = [
+            (offense_by_unum[unum], make_striker(striker)) for unum in roster.offense_npcs
         ]
         self._goalie = next((player for player in self.defense_players if player.goalie), None)
         self.agents: list[_Agent] = []
@@ -530,8 +545,8 @@ class TeamGame:
         world.ball.collided_post = False
         for _, npc in self.defense_npcs:
             npc.reset()
-        for _, striker in self.offense_npcs:
-            striker.reset()
+        for _, scripted in self.scripted_strikers:
+            scripted.reset()
         self.steps = 0
         self.status = IN_GAME
         self._needs_reset = False
@@ -584,8 +599,8 @@ class TeamGame:
         for player, npc in self.defense_npcs:
             npc.decide(world, player)
         striker_commands = [
-            (player, striker.command(self._striker_observation(player)))
-            for player, striker in self.offense_npcs
+            (player, scripted.command(self._striker_observation(player)))
+            for player, scripted in self.scripted_strikers
         ]
         for agent, (kind, parameters) in commands:
             agent.last_action_succeeded = self._execute(agent.player, kind, parameters)
@@ -964,7 +979,7 @@ class HalfFieldOffenseEnv(gym.Env):
     ``defense_npcs`` agent2d defenders (the first is HFO's goalie, :mod:`hfo2d.agent2d`) and ``defense_agents``
     learning defenders, one 100 ms rcssserver cycle per step. This env is one learning agent: the striker when
     ``offense_agents=1`` (``defense_agents=0``), or the defender when ``defense_agents=1`` (``offense_agents=0``;
-    the offense is then ``offense_npcs`` scripted strikers of :mod:`hfo2d.strikers`). Several learning agents:
+    the offense is then ``scripted_strikers`` of :mod:`hfo2d.strikers`). Several learning agents:
     :func:`hfo2d.parallel_env` (PettingZoo) or ``sb3_hfo.multi_agent`` (one SB3 VecEnv of all the agents).
 
     ## Action Space
@@ -1011,10 +1026,11 @@ class HalfFieldOffenseEnv(gym.Env):
     ## Arguments
 
     ``gym.make("HFO/HalfFieldOffense-v0", offense_agents=1, defense_agents=0, defense_npcs=1, ...)``, with
-    bin/HFO's flags as keywords: ``offense_agents``, ``defense_agents``, ``defense_npcs``, ``offense_npcs``,
+    bin/HFO's flags as keywords: ``offense_agents``, ``defense_agents``, ``defense_npcs``,
     ``agent_play_goalie`` (``--agent-play-goalie``), ``frames_per_trial`` (default 500), ``untouched_time``
     (100), ``noise`` (False: ``--deterministic``); and hfo2d's ``render_mode`` (None, "human", "rgb_array"),
-    ``action_format``, ``feature_set``, ``reward``, ``defense_reward``, ``offense_npc``, ``server_params``.
+    ``action_format``, ``feature_set``, ``reward``, ``defense_reward``, ``server_params``; ``scripted_strikers`` (hfo2d's scripted strikers where
+    bin/HFO puts offense NPCs; agent2d's offense, ``offense_npcs``, is not ported) and ``striker`` (which one).
     Exactly one of ``offense_agents`` and ``defense_agents`` is 1, the other 0. ``reset(seed=s)`` repeats an
     episode exactly; without a seed the NPCs' state carries over from the last episode as in real HFO.
     ``reset`` takes no options (no hand placements yet).
@@ -1031,7 +1047,6 @@ class HalfFieldOffenseEnv(gym.Env):
         offense_agents: int = 1,
         defense_agents: int = 0,
         defense_npcs: int = 0,
-        offense_npcs: int = 0,
         *,
         render_mode: str | None = None,
         **game_kwargs: Any,
@@ -1047,9 +1062,7 @@ class HalfFieldOffenseEnv(gym.Env):
                 f"offense_agents=0, defense_agents=1 (a defender), got offense_agents={offense_agents!r}, "
                 f"defense_agents={defense_agents!r}; several learning agents: hfo2d.parallel_env(...)"
             )
-        self.game = TeamGame(
-            offense_agents, defense_agents, defense_npcs, offense_npcs=offense_npcs, **game_kwargs
-        )
+        self.game = TeamGame(offense_agents, defense_agents, defense_npcs, **game_kwargs)
         self.render_mode = render_mode
         self.agent_name = self.game.agent_names[0]
         learner = self.game.agent(self.agent_name)

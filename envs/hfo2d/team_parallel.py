@@ -42,7 +42,7 @@ class HFOTeamParallelEnv(ParallelEnv):
         offense_agents, defense_agents, defense_npcs: bin/HFO's team sizes (``offense_agents + defense_agents``
             learning agents, at least one).
         render_mode: None, "human" or "rgb_array".
-        **game_kwargs: :class:`hfo2d.team.TeamGame`'s other arguments (``offense_npcs``, ``agent_play_goalie``,
+        **game_kwargs: :class:`hfo2d.team.TeamGame`'s other arguments (``scripted_strikers``, ``agent_play_goalie``,
             ``action_format``, ``feature_set``, ``reward``, ``defense_reward``, ``noise``, ``server_params``,
             ``frames_per_trial``, ``untouched_time``).
     """

@@ -81,14 +81,20 @@ def test_agent_play_goalie_gives_the_agents_the_smallest_unums() -> None:
     assert roster.defense_agents == (1, 2) and roster.defense_npcs == (3, 4, 5) and roster.goalie_is_agent
     # scripted strikers take the offense's unums after the agents'
     assert team_roster(1, 0, 1, offense_npcs=2).offense_npcs == (7, 8)
+    # hfo2d's scripted strikers stand in those places; agent2d's offense NPCs are not ported
+    game = TeamGame(1, 0, 1, scripted_strikers=2)
+    assert [player.unum for player, _ in game.scripted_strikers] == [7, 8]
+    with pytest.raises(ValueError, match="scripted_strikers=N"):
+        TeamGame(1, 0, 1, offense_npcs=1)
 
 
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [
         ({"offense_agents": 11}, r"offense_agents must lie in \[0, 10\]"),
-        ({"offense_agents": 0}, "offense needs a player"),
-        ({"offense_agents": 6, "offense_npcs": 5}, r"offense_agents \+ offense_npcs"),
+        ({"offense_agents": 0}, "offense needs 1 to 10"),
+        ({"offense_agents": 6, "scripted_strikers": 5}, "1 to 10 players"),
+        ({"offense_agents": 1, "striker": "lob"}, "unknown striker"),
         ({"defense_agents": 12}, r"defense_agents must lie in \[0, 11\]"),
         ({"defense_agents": 6, "defense_npcs": 6}, "at most 11"),
         ({"offense_agents": True}, "must be an integer"),
@@ -361,7 +367,7 @@ def test_reset_with_a_seed_repeats() -> None:
 
 
 def test_a_pickled_game_plays_on_the_same() -> None:
-    game = TeamGame(2, 1, 1, offense_npcs=1, seed=0)
+    game = TeamGame(2, 1, 1, scripted_strikers=1, seed=0)
     game.reset(seed=0)
     actions = {agent.name: np.full(agent.layout.size, 0.3, np.float32) for agent in game.agents}
     for _ in range(5):
@@ -471,7 +477,7 @@ def test_gym_make_half_field_offense() -> None:
         "## Version History" in HalfFieldOffenseEnv.__doc__
         and "## Episode End" in HalfFieldOffenseEnv.__doc__
     )
-    goalie_env = gym.make("HFO/HalfFieldOffense-v0", offense_agents=0, defense_agents=1, offense_npcs=1)
+    goalie_env = gym.make("HFO/HalfFieldOffense-v0", offense_agents=0, defense_agents=1, scripted_strikers=1)
     observation, _ = goalie_env.reset(seed=0)
     assert goalie_env.action_space.shape == (11,) and observation.shape == (66,)
     with pytest.raises(ValueError, match="one learning agent"):
@@ -533,7 +539,7 @@ def test_a_game_of_npcs_alone_plays_to_the_end() -> None:
     statuses = []
     goalie_travel = 0.0
     for defense_npcs in (0, 1):
-        game = TeamGame(0, 0, defense_npcs, offense_npcs=1, seed=0)
+        game = TeamGame(0, 0, defense_npcs, scripted_strikers=1, seed=0)
         observations, infos = game.reset(seed=0)
         assert observations == {} and infos == {}
         for _ in range(10):

@@ -79,7 +79,7 @@ def test_hybrid_ppo_trains_all_strikers_with_one_policy() -> None:
 
 def test_a_learning_goalie_against_scripted_strikers() -> None:
     env = make_team_vec_env(
-        2, offense_agents=0, defense_agents=1, offense_npcs=1, seed=0
+        2, offense_agents=0, defense_agents=1, scripted_strikers=1, seed=0
     )  # the agent is unum 1
     assert env.num_envs == 2 and env.action_space.shape == (
         11,
@@ -93,7 +93,7 @@ def test_a_learning_goalie_against_scripted_strikers() -> None:
     "kwargs",
     [
         {"offense_agents": 1, "defense_npcs": 1},
-        {"offense_agents": 0, "defense_agents": 1, "offense_npcs": 2, "feature_set": "hfo"},
+        {"offense_agents": 0, "defense_agents": 1, "scripted_strikers": 2, "feature_set": "hfo"},
     ],
 )
 def test_half_field_offense_passes_sb3_s_checker(kwargs: dict) -> None:
