@@ -587,9 +587,9 @@ class TeamGame:
             raise RuntimeError(f"the episode has ended ({self.status}): call reset() before step()")
         if not isinstance(actions, Mapping):
             raise ValueError(f"actions must be a dict of agent name -> action, got {type(actions).__name__}")
-        missing = [name for name in self.agent_names if name not in actions]
-        unknown = [name for name in actions if name not in self._agents_by_name]
-        if missing or unknown:
+        if actions.keys() != self._agents_by_name.keys():
+            missing = [name for name in self.agent_names if name not in actions]
+            unknown = [name for name in actions if name not in self._agents_by_name]
             raise ValueError(
                 f"actions need exactly this game's agents {self.agent_names}; missing {missing}, unknown {unknown}"
             )
@@ -821,12 +821,17 @@ class TeamGame:
                     f"got {np.shape(action)}"
                 )
             for index, value in enumerate(values):
-                if not 0.0 <= value <= 1.0:
+                if not 0.0 <= value <= 1.0:  # (also a NaN)
                     what = "not finite" if not math.isfinite(value) else "outside [0, 1]"
                     raise ValueError(f"{agent.name}'s flat action element {index} is {what}: {value!r}")
-            kind, unit = layout.decode(values)
-            bounds = _PARAMETER_BOUNDS[layout.names[kind]]
-            return kind, [low + (high - low) * u for u, (low, high) in zip(unit, bounds, strict=True)]
+            # HybridActionLayout.decode (the largest preference, the first on ties), its slices computed once
+            n_discrete = layout.n_discrete
+            kind = 0
+            for index in range(1, n_discrete):
+                if values[index] > values[kind]:
+                    kind = index
+            start, bounds = _FLAT_DECODING[layout][kind]
+            return kind, [low + (high - low) * values[start + k] for k, (low, high) in enumerate(bounds)]
         n = layout.n_discrete
         with_parameters = [k for k in range(n) if layout.parameter_sizes[k] > 0]
         if not isinstance(action, (tuple, list)) or len(action) != 1 + len(with_parameters):
@@ -869,6 +874,16 @@ _ACTION_OF_INDEX: dict[bool, tuple[str, ...]] = {
 }
 if DEFENDER_FLAT_ACTION_LAYOUT.names != GOALIE_FLAT_ACTION_LAYOUT.names[:4]:
     raise ImportError("the field defender's actions must be the goalie's without CATCH")
+
+
+#: Per flat layout, per action: where its parameters start and their bounds (the decode of _parse_action).
+_FLAT_DECODING: dict[HybridActionLayout, tuple[tuple[int, tuple[tuple[float, float], ...]], ...]] = {
+    layout: tuple(
+        (layout.parameter_slice(kind).start, _PARAMETER_BOUNDS[name])
+        for kind, name in enumerate(layout.names)
+    )
+    for layout in (HFO_FLAT_ACTION_LAYOUT, DEFENDER_FLAT_ACTION_LAYOUT, GOALIE_FLAT_ACTION_LAYOUT)
+}
 
 
 def _mirrored_player(player: PlayerState) -> PlayerState:
