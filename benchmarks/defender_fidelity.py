@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import os
 import subprocess
 import sys
@@ -131,9 +132,17 @@ def _text(sim: tuple[str, tuple[Any, ...]] | None) -> str:
 
 
 def replay_defender(
-    logs: real_hfo_logs.GameLogs, client: dict[int, real_hfo_logs.ClientCycle], unum: int, noise: bool
+    logs: real_hfo_logs.GameLogs,
+    client: dict[int, real_hfo_logs.ClientCycle],
+    unum: int,
+    noise: bool,
+    snapshots: dict[int, Any] | None = None,
 ) -> list[dict[str, Any]]:
-    """One row per cycle of field defender ``unum`` inside an HFO episode: its real command and hfo2d's."""
+    """One row per cycle of field defender ``unum`` inside an HFO episode: its real command and hfo2d's.
+    ``snapshots``, if given, receives a copy of the defender (its carried client state) at every episode start,
+    before that cycle's decision."""
+    import copy
+
     from hfo2d.agent2d.defender import Agent2dDefender
     from hfo2d.physics import ServerParams
 
@@ -156,6 +165,8 @@ def replay_defender(
             continue
         if t in starts:
             defender.reset()
+            if snapshots is not None:
+                snapshots[t] = copy.deepcopy(defender)
         if cycle.mode_changed and cycle.mode == "goalie_catch_ball_r":
             defender.goalie_caught()
         world = _World(cycle, params, noise, ("r", unum), frozen)
@@ -252,6 +263,219 @@ def cmd_replay(args: argparse.Namespace) -> dict[str, Any]:
     return result
 
 
+def trajectory_episode(
+    logs: real_hfo_logs.GameLogs,
+    start_state: real_hfo_logs.ClientCycle,
+    episode: real_hfo_logs.Episode,
+    defenders: dict[int, Any],
+    tol: float,
+    frozen: dict[tuple[str, int], int] | None = None,
+) -> dict[str, Any]:
+    """Replay one episode of a ``--deterministic`` session in hfo2d (noise off) from the reset state of a
+    defender's fullstate message: hfo2d's goalie and field defenders decide and move; every offense NPC is fed
+    its logged commands. Reports, per object, the first cycle its position is more than ``tol`` from the game
+    log, and each defender's first command that differs from the real one. ``frozen``: each player's tackle
+    freeze at the reset (rcssserver's placement keeps it), from its own client log."""
+    from hfo2d.agent2d.goalie import Agent2dGoalie
+    from hfo2d.physics import ServerParams, World
+
+    params = ServerParams()
+    world = World(params, np.random.default_rng(0), noise=False)
+    players = {}
+    for (side, unum), fs in sorted(start_state.players.items()):  # server slot order: left, then right
+        p = world.add_player(side, unum, goalie=(side == "r" and unum == 1))
+        world.place_player(p, fs.x, fs.y, fs.body, fs.vx, fs.vy)
+        p.stamina, p.effort, p.recovery = fs.stamina, fs.effort, fs.recovery
+        p.tackle_cycles = (frozen or {}).get((side, unum), 0)
+        players[(side, unum)] = p
+    world.place_ball(*start_state.ball)
+    goalie = Agent2dGoalie(params, np.random.default_rng(0))
+    goalie.reset()
+    for d in defenders.values():
+        d.reset()
+    first_div: dict[str, int | None] = {f"{side}{unum}": None for side, unum in players}
+    first_div["ball"] = None
+    first_cmd: dict[int, dict[str, Any] | None] = {u: None for u in defenders}
+    length = episode.end - episode.start
+    for k in range(length):
+        t = episode.start + k
+        decisions = {}
+        if ("r", 1) in players:
+            goalie.decide(world, players[("r", 1)])
+        for u, d in defenders.items():
+            decisions[u] = d.decide(world, players[("r", u)])
+        for (side, unum), p in players.items():
+            if side != "l":
+                continue
+            cmd = logs.commands.get(f"base_left_{unum}", {}).get(t)
+            if cmd is None:
+                continue
+            args = [float(a) for a in cmd.args if not isinstance(a, str)]
+            if cmd.name == "dash":
+                world.dash(p, args[0], args[1] if len(args) > 1 else 0.0)
+            elif cmd.name == "turn":
+                world.turn(p, args[0])
+            elif cmd.name == "kick":
+                world.kick(p, args[0], args[1])
+            elif cmd.name == "tackle":
+                world.tackle(p, args[0], len(cmd.args) > 1 and cmd.args[1] == "on")
+        if ("r", 1) in players:
+            goalie.apply(world, players[("r", 1)])
+        for u, d in defenders.items():
+            stub = _Recorder(world)
+            d.apply(stub, players[("r", u)])
+            real = logs.commands.get(f"base_right_{u}", {}).get(t)
+            if first_cmd[u] is None and not _agree(real, stub.sent):
+                first_cmd[u] = {
+                    "k": k,
+                    "branch": d.last_branch,
+                    "real": real.text() if real else "(none)",
+                    "sim": _text(stub.sent),
+                }
+        world.step()
+        show = logs.shows.get(t + 1)
+        if show is None:
+            break
+        for (side, unum), p in players.items():
+            key = f"{side}{unum}"
+            real_p = show.players.get((side, unum))
+            if (
+                first_div[key] is None
+                and real_p is not None
+                and math.hypot(p.x - real_p.x, p.y - real_p.y) > tol
+            ):
+                first_div[key] = k + 1
+        if (
+            first_div["ball"] is None
+            and math.hypot(world.ball.x - show.ball[0], world.ball.y - show.ball[1]) > tol
+        ):
+            first_div["ball"] = k + 1
+    return {"episode": episode.number, "length": length, "first_div": first_div, "first_cmd": first_cmd}
+
+
+class _Recorder:
+    """Passes a defender's command on to the world and keeps it (as _World.sent)."""
+
+    def __init__(self, world: Any) -> None:
+        self.world = world
+        self.sent: tuple[str, tuple[Any, ...]] | None = None
+
+    def turn(self, p: Any, moment: float) -> None:
+        self.sent = ("turn", (moment,))
+        self.world.turn(p, moment)
+
+    def dash(self, p: Any, power: float, direction: float = 0.0) -> None:
+        self.sent = ("dash", (power, direction))
+        self.world.dash(p, power, direction)
+
+    def kick(self, p: Any, power: float, direction: float) -> None:
+        self.sent = ("kick", (power, direction))
+        self.world.kick(p, power, direction)
+
+    def tackle(self, p: Any, direction: float, foul: bool = False) -> None:
+        self.sent = ("tackle", (direction, "on" if foul else "off"))
+        self.world.tackle(p, direction, foul)
+
+
+def cmd_trajectories(args: argparse.Namespace) -> dict[str, Any]:
+    import copy
+
+    results = []
+    for log_dir in map(Path, args.log_dirs):
+        if not (log_dir / "deterministic").exists():
+            raise SystemExit(f"defender_fidelity: {log_dir} is not a --deterministic session")
+        rcg = next(log_dir.glob("*.rcg"))
+        logs = real_hfo_logs.read_logs(log_dir)
+        keys = [(s, u) for s in ("l", "r") for u in range(1, 12)]
+        logs.shows = real_hfo_logs.parse_rcg(rcg, tuple(keys))
+        unums = sorted(
+            int(p.stem.split("-")[1])
+            for p in log_dir.glob("base_right-*.ocl")
+            if p.stem.split("-")[1] != "1" and p.stat().st_size > 100_000
+        )
+        clients = tuple(f"base_right_{u}" for u in unums) + tuple(f"base_left_{u}" for u in range(1, 12))
+        logs.commands = real_hfo_logs.parse_rcl(next(log_dir.glob("*.rcl")), clients)
+        snapshots: dict[int, dict[int, Any]] = defaultdict(dict)
+        client_logs = {}
+        # every NPC's own client log, for its tackle freeze (sense_body) at each reset
+        freezes: dict[int, dict[tuple[str, int], int]] = defaultdict(dict)
+        starts = {e.start for e in logs.episodes}
+        for path in log_dir.glob("base_*.ocl"):
+            if path.stat().st_size < 100_000:
+                continue  # an NPC that left before play
+            side = "l" if path.name.startswith("base_left") else "r"
+            unum = int(path.stem.split("-")[1])
+            for t, cycle in real_hfo_logs.parse_client_log(path).items():
+                if t in starts and cycle.tackle_expires > 0:
+                    freezes[t][(side, unum)] = cycle.tackle_expires
+        for unum in unums:
+            client_logs[unum] = real_hfo_logs.parse_client_log(log_dir / f"base_right-{unum}.ocl")
+            per_unum: dict[int, Any] = {}
+            replay_defender(logs, client_logs[unum], unum, False, per_unum)
+            for t, d in per_unum.items():
+                snapshots[t][unum] = d
+        for episode in logs.episodes:
+            if episode.number < 2 or episode.start not in snapshots or episode.end - episode.start < 2:
+                continue
+            start_state = client_logs[unums[0]].get(episode.start)
+            if start_state is None or len(snapshots[episode.start]) != len(unums):
+                continue
+            defenders = {u: copy.deepcopy(d) for u, d in snapshots[episode.start].items()}
+            row = trajectory_episode(logs, start_state, episode, defenders, args.tol, freezes[episode.start])
+            row["session"] = log_dir.name
+            results.append(row)
+            if args.episodes and len(results) >= args.episodes:
+                break
+    _print_trajectories(results, args.tol)
+    if args.out:
+        Path(args.out).write_text(json.dumps(results, indent=1))
+    return {"episodes": results}
+
+
+def _print_trajectories(results: list[dict[str, Any]], tol: float) -> None:
+    print(f"\nnoise-off trajectories from the logged resets (position tolerance {tol} m)")
+    if not results:
+        print("no episode")
+        return
+    keys = sorted({key for r in results for key in r["first_div"]})
+    print(f"{'object':<8}{'episodes':>9}{'exact to end':>14}{'median first div (cycles)':>28}")
+    for key in keys:
+        values = [r["first_div"][key] for r in results if key in r["first_div"]]
+        exact = sum(v is None for v in values)
+        divs = sorted(v for v in values if v is not None)
+        median = divs[len(divs) // 2] if divs else None
+        print(f"{key:<8}{len(values):>9}{exact:>14}{median if median is not None else '-':>28}")
+    # a defender's first divergence: did the ball (or an attacker fed open-loop) diverge first?
+    causes: Counter[str] = Counter()
+    for r in results:
+        fd = r["first_div"]
+        for key, v in fd.items():
+            if not key.startswith("r") or key == "r1" or v is None:
+                continue
+            others = [fd[o] for o in fd if o != key and fd[o] is not None and fd[o] <= v]
+            causes["after the ball, an attacker or the goalie" if others else "defender first"] += 1
+    print(f"defender divergences: {dict(causes)}")
+    # a defender's first command mismatch: on the logged state (nothing diverged yet), or after a divergence
+    on_state: Counter[str] = Counter()
+    after: Counter[str] = Counter()
+    for r in results:
+        for m in r["first_cmd"].values():
+            if m is None:
+                continue
+            diverged = any(v is not None and v <= m["k"] for v in r["first_div"].values())
+            (after if diverged else on_state)[m["branch"]] += 1
+    print(
+        "first command mismatch per defender and episode, by the port's branch: "
+        f"on the logged state {dict(on_state)}; after a divergence {dict(after)}"
+    )
+    for r in results:
+        for u, m in r["first_cmd"].items():
+            if m is not None and not any(v is not None and v <= m["k"] for v in r["first_div"].values()):
+                print(
+                    f"  {r['session']} ep {r['episode']} u{u} k {m['k']} [{m['branch']}]: {m['real']} | {m['sim']}"
+                )
+
+
 def cmd_run(args: argparse.Namespace) -> None:
     keeper_fidelity.check_network_namespace()
     hfo_dir = keeper_fidelity.hfo_dir_of(args.hfo_dir)
@@ -320,6 +544,11 @@ def build_parser() -> argparse.ArgumentParser:
     replay.add_argument("log_dirs", nargs="+")
     replay.add_argument("--out", default=None)
     replay.add_argument("--show", type=int, default=30, help="mismatches to print")
+    traj = sub.add_parser("trajectories", help="noise-off trajectories of --deterministic sessions in hfo2d")
+    traj.add_argument("log_dirs", nargs="+")
+    traj.add_argument("--tol", type=float, default=1e-3)
+    traj.add_argument("--episodes", type=int, default=0, help="at most this many episodes (0: all)")
+    traj.add_argument("--out", default=None)
     return parser
 
 
@@ -327,6 +556,8 @@ def main(argv: list[str] | None = None) -> None:
     args = build_parser().parse_args(argv)
     if args.command == "run":
         cmd_run(args)
+    elif args.command == "trajectories":
+        cmd_trajectories(args)
     else:
         cmd_replay(args)
 
