@@ -441,7 +441,9 @@ class Agent2dDefender:
     def _table(self, view: DefenderView) -> TeamInterceptTable:
         """InterceptTable::update for a field player: self (the goalie-only rules off), the fastest non-goalie
         teammate, the fastest opponent."""
-        base = build_intercept_table(view)
+        # the fast table: self_min and the fastest entry are exact, the full self cache (which only Body_Intercept
+        # reads) is built when the intercept branch is taken (_basic_move)
+        base = build_intercept_table(view, full=False)
         cache = base.ball_cache
         if view.kick_opp:
             opp_min = 0
@@ -455,7 +457,7 @@ class Agent2dDefender:
             mate_min = 1000
             for t in view.teammates:
                 mate_min = min(mate_min, predict_player_reach(view, cache, t, teammate=True))
-        return TeamInterceptTable(cache, base.self_cache, base.self_min, opp_min, True, mate_min)
+        return TeamInterceptTable(cache, base.self_cache, base.self_min, opp_min, False, mate_min)
 
     @staticmethod
     def _forced_kickable(view: DefenderView, table: TeamInterceptTable) -> None:
@@ -498,6 +500,9 @@ class Agent2dDefender:
         s, m, o = table.self_min, table.mate_min, table.opp_min
         if not view.mate_kick and (s <= INTERCEPT_SURE_CYCLES or (s <= m and s < o + INTERCEPT_SURE_CYCLES)):
             self.last_branch = "intercept"
+            if not table.complete:
+                table.self_cache = build_intercept_table(view).self_cache
+                table.complete = True
             body_intercept(eff, view, table, True, view.ball_rand)
             return
         hx, hy = self.home_position(view, table)
