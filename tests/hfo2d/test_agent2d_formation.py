@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
 
 from hfo2d.agent2d import formation_data
@@ -88,3 +89,23 @@ def test_bad_inputs_raise() -> None:
 def test_delaunay_of_a_square_with_its_centre() -> None:
     tris = delaunay([(0.0, 0.0), (2.0, 0.0), (2.0, 2.0), (0.0, 2.0), (1.0, 1.0)])
     assert len(tris) == 4 and all(4 in t for t in tris)
+
+
+def test_the_triangle_index_finds_what_a_search_of_every_triangle_finds() -> None:
+    # librcsc's findTriangleContains: the first triangle, in order, holding F (on an edge within 1e-10)
+    f = normal_formation()
+    pts = f.ball_points
+
+    def first_holding(fx: float, fy: float) -> tuple[int, int, int] | None:
+        for a, b, c in f.triangles:
+            if all(
+                (pts[v][0] - pts[u][0]) * (fy - pts[u][1]) - (pts[v][1] - pts[u][1]) * (fx - pts[u][0])
+                >= -1e-10
+                for u, v in ((a, b), (b, c), (c, a))
+            ):
+                return a, b, c
+        return None
+
+    rng = np.random.default_rng(0)
+    focus = list(zip(rng.uniform(-58.0, 58.0, 2000), rng.uniform(-40.0, 40.0, 2000), strict=True)) + pts
+    assert all(f._find_triangle(fx, fy) == first_holding(fx, fy) for fx, fy in focus)

@@ -32,6 +32,12 @@ _EDGE_EPS = 1.0e-10  # DelaunayTriangulation::findTriangleContains: the cross pr
 _LINE_EPS = 1.0e-10  # Line2D::EPSILON: parallel lines
 _SEGMENT_CALC_ERROR = 1.0e-9  # Segment2D::CALC_ERROR: "on the segment" tolerance
 _NEAR_VERTEX2 = 1.0e-5  # FormationDT::interpolate: F on vertex 0 when the intersection fails
+GRID_CELL = (
+    2.0  # m: the cell size of Formation's triangle index (an index only: any size gives the same results)
+)
+_CELL_MARGIN = (
+    1.0e-6  # a triangle is listed in the cells its bounding box meets, widened by this (edge tolerance)
+)
 
 
 def _round_sample(v: float) -> float:
@@ -110,16 +116,35 @@ class Formation:
         self.unums = len(self.positions[0])
         self.triangles = delaunay(self.ball_points)
         pts = self.ball_points
-        self._tri_data = []
+        # A grid of GRID_CELL m cells over the samples' bounding box, each listing (in triangle order) the
+        # triangles whose bounding box meets it: the search of librcsc's findTriangleContains (the first triangle,
+        # in order, that holds F) then tests a few triangles instead of all of them.
+        xs = [x for x, _ in pts]
+        ys = [y for _, y in pts]
+        self._grid_x0, self._grid_y0 = min(xs), min(ys)
+        self._grid_nx = int((max(xs) - self._grid_x0) / GRID_CELL) + 1
+        self._grid_ny = int((max(ys) - self._grid_y0) / GRID_CELL) + 1
+        self._grid: list[list[tuple[int, int, int]]] = [[] for _ in range(self._grid_nx * self._grid_ny)]
         for a, b, c in self.triangles:
-            t = _Triangle(pts, a, b, c)
-            self._tri_data.append((t.box, t.a, t.b, t.c))
+            tx = (pts[a][0], pts[b][0], pts[c][0])
+            ty = (pts[a][1], pts[b][1], pts[c][1])
+            i0, i1 = self._cell_x(min(tx) - _CELL_MARGIN), self._cell_x(max(tx) + _CELL_MARGIN)
+            j0, j1 = self._cell_y(min(ty) - _CELL_MARGIN), self._cell_y(max(ty) + _CELL_MARGIN)
+            for i in range(i0, i1 + 1):
+                for j in range(j0, j1 + 1):
+                    self._grid[i * self._grid_ny + j].append((a, b, c))
+
+    def _cell_x(self, x: float) -> int:
+        return min(max(int((x - self._grid_x0) // GRID_CELL), 0), self._grid_nx - 1)
+
+    def _cell_y(self, y: float) -> int:
+        return min(max(int((y - self._grid_y0) // GRID_CELL), 0), self._grid_ny - 1)
 
     def _find_triangle(self, fx: float, fy: float) -> tuple[int, int, int] | None:
         pts = self.ball_points
-        for (x0, y0, x1, y1), a, b, c in self._tri_data:
-            if not (x0 <= fx <= x1 and y0 <= fy <= y1):
-                continue
+        if not (fx == fx and fy == fy):
+            return None  # NaN: in no triangle
+        for a, b, c in self._grid[self._cell_x(fx) * self._grid_ny + self._cell_y(fy)]:
             inside = True
             for u, v in ((a, b), (b, c), (c, a)):
                 (ux, uy), (vx, vy) = pts[u], pts[v]
