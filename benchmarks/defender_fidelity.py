@@ -217,16 +217,24 @@ def _cause(row: dict[str, Any], kicks: set[int], catches: set[int]) -> str | Non
 ON_BALL_AFTERMATH = 10
 
 
+def field_defenders(log_dir: Path) -> list[int]:
+    """The unums of the field defenders that played a session: a client log (.ocl) and commands in the server's
+    log (HFO starts all 11 NPCs and sends away the unwanted ones before play; their client logs stay)."""
+    candidates = sorted(
+        int(p.stem.split("-")[1]) for p in log_dir.glob("base_right-*.ocl") if p.stem.split("-")[1] != "1"
+    )
+    commands = real_hfo_logs.parse_rcl(
+        next(log_dir.glob("*.rcl")), tuple(f"base_right_{u}" for u in candidates)
+    )
+    return [u for u in candidates if commands[f"base_right_{u}"]]
+
+
 def cmd_replay(args: argparse.Namespace) -> dict[str, Any]:
     sessions = []
     all_rows: list[dict[str, Any]] = []
     for log_dir in map(Path, args.log_dirs):
         logs = real_hfo_logs.read_logs(log_dir)
-        unums = sorted(
-            int(p.stem.split("-")[1])
-            for p in log_dir.glob("base_right-*.ocl")
-            if p.stem.split("-")[1] != "1" and p.stat().st_size > 100_000
-        )
+        unums = field_defenders(log_dir)
         clients = tuple(f"base_right_{u}" for u in unums)
         logs.commands = real_hfo_logs.parse_rcl(next(log_dir.glob("*.rcl")), (*clients, "base_right_1"))
         noise = not (log_dir / "deterministic").exists()
@@ -426,12 +434,10 @@ def cmd_trajectories(args: argparse.Namespace) -> dict[str, Any]:
         logs = real_hfo_logs.read_logs(log_dir)
         keys = [(s, u) for s in ("l", "r") for u in range(1, 12)]
         logs.shows = real_hfo_logs.parse_rcg(rcg, tuple(keys))
-        unums = sorted(
-            int(p.stem.split("-")[1])
-            for p in log_dir.glob("base_right-*.ocl")
-            if p.stem.split("-")[1] != "1" and p.stat().st_size > 100_000
+        unums = field_defenders(log_dir)
+        clients = tuple(f"base_right_{u}" for u in [1, *unums]) + tuple(
+            f"base_left_{u}" for u in range(1, 12)
         )
-        clients = tuple(f"base_right_{u}" for u in unums) + tuple(f"base_left_{u}" for u in range(1, 12))
         logs.commands = real_hfo_logs.parse_rcl(next(log_dir.glob("*.rcl")), clients)
         snapshots: dict[int, dict[int, Any]] = defaultdict(dict)
         client_logs = {}
@@ -439,10 +445,10 @@ def cmd_trajectories(args: argparse.Namespace) -> dict[str, Any]:
         freezes: dict[int, dict[tuple[str, int], int]] = defaultdict(dict)
         starts = {e.start for e in logs.episodes}
         for path in log_dir.glob("base_*.ocl"):
-            if path.stat().st_size < 100_000:
-                continue  # an NPC that left before play
             side = "l" if path.name.startswith("base_left") else "r"
             unum = int(path.stem.split("-")[1])
+            if not logs.commands.get(f"base_{'left' if side == 'l' else 'right'}_{unum}"):
+                continue  # not a player of the session
             for t, cycle in real_hfo_logs.parse_client_log(path).items():
                 if t in starts and cycle.tackle_expires > 0:
                     freezes[t][(side, unum)] = cycle.tackle_expires
