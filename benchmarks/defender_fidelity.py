@@ -218,15 +218,14 @@ ON_BALL_AFTERMATH = 10
 
 
 def field_defenders(log_dir: Path) -> list[int]:
-    """The unums of the field defenders that played a session: a client log (.ocl) and commands in the server's
-    log (HFO starts all 11 NPCs and sends away the unwanted ones before play; their client logs stay)."""
-    candidates = sorted(
-        int(p.stem.split("-")[1]) for p in log_dir.glob("base_right-*.ocl") if p.stem.split("-")[1] != "1"
-    )
-    commands = real_hfo_logs.parse_rcl(
-        next(log_dir.glob("*.rcl")), tuple(f"base_right_{u}" for u in candidates)
-    )
-    return [u for u in candidates if commands[f"base_right_{u}"]]
+    """The unums of the field defenders that played a session: HFO starts all 11 NPCs of a team and sends the
+    unwanted ones away before play, so only the players' client logs (.ocl) hold the referee's play_on."""
+    found = []
+    for path in sorted(log_dir.glob("base_right-*.ocl"), key=lambda p: int(p.stem.split("-")[1])):
+        unum = int(path.stem.split("-")[1])
+        if unum != 1 and "referee play_on)" in path.read_text(encoding="ascii", errors="replace"):
+            found.append(unum)
+    return found
 
 
 def cmd_replay(args: argparse.Namespace) -> dict[str, Any]:
@@ -249,6 +248,8 @@ def cmd_replay(args: argparse.Namespace) -> dict[str, Any]:
                 row["session"] = log_dir.name
                 row["cause"] = _cause(row, kicks, catches)
             all_rows.extend(rows)
+            if not rows:
+                continue  # an NPC that HFO sent away before play (it may have sent commands before kick-off)
             sessions.append(
                 {
                     "session": log_dir.name,
