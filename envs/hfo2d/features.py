@@ -325,6 +325,7 @@ def low_level_feature_list(
     max_dist: float = MAX_HFO_DIST,
     out_of_bounds_x_max: float = OUT_OF_BOUNDS_X_DIST_MAX,
     out_of_bounds_y_max: float = OUT_OF_BOUNDS_Y_DIST_MAX,
+    opponent_control: bool = False,
 ) -> list[float]:
     """The features as a list of Python floats (the fast path; see :func:`low_level_features`).
 
@@ -337,6 +338,10 @@ def low_level_feature_list(
         max_dist: normaliser of the proximities (landmarks, ball, players); the paper era's by default.
         out_of_bounds_x_max: normaliser of features 46 and 47.
         out_of_bounds_y_max: normaliser of features 48 and 49.
+        opponent_control: apply librcsc's opponent-control rule (:func:`opponent_controls_ball`): the ball's
+            velocity reads 0 while the opponent nearest the ball can kick it and the observer cannot. The real
+            HFO's agents see the ball so (measured: benchmarks/team_features_fidelity.py); off by default, which
+            keeps hfo2d's registered envs as they were.
 
     Returns:
         ``num_features(len(teammates), len(opponents))`` floats in [-1, 1].
@@ -487,6 +492,12 @@ def low_level_feature_list(
     features[KICKABLE] = 1.0 if dist <= kickable_distance else -1.0
     ball_vx = ball.vx
     ball_vy = ball.vy
+    if (
+        opponent_control
+        and dist > kickable_distance
+        and opponent_controls_ball(player, ball, opponents, dist)
+    ):
+        ball_vx = ball_vy = 0.0
     ball_speed = hypot(ball_vx, ball_vy)
     if ball_speed > 0.0:
         ball_vel_cos = ball_vx / ball_speed
@@ -541,6 +552,36 @@ def low_level_feature_list(
 
 _EMPTY_PLAYER_BLOCK = (0.0,) * FEATURES_PER_PLAYER  # the slot of a player not listed
 
+#: rcssserver's default kickable area (kickable_margin 0.7 + player_size 0.3 + ball_size 0.085), m.
+DEFAULT_KICKABLE_AREA = 1.085
+
+
+def opponent_controls_ball(
+    player: PlayerState,
+    ball: BallState,
+    opponents: Sequence[PlayerState],
+    ball_distance: float | None = None,
+) -> bool:
+    """librcsc's test for an opponent in control of the ball, after which its world model sets the ball's velocity
+    to 0 (librcsc world_model.cpp ``updateJustBeforeDecision``, ``check_player_kickable``; ball_object.cpp
+    ``setOpponentControlEffect``), whenever the observer itself cannot kick the ball.
+
+    Only the opponent nearest the ball counts (players in a tackle are skipped): it controls the ball when its
+    distance to the ball is below ``kickable_area - buffer``, where the buffer is ``min(0.25, 0.02 * d_ball) +
+    min(0.25, 0.02 * d_opponent)`` with ``d_ball`` and ``d_opponent`` the ball's and the opponent's distances
+    from the observer (librcsc's allowance for observation error, kept under fullstate).
+    """
+    candidates = [other for other in opponents if other.tackle_cycles <= 0]
+    if not candidates:
+        return False
+    nearest = min(candidates, key=lambda other: (other.x - ball.x) ** 2 + (other.y - ball.y) ** 2)
+    if ball_distance is None:
+        ball_distance = math.hypot(ball.x - player.x, ball.y - player.y)
+    buffer = min(0.25, 0.02 * ball_distance) + min(
+        0.25, 0.02 * math.hypot(nearest.x - player.x, nearest.y - player.y)
+    )
+    return math.hypot(nearest.x - ball.x, nearest.y - ball.y) < DEFAULT_KICKABLE_AREA - buffer
+
 
 def hfo_feature_list(
     player: PlayerState,
@@ -549,6 +590,8 @@ def hfo_feature_list(
     teammates: list[PlayerState] | tuple[PlayerState, ...] = (),
     opponents: list[PlayerState] | tuple[PlayerState, ...] = (),
     last_action_succeeded: bool = False,
+    *,
+    opponent_control: bool = False,
 ) -> list[float]:
     """HFO master's low-level vector (fullstate) of the state: layout of :func:`hfo_num_features`.
 
@@ -557,7 +600,7 @@ def hfo_feature_list(
     ``last_action_succeeded`` as +1 / -1 (HFO agent.cpp records librcsc's doDash / doTurn / doKick result: a kick
     fails when the ball is not kickable, dash and turn fail only when frozen). The observing player's own uniform
     number is not part of the vector. hfo2d's uniform numbers are all positive, so HFO's ``unum > 0`` listing
-    test reduces to the paper era's ``x > 0``.
+    test reduces to the paper era's ``x > 0``. ``opponent_control``: as in :func:`low_level_feature_list`.
 
     Returns:
         ``hfo_num_features(len(teammates), len(opponents))`` Python floats in [-1, 1].
@@ -571,6 +614,7 @@ def hfo_feature_list(
         max_dist=HFO_MASTER_MAX_DIST,
         out_of_bounds_x_max=HFO_MASTER_OUT_OF_BOUNDS_X_DIST_MAX,
         out_of_bounds_y_max=HFO_MASTER_OUT_OF_BOUNDS_Y_DIST_MAX,
+        opponent_control=opponent_control,
     )
     x = player.x
     y = player.y
@@ -708,9 +752,6 @@ HIGH_LEVEL_INVALID = -2.0
 #: (tolerance_x): the offense's half is [0, 52.5], the defense's, in its own (mirrored) frame, [-52.5, 0].
 HIGH_LEVEL_X_TOLERANCE = 0.1 * PITCH_HALF_LENGTH
 HIGH_LEVEL_Y_TOLERANCE = 0.1 * PITCH_HALF_WIDTH
-#: rcssserver's default kickable area (kickable_margin 0.7 + ball_size 0.085 + player_size 0.3): the width an
-#: opponent blocks in the open-angle features (ServerParam::defaultKickableArea).
-DEFAULT_KICKABLE_AREA = 1.085
 #: The highest uniform number, the bound of the raw unum entries (HFO writes them unnormalised).
 MAX_UNUM = 11.0
 
@@ -757,7 +798,8 @@ def _open_angle(
     opponents: Sequence[PlayerState],
 ) -> float:
     """The widest angle (rad) of [angle_bottom, angle_top] seen from (x, y) that no opponent closer than
-    ``max_dist`` blocks; each blocks its bearing +- atan2(DEFAULT_KICKABLE_AREA / 2, distance).
+    ``max_dist`` blocks; each blocks its bearing +- atan2(DEFAULT_KICKABLE_AREA / 2, distance) (HFO uses
+    ServerParam::defaultKickableArea as a player's width).
 
     HFO's calcLargestOpenAngle / splitAngles: an interval an opponent touches is split into the parts below and
     above the opponent's span (either may come out empty or negative), without wrapping angles round +-pi.
