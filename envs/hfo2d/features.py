@@ -567,9 +567,9 @@ def opponent_controls_ball(
     ``setOpponentControlEffect``), whenever the observer itself cannot kick the ball.
 
     Only the opponent nearest the ball counts (players in a tackle are skipped): it controls the ball when its
-    distance to the ball is below ``kickable_area - buffer``, where the buffer is ``min(0.25, 0.02 * d_ball) +
+    distance to the ball is below ``kickable_area + margin``, where the margin is ``min(0.25, 0.02 * d_ball) +
     min(0.25, 0.02 * d_opponent)`` with ``d_ball`` and ``d_opponent`` the ball's and the opponent's distances
-    from the observer (librcsc's allowance for observation error, kept under fullstate).
+    from the observer (librcsc's allowance for observation error, applied under fullstate too: up to 0.5 m).
     """
     candidates = [other for other in opponents if other.tackle_cycles <= 0]
     if not candidates:
@@ -577,10 +577,10 @@ def opponent_controls_ball(
     nearest = min(candidates, key=lambda other: (other.x - ball.x) ** 2 + (other.y - ball.y) ** 2)
     if ball_distance is None:
         ball_distance = math.hypot(ball.x - player.x, ball.y - player.y)
-    buffer = min(0.25, 0.02 * ball_distance) + min(
+    margin = min(0.25, 0.02 * ball_distance) + min(
         0.25, 0.02 * math.hypot(nearest.x - player.x, nearest.y - player.y)
     )
-    return math.hypot(nearest.x - ball.x, nearest.y - ball.y) < DEFAULT_KICKABLE_AREA - buffer
+    return math.hypot(nearest.x - ball.x, nearest.y - ball.y) < DEFAULT_KICKABLE_AREA + margin
 
 
 def hfo_feature_list(
