@@ -61,14 +61,22 @@ from hfo2d.features import (
     high_level_feature_list,
     high_level_num_features,
     low_level_feature_list,
+    mirrored_state,
     paper_from_hfo,
 )
 from hfo2d.physics import BallState, PlayerState
 
 #: librcsc's kickable distance for HFO's default player type: kickable_area 1.085 - 0.055 (hfo2d.features).
 KICKABLE_DISTANCE = 1.085 - KICKABLE_BUFFER
-#: Team games measured: name -> (offense agents, defense NPCs).
-GAMES: dict[str, tuple[int, int]] = {"2v2": (2, 2), "1v2": (1, 2), "2v1": (2, 1)}
+#: Team games measured: name -> (offense agents, defense agents, defense NPCs). In "1v1d" the defense agent is HFO's
+#: goalie (a lone defender gets unum 1); in "2v2d" it is a field defender beside agent2d's goalie.
+GAMES: dict[str, tuple[int, int, int]] = {
+    "2v2": (2, 0, 2),
+    "1v2": (1, 0, 2),
+    "2v1": (2, 0, 1),
+    "1v1d": (1, 1, 0),
+    "2v2d": (2, 1, 1),
+}
 FEATURE_SETS = ("hfo", "high_level")
 WINDOW = 4  # cycles searched either side of the expected one
 MATCH_TOL = 0.01  # m (position) and degrees / 10 (body), observer and ball
@@ -183,24 +191,38 @@ def hfo2d_vectors(
     feature_set: str,
     last_action_succeeded: bool,
     opponent_control: bool = True,
+    side: str = "l",
 ) -> tuple[list[float], list[float] | None]:
-    """hfo2d's vector of offense player ``unum`` in ``state``: HFO master's low-level and the paper era's
+    """hfo2d's vector of player ``side`` ``unum`` in ``state``: HFO master's low-level and the paper era's
     (``feature_set="hfo"``, with librcsc's opponent-control rule unless ``opponent_control`` is False) or the
-    high-level one (and None)."""
-    me = state.find("l", unum)
+    high-level one (and None). A defender (side "r") sees the field mirrored (librcsc turns a right-side player's
+    world round): its low-level vectors are computed from the mirrored states, its high-level one with
+    ``playing_offense=False``."""
+    me = state.find(side, unum)
     if me is None:
-        raise ValueError(f"no active offense player {unum} at cycle {state.time}")
+        raise ValueError(f"no active player {side} {unum} at cycle {state.time}")
     player = me.player_state()
     ball = BallState(*state.ball)
-    teammates = [p.player_state() for p in state.players if p.side == "l" and p.unum != unum]
-    opponents = [p.player_state() for p in state.players if p.side == "r"]
+    teammates = [p.player_state() for p in state.players if p.side == side and p.unum != unum]
+    opponents = [p.player_state() for p in state.players if p.side != side]
     if feature_set == "high_level":
         return (
             high_level_feature_list(
-                player, ball, KICKABLE_DISTANCE, teammates, opponents, last_action_succeeded
+                player,
+                ball,
+                KICKABLE_DISTANCE,
+                teammates,
+                opponents,
+                last_action_succeeded,
+                playing_offense=side == "l",
             ),
             None,
         )
+    if side == "r":
+        player = mirrored_state(player)  # type: ignore[assignment]
+        ball = mirrored_state(ball)  # type: ignore[assignment]
+        teammates = [mirrored_state(other) for other in teammates]  # type: ignore[misc]
+        opponents = [mirrored_state(other) for other in opponents]  # type: ignore[misc]
     master = hfo_feature_list(
         player,
         ball,
@@ -216,20 +238,33 @@ def hfo2d_vectors(
     return master, paper
 
 
-def observed_pose(vector: Sequence[float], feature_set: str) -> tuple[float, float, float, float, float]:
-    """(own x, own y, own body deg, ball x, ball y) read from a real vector (to find its cycle in the log)."""
+def observed_pose(
+    vector: Sequence[float], feature_set: str, side: str = "l"
+) -> tuple[float, float, float, float, float]:
+    """(own x, own y, own body deg, ball x, ball y) read from a real vector, in the server's frame (to find its
+    cycle in the log); a defender's vector is in its mirrored frame."""
     if feature_set == "high_level":
 
         def unnormalise(value: float, low: float, high: float) -> float:
             return (float(value) + 1.0) * 0.5 * (high - low) + low
 
-        return (
-            unnormalise(vector[0], -5.25, 57.75),
+        x_range = (-5.25, 57.75) if side == "l" else (-57.75, 5.25)
+        pose = (
+            unnormalise(vector[0], *x_range),
             unnormalise(vector[1], -37.4, 37.4),
             math.degrees(unnormalise(vector[2], -math.pi, math.pi)),
-            unnormalise(vector[3], -5.25, 57.75),
+            unnormalise(vector[3], *x_range),
             unnormalise(vector[4], -37.4, 37.4),
         )
+    else:
+        pose = _low_level_pose(vector)
+    if side == "r":
+        x, y, body, ball_x, ball_y = pose
+        return -x, -y, body + 180.0, -ball_x, -ball_y
+    return pose
+
+
+def _low_level_pose(vector: Sequence[float]) -> tuple[float, float, float, float, float]:
     from hfo2d.real import state_from_hfo_features
 
     pose = state_from_hfo_features(list(vector[: NUM_BASIC_FEATURES + 1]), 0)
@@ -239,9 +274,9 @@ def observed_pose(vector: Sequence[float], feature_set: str) -> tuple[float, flo
     return player[0], player[1], player[4], ball[0], ball[1]
 
 
-def matches(state: LoggedState, unum: int, pose: tuple[float, ...]) -> float:
+def matches(state: LoggedState, unum: int, pose: tuple[float, ...], side: str = "l") -> float:
     """How far ``pose`` is from ``state`` (max of the position errors in m and the body error in deg / 10)."""
-    me = state.find("l", unum)
+    me = state.find(side, unum)
     if me is None:
         return math.inf
     body_error = abs((pose[2] - me.body + 180.0) % 360.0 - 180.0) / 10.0
@@ -348,7 +383,10 @@ def compare_record(record: dict[str, Any]) -> dict[str, dict[str, float]]:
     )
     feature_set = record["feature_set"]
     teammates, opponents = record["teammates"], record["opponents"]
-    master, paper = hfo2d_vectors(state, record["unum"], feature_set, record["last_action_succeeded"])
+    side = record.get("side", "l")
+    master, paper = hfo2d_vectors(
+        state, record["unum"], feature_set, record["last_action_succeeded"], side=side
+    )
     real = record["vector"]
     headings = velocity_headings(feature_set, teammates, opponents)
     result = {feature_set: block_errors(real, master, blocks(feature_set, teammates, opponents), headings)}
@@ -356,7 +394,9 @@ def compare_record(record: dict[str, Any]) -> dict[str, dict[str, float]]:
         real_paper = paper_from_hfo(real, teammates, opponents)
         result["paper"] = block_errors(real_paper, paper, blocks("paper", teammates, opponents), headings)
         # the same without librcsc's opponent-control rule (hfo2d's default): the ball block only
-        plain, _ = hfo2d_vectors(state, record["unum"], feature_set, record["last_action_succeeded"], False)
+        plain, _ = hfo2d_vectors(
+            state, record["unum"], feature_set, record["last_action_succeeded"], False, side
+        )
         ball = blocks(feature_set, teammates, opponents)["ball"]
         result[feature_set]["ball_without_opponent_control"] = max(abs(real[i] - plain[i]) for i in ball)
     return result
@@ -377,25 +417,35 @@ def check_network_namespace() -> None:
 
 
 def script_action(
-    rng: np.random.Generator, pose: tuple[float, float, float, float, float], kickable: bool
+    rng: np.random.Generator,
+    pose: tuple[float, float, float, float, float],
+    kickable: bool,
+    space: Any,
+    attack_x: float = 52.5,
 ) -> np.ndarray:
-    """The capture's player: a kick at a random point of the goal when kickable, else toward the ball (turn when
-    off by more than 15 degrees, else dash); a random flat action one cycle in four."""
-    if rng.random() < 0.25:
-        return rng.random(8).astype(np.float32)
-    x, y, body, ball_x, ball_y = pose
-    flat = np.full(8, 0.5, dtype=np.float32)
-    flat[:3] = 0.0
-    if kickable:
-        target = math.degrees(math.atan2(rng.uniform(-6.0, 6.0) - ball_y, 52.5 - ball_x))
-        flat[2], flat[6], flat[7] = 1.0, rng.uniform(0.3, 1.0), ((target - body + 180.0) % 360.0) / 360.0
+    """The capture's player, as a flat action of ``space`` (a HybridActionBox): a kick at a random point of the
+    goal line x = ``attack_x`` when kickable, else toward the ball (turn when off by more than 15 degrees, else
+    dash); a random DASH, TURN or KICK one cycle in four."""
+    layout = space.layout
+    flat = np.zeros(space.shape, dtype=np.float32)
+
+    def command(name: str, *params: float) -> np.ndarray:
+        kind = layout.names.index(name)
+        flat[kind] = 1.0
+        flat[layout.parameter_slice(kind)] = params
         return flat
+
+    if rng.random() < 0.25:
+        name = ("DASH", "TURN", "KICK")[int(rng.integers(3))]
+        return command(name, *rng.random(layout.parameter_sizes[layout.names.index(name)]))
+    x, y, body, ball_x, ball_y = pose
+    if kickable:
+        target = math.degrees(math.atan2(rng.uniform(-6.0, 6.0) - ball_y, attack_x - ball_x))
+        return command("KICK", rng.uniform(0.3, 1.0), ((target - body + 180.0) % 360.0) / 360.0)
     bearing = (math.degrees(math.atan2(ball_y - y, ball_x - x)) - body + 180.0) % 360.0 - 180.0
     if abs(bearing) > 15.0:
-        flat[1], flat[5] = 1.0, (bearing + 180.0) / 360.0
-    else:
-        flat[0], flat[3], flat[4] = 1.0, 1.0, 0.5
-    return flat
+        return command("TURN", (bearing + 180.0) / 360.0)
+    return command("DASH", 1.0, 0.5)
 
 
 def capture_session(
@@ -404,11 +454,11 @@ def capture_session(
     """Play one real session and return its records (one per agent and observation matched in the log)."""
     from hfo2d.real_teams import RealTeamParallelEnv
 
-    offense_agents, defense_npcs = GAMES[game]
+    offense_agents, defense_agents, defense_npcs = GAMES[game]
     log_dir = work / f"{game}_{feature_set}_{seed}"
     env = RealTeamParallelEnv(
         offense_agents,
-        0,
+        defense_agents,
         defense_npcs,
         hfo_dir=hfo_dir,
         feature_set=feature_set,
@@ -432,10 +482,16 @@ def capture_session(
                 for agent in env.agents:
                     vector = env.hfo_vector(agent).tolist()
                     observations.append((agent, episode, step, vector, last_ok[agent]))
-                    pose = observed_pose(vector, feature_set)
+                    side = "l" if agent.startswith("offense") else "r"
+                    pose = observed_pose(vector, feature_set, side)
                     kickable = vector[5] > 0.0 if feature_set == "high_level" else vector[12] > 0.0
-                    actions[agent] = script_action(rng, pose, kickable)
-                    last_ok[agent] = not (actions[agent][:3].argmax() == 2 and not kickable)
+                    space = env.action_space(agent)
+                    # (a defender clears the ball toward the far goal line, x = -52.5 in the server's frame)
+                    actions[agent] = script_action(rng, pose, kickable, space, 52.5 if side == "l" else -52.5)
+                    kicked = space.layout.decode(actions[agent].tolist())[0] == space.layout.names.index(
+                        "KICK"
+                    )
+                    last_ok[agent] = not (kicked and not kickable)
                 _, _, terminated, truncated, infos = env.step(actions)
                 for agent, info in infos.items():
                     unums[agent] = info.get("unum", unums.get(agent, -1))
@@ -452,7 +508,6 @@ def capture_session(
         raise RuntimeError(f"expected one .rcg and one .hfo in {log_dir}, found {rcg} {hfo_logs}")
     shows = parse_shows(rcg[0])
     starts = parse_episode_starts(hfo_logs[0])
-    teammates = offense_agents - 1
     records = []
     unmatched = 0
     # first pass: each observation's best cycle; an episode's observations share one offset from the expected
@@ -464,14 +519,15 @@ def capture_session(
             best_cycles.append(None)
             continue
         expected = starts[episode - 1] + 2 + step
-        pose = observed_pose(vector, feature_set)
+        side = "l" if agent.startswith("offense") else "r"
+        pose = observed_pose(vector, feature_set, side)
         unum = unums[agent]
         best = min(
             (t for t in range(expected - WINDOW, expected + WINDOW + 1) if t in shows),
-            key=lambda t: (matches(shows[t], unum, pose), abs(t - expected)),
+            key=lambda t: (matches(shows[t], unum, pose, side), abs(t - expected)),
             default=None,
         )
-        if best is not None and matches(shows[best], unum, pose) > MATCH_TOL:
+        if best is not None and matches(shows[best], unum, pose, side) > MATCH_TOL:
             best = None
         best_cycles.append(best)
         if best is not None:
@@ -483,8 +539,9 @@ def capture_session(
         expected = starts[episode - 1] + 2 + step
         usual = max(set(offsets[(agent, episode)]), key=offsets[(agent, episode)].count)
         unum = unums[agent]
-        pose = observed_pose(vector, feature_set)
-        if expected + usual in shows and matches(shows[expected + usual], unum, pose) <= MATCH_TOL:
+        side = "l" if agent.startswith("offense") else "r"
+        pose = observed_pose(vector, feature_set, side)
+        if expected + usual in shows and matches(shows[expected + usual], unum, pose, side) <= MATCH_TOL:
             best = expected + usual  # (several cycles match while nobody moves, e.g. after a placement)
         state = shows[best]
         records.append(
@@ -492,9 +549,10 @@ def capture_session(
                 "game": game,
                 "feature_set": feature_set,
                 "agent": agent,
+                "side": side,
                 "unum": unum,
-                "teammates": teammates,
-                "opponents": defense_npcs,
+                "teammates": (offense_agents if side == "l" else defense_agents + defense_npcs) - 1,
+                "opponents": defense_agents + defense_npcs if side == "l" else offense_agents,
                 "episode": episode,
                 "step": step,
                 "time": state.time,
@@ -518,13 +576,17 @@ def summarise(records: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
     table: dict[tuple[str, str], dict[str, Any]] = {}
     for record in records:
         for layout, errors in compare_record(record).items():
+            side = record.get("side", "l")
+            offense, defense_agents, defense_npcs = GAMES[record["game"]]
             row = table.setdefault(
-                (record["game"], layout),
+                (record["game"], side, layout),
                 {
                     "game": record["game"],
+                    "observer": "offense agent" if side == "l" else "defense agent",
                     "layout": layout,
-                    "offense_agents": record["teammates"] + 1,
-                    "defense_npcs": record["opponents"],
+                    "offense_agents": offense,
+                    "defense_agents": defense_agents,
+                    "defense_npcs": defense_npcs,
                     "states": 0,
                     "max_abs_diff": {},
                     "worst": {},
@@ -547,8 +609,9 @@ def summarise(records: Sequence[dict[str, Any]]) -> list[dict[str, Any]]:
 def print_table(rows: Sequence[dict[str, Any]]) -> None:
     for row in rows:
         print(
-            f"\n{row['game']} ({row['offense_agents']} offense agents, {row['defense_npcs']} defense NPCs), "
-            f"{row['layout']}, {row['states']} states"
+            f"\n{row['game']} ({row['offense_agents']} offense agents, {row['defense_agents']} defense agents, "
+            f"{row['defense_npcs']} defense NPCs), seen by the {row['observer']}s, {row['layout']}, "
+            f"{row['states']} states"
         )
         for block, error in row["max_abs_diff"].items():
             print(f"  {block:30s} {error:.3g}   worst at (episode, step, agent, cycle) {row['worst'][block]}")
@@ -560,7 +623,8 @@ def print_table(rows: Sequence[dict[str, Any]]) -> None:
 def forced_kickable(record: dict[str, Any]) -> bool:
     """The real kickable flag is on with the ball beyond hfo2d's 1.03 m (but inside the kickable area): librcsc's
     SelfObject::updateKickableState forces the flag from its intercept table, which hfo2d does not model."""
-    me = next(p for p in record["players"] if p[0] == "l" and int(p[1]) == record["unum"])
+    side = record.get("side", "l")
+    me = next(p for p in record["players"] if p[0] == side and int(p[1]) == record["unum"])
     distance = math.hypot(me[2] - record["ball"][0], me[3] - record["ball"][1])
     index = 5 if record["feature_set"] == "high_level" else 12
     return record["vector"][index] > 0.0 and distance > KICKABLE_DISTANCE
@@ -576,11 +640,13 @@ def pick_fixture(records: Sequence[dict[str, Any]], per_group: int, seed: int) -
     groups: dict[tuple[str, str], list[dict[str, Any]]] = {}
     for record in records:
         if not forced_kickable(record):
-            groups.setdefault((record["game"], record["feature_set"]), []).append(record)
+            groups.setdefault((record["game"], record.get("side", "l"), record["feature_set"]), []).append(
+                record
+            )
     for key in sorted(groups):
         group = groups[key]
         picks = [int(k) for k in rng.choice(len(group), size=min(per_group, len(group)), replace=False)]
-        if key[1] == "hfo":
+        if key[2] == "hfo":
             control = [
                 k
                 for k, record in enumerate(group)

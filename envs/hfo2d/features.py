@@ -838,14 +838,26 @@ def _closest_distance(x: float, y: float, opponents: Sequence[PlayerState]) -> f
     return min((math.hypot(other.x - x, other.y - y) for other in opponents), default=3.4028234663852886e38)
 
 
+def _librcsc_degrees(angle: float) -> float:
+    """An angle folded into [-180, 180] as librcsc's AngleDeg::normalize_angle does (180 stays 180)."""
+    if angle < -360.0 or angle > 360.0:
+        angle = math.fmod(angle, 360.0)
+    if angle < -180.0:
+        angle += 360.0
+    if angle > 180.0:
+        angle -= 360.0
+    return angle
+
+
 def mirrored_state(state: PlayerState | BallState) -> PlayerState | BallState:
     """``state`` as a right-side (defense) player's world model sees it: librcsc turns the field round so that its
-    own team attacks +x (x, y and the velocity negated, the body angle plus 180 degrees)."""
+    own team attacks +x (x, y and the velocity negated, the body angle plus 180 degrees, folded as librcsc's
+    FullstateSensor::reverse does: a body of 0 becomes 180)."""
     from dataclasses import replace
 
     changes: dict[str, float] = {"x": -state.x, "y": -state.y, "vx": -state.vx, "vy": -state.vy}
     if hasattr(state, "body_deg"):
-        changes["body_deg"] = (state.body_deg + 360.0) % 360.0 - 180.0  # body + 180, in [-180, 180)
+        changes["body_deg"] = _librcsc_degrees(state.body_deg + 180.0)
     return replace(state, **changes)  # type: ignore[arg-type,return-value]
 
 
@@ -902,7 +914,7 @@ def high_level_feature_list(
     y_low, y_high = -PITCH_HALF_WIDTH - HIGH_LEVEL_Y_TOLERANCE, PITCH_HALF_WIDTH + HIGH_LEVEL_Y_TOLERANCE
     max_r = HFO_MASTER_MAX_DIST
     x, y = player.x, player.y
-    body = math.radians((player.body_deg + 180.0) % 360.0 - 180.0)  # AngleDeg in [-180, 180)
+    body = math.radians(_librcsc_degrees(player.body_deg))  # librcsc's AngleDeg, in [-180, 180]
     goal_x = PITCH_HALF_LENGTH if playing_offense else -PITCH_HALF_LENGTH
     goal_dx, goal_dy = goal_x - x, -y
     features = [

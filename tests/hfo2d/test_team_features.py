@@ -193,3 +193,9 @@ def test_high_level_for_the_defense_is_in_its_mirrored_frame() -> None:
     )  # its own goal
     mirrored = mirrored_state(defender)
     assert (mirrored.x, mirrored.y, mirrored.body_deg) == (-40.0, -5.0, 0.0)
+    # librcsc folds the turned body into [-180, 180] keeping 180: a body of 0 reads +1 (pi), not -1
+    facing_own_goal = PlayerState("r", 1, goalie=True, x=52.5, y=0.0, body_deg=0.0)
+    assert mirrored_state(facing_own_goal).body_deg == 180.0
+    assert (
+        high_level_feature_list(facing_own_goal, ball, 1.03, [], [attacker], playing_offense=False)[2] == 1.0
+    )
