@@ -372,7 +372,10 @@ def block_errors(
 
 
 def compare_record(record: dict[str, Any]) -> dict[str, dict[str, float]]:
-    """Per-block max abs differences of one captured record (a logged state with the real vector)."""
+    """Per-block max abs differences of one captured record (a logged state with the real vector).
+
+    In a state with a forced kickable flag (:func:`forced_kickable`, counted apart in the summary) the flag itself
+    is left out of the comparison."""
     state = LoggedState(
         record["time"],
         tuple(record["ball"]),
@@ -387,7 +390,10 @@ def compare_record(record: dict[str, Any]) -> dict[str, dict[str, float]]:
     master, paper = hfo2d_vectors(
         state, record["unum"], feature_set, record["last_action_succeeded"], side=side
     )
-    real = record["vector"]
+    real = list(record["vector"])
+    if forced_kickable(record):
+        kickable = 5 if feature_set == "high_level" else 12
+        real[kickable] = master[kickable]  # (the paper layout copies it from HFO master's)
     headings = velocity_headings(feature_set, teammates, opponents)
     result = {feature_set: block_errors(real, master, blocks(feature_set, teammates, opponents), headings)}
     if paper is not None:

@@ -1,8 +1,9 @@
 """HFO's features for teams: hfo2d against vectors captured from the real HFO, and the high-level set by hand.
 
 The fixture (tests/hfo2d/data/real_hfo_team_features.json) holds states of real HFO games (2v2, 1v2, 2v1: offense
-agents against agent2d's defenders) read from rcssserver's game log, each with the vector the real HFO sent the
-agent in that cycle; ``benchmarks/team_features_fidelity.py capture`` made it (see its docstring).
+agents against agent2d's defenders; 1v1d, 2v2d: with a defense agent too) read from rcssserver's game log, each
+with the vector the real HFO sent one agent in that cycle; ``benchmarks/team_features_fidelity.py capture`` made it
+(see its docstring).
 """
 
 from __future__ import annotations
@@ -50,10 +51,15 @@ def records() -> list[dict[str, Any]]:
     return json.loads(FIXTURE.read_text())["records"]
 
 
-def test_fixture_covers_the_teams_and_both_feature_sets(records: list[dict[str, Any]]) -> None:
-    groups = {(record["game"], record["feature_set"]) for record in records}
-    assert groups == {(game, fs) for game in ("2v2", "1v2", "2v1") for fs in ("hfo", "high_level")}
-    assert FIXTURE.stat().st_size < 30_000
+def test_fixture_covers_the_teams_and_both_feature_sets(
+    fidelity: ModuleType, records: list[dict[str, Any]]
+) -> None:
+    groups = {(record["game"], record["side"], record["feature_set"]) for record in records}
+    sides = {game: ("l", "r") if counts[1] else ("l",) for game, counts in fidelity.GAMES.items()}
+    assert groups == {
+        (game, side, fs) for game in fidelity.GAMES for side in sides[game] for fs in ("hfo", "high_level")
+    }
+    assert FIXTURE.stat().st_size < 40_000
 
 
 def test_hfo2d_features_equal_the_real_hfos(fidelity: ModuleType, records: list[dict[str, Any]]) -> None:
@@ -199,3 +205,21 @@ def test_high_level_for_the_defense_is_in_its_mirrored_frame() -> None:
     assert (
         high_level_feature_list(facing_own_goal, ball, 1.03, [], [attacker], playing_offense=False)[2] == 1.0
     )
+
+
+def test_hfoenv_high_level_feature_set() -> None:
+    from hfo2d.hfo_env import HFOEnv
+
+    env = HFOEnv(task="keeper", feature_set="high_level")
+    obs, info = env.reset(seed=3)
+    assert obs.shape == (high_level_num_features(0, 1),) == env.observation_space.shape
+    assert env.observation_space.contains(obs) and obs[-2] == -1.0  # HFO's last action (a NOOP) failed
+    player, ball, keeper = info["player"], info["ball"], info["keeper"]
+    assert obs[0] == pytest.approx(_norm(player[0], -5.25, 57.75), abs=1e-6)
+    assert obs[3] == pytest.approx(_norm(ball[0], -5.25, 57.75), abs=1e-6)
+    assert obs[10:13] == pytest.approx(
+        [_norm(keeper[0], -5.25, 57.75), _norm(keeper[1], -37.4, 37.4), 1.0], abs=1e-6
+    )
+    for _ in range(20):
+        obs, *_ = env.step(env.action_space.sample())
+        assert env.observation_space.contains(obs)
