@@ -710,6 +710,71 @@ def cmd_capture(args: argparse.Namespace) -> None:
         write_fixture(args.fixture, records, args.per_group, args.seed)
 
 
+LOW_LEVEL_COLUMNS = ("self", "landmarks", "out_of_bounds", "ball", "teammates", "opponents")
+HIGH_LEVEL_COLUMNS = (
+    "self_and_ball",
+    "goal_and_open_angle",
+    "closest_opponent",
+    "teammate_goal_angle",
+    "teammate_closest_opponent",
+    "teammate_pass_angle",
+    "teammate_x_y_unum",
+    "opponent_x_y_unum",
+    "last_action",
+    "stamina",
+)
+
+
+def markdown_tables(rows: Sequence[dict[str, Any]]) -> str:
+    """The summary rows as two markdown tables (low-level layouts, high-level), max abs difference per block."""
+
+    def team(row: dict[str, Any]) -> str:
+        return (
+            f"{row['game']}: {row['offense_agents']} off. agent(s), {row['defense_agents']} def. agent(s), "
+            f"{row['defense_npcs']} NPC(s); {row['observer']}"
+        )
+
+    low = [row for row in rows if row["layout"] != "high_level"]
+    lines = [
+        "| team (observer) | layout | states | "
+        + " | ".join(LOW_LEVEL_COLUMNS)
+        + " | unums, last action | heading x speed (m/cycle) | ball without the rule | rule fired | "
+        "forced kickable |",
+        "|---|---|---|" + "---|" * (len(LOW_LEVEL_COLUMNS) + 5),
+    ]
+    for row in low:
+        diff = row["max_abs_diff"]
+        extra = (
+            f"{max(diff['uniform_numbers'], diff['last_action']):.1e}" if "uniform_numbers" in diff else "–"
+        )
+        without = diff.get("ball_without_opponent_control")
+        lines.append(
+            f"| {team(row)} | {row['layout']} | {row['states']} | "
+            + " | ".join(f"{diff[name]:.1e}" for name in LOW_LEVEL_COLUMNS)
+            + f" | {extra} | {diff['velocity_headings_x_speed']:.1e} | "
+            + ("–" if without is None else f"{without:.2f}")
+            + f" | {row.get('opponent_control_states', '–')} | {row.get('forced_kickable_states', '–')} |"
+        )
+    lines += [
+        "",
+        "| team (observer) | states | " + " | ".join(HIGH_LEVEL_COLUMNS) + " | forced kickable |",
+        "|---|---|" + "---|" * (len(HIGH_LEVEL_COLUMNS) + 1),
+    ]
+    for row in rows:
+        if row["layout"] == "high_level":
+            diff = row["max_abs_diff"]
+            lines.append(
+                f"| {team(row)} | {row['states']} | "
+                + " | ".join(f"{diff[name]:.1e}" for name in HIGH_LEVEL_COLUMNS)
+                + f" | {row.get('forced_kickable_states', 0)} |"
+            )
+    return "\n".join(lines)
+
+
+def cmd_table(args: argparse.Namespace) -> None:
+    print(markdown_tables(json.loads(Path(args.results).read_text())["rows"]))
+
+
 def cmd_fixture(args: argparse.Namespace) -> None:
     write_fixture(args.out, json.loads(Path(args.records).read_text()), args.per_group, args.seed)
 
@@ -736,6 +801,9 @@ def main(argv: Sequence[str] | None = None) -> None:
     capture.add_argument("--records", default=None, help="write every captured record here (JSON)")
     capture.add_argument("--per-group", type=int, default=4, help="fixture records per game and feature set")
     capture.set_defaults(func=cmd_capture)
+    table = sub.add_parser("table", help="the summary of a capture's --out JSON as markdown tables")
+    table.add_argument("--results", required=True)
+    table.set_defaults(func=cmd_table)
     fixture = sub.add_parser("fixture", help="pick a fixture from the records of a capture (--records)")
     fixture.add_argument("--records", required=True)
     fixture.add_argument("--out", required=True)
