@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import os
 import subprocess
+import sys
+import time
 import warnings
 from pathlib import Path
 
@@ -362,3 +364,35 @@ def test_real_two_agents_against_the_goalie() -> None:
     parallel_api_test(env, num_cycles=80)
     env.close()
     assert not own_namespace or _session_processes(REAL_BUILD) == []
+
+
+CRASHING_SCRIPT = """
+import os, signal
+from hfo2d.real_teams import RealTeamParallelEnv
+env = RealTeamParallelEnv(2, 0, 1, seed=3)
+env.reset()
+env.step({agent: env.action_space(agent).sample() for agent in env.agents})
+print(env._session.server.pid, *(worker.pid for worker in env._session.workers), flush=True)
+os.kill(os.getpid(), signal.SIGKILL)
+"""
+
+
+@needs_real_hfo
+def test_real_session_dies_with_a_crashed_process() -> None:
+    assert REAL_BUILD is not None
+    if not real.in_loopback_namespace():
+        pytest.skip("the process check needs a namespace of this test's own (tools/real_hfo/loopback.sh)")
+    done = subprocess.run(
+        [sys.executable, "-c", CRASHING_SCRIPT],
+        capture_output=True,
+        text=True,
+        env={**os.environ, real.HFO_DIR_ENV: str(REAL_BUILD)},
+        timeout=300,
+    )
+    assert done.returncode == -9 and len(done.stdout.split()) == 3, done.stderr[-2000:]
+    # the launcher and the workers get SIGTERM when their parent dies (prctl PR_SET_PDEATHSIG); bin/HFO then stops
+    # rcssserver and agent2d
+    deadline = time.monotonic() + 30.0
+    while _session_processes(REAL_BUILD) and time.monotonic() < deadline:
+        time.sleep(0.5)
+    assert _session_processes(REAL_BUILD) == []
