@@ -104,6 +104,7 @@ from hfo2d.real import (
     HFOSessionError,
     SessionDown,
     _check_seed,
+    _free_port,
     _kill_group,
     _Session,
     _shutdown,
@@ -126,8 +127,7 @@ __all__ = [
 ]
 
 FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
-#: bin/HFO's team limits: offense agents + NPCs <= 10 (agent2d's offense order has 10 field players),
-#: defense agents + NPCs <= 11 (bin/HFO's argument checks).
+#: bin/HFO's team limits (its parseArgs): offense agents + NPCs in [1, 10], defense agents + NPCs in [0, 11].
 MAX_OFFENSE, MAX_DEFENSE = 10, 11
 #: A defender's discrete actions: hfo2d's three, HFO's TACKLE(direction) and, for the goalie, CATCH().
 DEFENSE_ACTION_NAMES: tuple[str, ...] = ("DASH", "TURN", "KICK", "TACKLE", "CATCH")
@@ -199,8 +199,6 @@ class _TeamSession(_Session):
         return list(zip(self.workers, self.socks, strict=True))
 
     def _start(self, args: list[str], port: int | None, rng: np.random.Generator) -> None:
-        from hfo2d.real import _free_port
-
         tries = 1 if port is not None else PORT_TRIES
         offset = 0
         for attempt in range(tries):
@@ -393,9 +391,12 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
         num_offense = self.offense_agents + self.offense_npcs
         num_defense = self.defense_agents + self.defense_npcs
         roles = [AgentRole(f"offense_{k}", HFO_TEAM_NAME, k, True) for k in range(self.offense_agents)]
-        # the goalie among the defense agents: the first with --agent-play-goalie, or a lone defender (HFO gives
-        # it unum 1 when there is no NPC: bin/Trainer.py takes the last defense numbers of [1])
-        goalie_agent = 0 if (self.agent_play_goalie or num_defense == self.defense_agents == 1) else None
+        # the goalie among the defense agents (bin/Trainer.py run: the agents take the first of the sorted defense
+        # numbers with --agent-play-goalie, else the last ones, so they include unum 1, the goalie, when there is no
+        # defense NPC); the session checks it against the trainer's own line for each agent
+        goalie_agent = (
+            0 if self.defense_agents and (self.agent_play_goalie or self.defense_npcs == 0) else None
+        )
         roles += [
             AgentRole(f"defense_{k}", HFO_DEFENSE_TEAM_NAME, k, False, goalie=k == goalie_agent)
             for k in range(self.defense_agents)
@@ -772,7 +773,6 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
         return {name: np.array(source[name], dtype=np.float32) for name in names}
 
     def _info(self, name: str) -> dict[str, Any]:
-        assert self._session is not None or self._status == SERVER_DOWN or name in self._raw
         paper = self._paper.get(name)
         info: dict[str, Any] = {
             "status": self._status,

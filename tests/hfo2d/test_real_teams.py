@@ -32,7 +32,7 @@ args = sys.argv[1:]
 open(sys.argv[0] + ".args", "w").write(" ".join(args))
 def count(flag):
     return int(args[args.index(flag) + 1]) if flag in args else 0
-goalie_agent = "--agent-play-goalie" in args or (count("--defense-agents") == 1 and count("--defense-npcs") == 0)
+goalie_agent = "--agent-play-goalie" in args or count("--defense-npcs") == 0
 for k in range(count("--offense-agents")):
     print(f"Waiting for player-controlled agent base_left-{k}: config_dir=x, server_port=1, server_addr=localhost, "
           f"team_name=base_left, play_goalie=False", flush=True)
@@ -182,6 +182,9 @@ def test_spaces_and_command_line(stand_in_build: Path) -> None:
     hfo = RealTeamParallelEnv(1, 1, 0, hfo_dir=stand_in_build, feature_set="hfo")
     assert hfo.observation_space("offense_0").shape == (hfo_num_features(0, 1),)
     assert hfo.action_space("defense_0").layout.names[-1] == "CATCH"  # a lone defender is HFO's goalie
+    # without a defense NPC the agents hold unum 1: the first is the goalie (bin/Trainer.py)
+    two = RealTeamParallelEnv(1, 2, 0, hfo_dir=stand_in_build)
+    assert [two.action_space(a).layout.names[-1] for a in ("defense_0", "defense_1")] == ["CATCH", "TACKLE"]
     high = RealTeamParallelEnv(2, 0, 1, hfo_dir=stand_in_build, feature_set="high_level", reward="sparse")
     space = high.observation_space("offense_0")
     assert (
