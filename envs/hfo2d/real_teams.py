@@ -129,8 +129,10 @@ __all__ = [
 FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
 #: bin/HFO's team limits (its parseArgs): offense agents + NPCs in [1, 10], defense agents + NPCs in [0, 11].
 MAX_OFFENSE, MAX_DEFENSE = 10, 11
-#: A defender's discrete actions: hfo2d's three, HFO's TACKLE(direction) and, for the goalie, CATCH().
-DEFENSE_ACTION_NAMES: tuple[str, ...] = ("DASH", "TURN", "KICK", "TACKLE", "CATCH")
+#: A defender's discrete actions in HFO's action order (src/common.hpp: DASH, TURN, TACKLE, KICK, ..., CATCH); CATCH
+#: for the goalie only. The same layouts as hfo2d's own team game (``hfo2d.team``), so that models move between
+#: the two backends.
+DEFENSE_ACTION_NAMES: tuple[str, ...] = ("DASH", "TURN", "TACKLE", "KICK", "CATCH")
 _HFO_CODES: dict[str, int] = {
     "DASH": HFO_DASH,
     "TURN": HFO_TURN,
@@ -147,15 +149,15 @@ _WAITING_LINE = re.compile(re.escape(WAITING_FOR_AGENT) + r" (\S+)-(\d+):.*play_
 
 
 def defense_action_space(goalie: bool) -> HybridActionBox:
-    """A defender's flat action: DASH(power, dir), TURN(dir), KICK(power, dir), TACKLE(dir) and, for the
-    goalie, CATCH() (HFO's low-level defense actions, src/common.hpp), values in [0, 1]."""
+    """A defender's flat action: the preferences of DASH, TURN, TACKLE, KICK (and CATCH for the goalie), then
+    DASH(power, dir), TURN(dir), TACKLE(dir), KICK(power, dir), values in [0, 1] (HFO's low-level defense actions,
+    src/common.hpp; CATCH has no parameter)."""
     names = DEFENSE_ACTION_NAMES if goalie else DEFENSE_ACTION_NAMES[:4]
-    sizes = (2, 1, 2, 1, 0)[: len(names)]
     layout = HybridActionLayout(
         names=names,
-        parameter_sizes=sizes,
-        direction_indices=tuple(len(names) + k for k in (1, 2, 4, 5)),
-        ball_action=2,
+        parameter_sizes=(2, 1, 1, 2, 0)[: len(names)],
+        direction_indices=tuple(len(names) + k for k in (1, 2, 3, 5)),
+        ball_action=3,
     )
     return HybridActionBox(layout)
 

@@ -173,7 +173,7 @@ def test_spaces_and_command_line(stand_in_build: Path) -> None:
     assert env.observation_space("defense_0").shape == (num_features(4, 2),)
     assert env.observation_space("offense_0") is env.observation_space("offense_0")
     assert env.action_space("offense_0").layout.names == ("DASH", "TURN", "KICK")
-    assert env.action_space("defense_0").layout.names == ("DASH", "TURN", "KICK", "TACKLE")  # not the goalie
+    assert env.action_space("defense_0").layout.names == ("DASH", "TURN", "TACKLE", "KICK")  # not the goalie
     args = env.hfo_args(4)
     for flag, value in (("--offense-agents", "2"), ("--defense-agents", "2"), ("--defense-npcs", "3")):
         assert args[args.index(flag) + 1] == value
@@ -184,7 +184,7 @@ def test_spaces_and_command_line(stand_in_build: Path) -> None:
     assert hfo.action_space("defense_0").layout.names[-1] == "CATCH"  # a lone defender is HFO's goalie
     # without a defense NPC the agents hold unum 1: the first is the goalie (bin/Trainer.py)
     two = RealTeamParallelEnv(1, 2, 0, hfo_dir=stand_in_build)
-    assert [two.action_space(a).layout.names[-1] for a in ("defense_0", "defense_1")] == ["CATCH", "TACKLE"]
+    assert [two.action_space(a).layout.names[-1] for a in ("defense_0", "defense_1")] == ["CATCH", "KICK"]
     high = RealTeamParallelEnv(2, 0, 1, hfo_dir=stand_in_build, feature_set="high_level", reward="sparse")
     space = high.observation_space("offense_0")
     assert (
@@ -197,8 +197,15 @@ def test_spaces_and_command_line(stand_in_build: Path) -> None:
 def test_defense_action_space() -> None:
     goalie, field = defense_action_space(True), defense_action_space(False)
     assert goalie.shape == (11,) and field.shape == (10,)
-    assert goalie.layout.parameter_sizes == (2, 1, 2, 1, 0)
-    assert goalie.layout.direction_indices == (6, 7, 9, 10) and field.layout.direction_indices == (5, 6, 8, 9)
+    assert goalie.layout.parameter_sizes == (2, 1, 1, 2, 0) and goalie.layout.ball_action == 3
+    assert goalie.layout.direction_indices == (6, 7, 8, 10) and field.layout.direction_indices == (5, 6, 7, 9)
+    team = pytest.importorskip(
+        "hfo2d.team", reason="hfo2d's own team game (another branch) is not merged yet"
+    )
+    # the same spaces as hfo2d's own team game
+    assert (
+        goalie.layout == team.GOALIE_FLAT_ACTION_LAYOUT and field.layout == team.DEFENDER_FLAT_ACTION_LAYOUT
+    )
 
 
 def test_action_decoding(stand_in_build: Path) -> None:
@@ -208,8 +215,11 @@ def test_action_decoding(stand_in_build: Path) -> None:
         (real.HFO_DASH, pytest.approx(40.0), 90.0),
     )
     tackle = np.zeros(11, dtype=np.float32)
-    tackle[3], tackle[10] = 1.0, 0.25
+    tackle[2], tackle[8] = 1.0, 0.25
     assert env._decode("defense_0", tackle) == ("TACKLE", (real.HFO_TACKLE, -90.0, 0.0))
+    kick = np.zeros(11, dtype=np.float32)
+    kick[3], kick[9], kick[10] = 1.0, 0.5, 1.0
+    assert env._decode("defense_0", kick) == ("KICK", (real.HFO_KICK, 50.0, 180.0))
     catch = np.zeros(11, dtype=np.float32)
     catch[4] = 1.0
     assert env._decode("defense_0", catch) == ("CATCH", (real.HFO_CATCH, 0.0, 0.0))
