@@ -290,6 +290,9 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
         hfo_dir: the HFO build (folder with ``bin/HFO``); None: ``$HFO_DIR``.
         feature_set: "paper", "hfo" or "high_level" (see the module docstring).
         reward: the offense's reward, one of hfo2d's REWARD_NAMES.
+        defense_reward: the defense's: only "sparse" (+1 when the episode ends in the defense's favour, -1 on a
+            goal, 0 otherwise), the name hfo2d's team game gives it.
+        action_format: only "flat" (the hybrid flat vector; hfo2d's team game also offers "parameterized").
         noise: False runs HFO ``--deterministic``.
         seed: HFO's ``--seed`` (start positions), an int in [0, 2**31 - 1]; None: the seed of the first
             ``reset(seed=...)``, else HFO's own.
@@ -314,6 +317,8 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
         hfo_dir: str | os.PathLike[str] | None = None,
         feature_set: str = "paper",
         reward: str = "shaped",
+        defense_reward: str = "sparse",
+        action_format: str = "flat",
         noise: bool = True,
         seed: int | None = None,
         frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
@@ -350,6 +355,15 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
             raise ValueError(f"unknown feature_set {feature_set!r}; choose one of {FEATURE_SETS}")
         if reward not in REWARD_NAMES:
             raise ValueError(f"unknown reward {reward!r}; choose one of {REWARD_NAMES}")
+        if defense_reward != "sparse":
+            raise ValueError(
+                f"defense_reward {defense_reward!r} is not available in the real HFO; only 'sparse' (+1 when the "
+                "defense wins, -1 on a goal)"
+            )
+        if action_format != "flat":
+            raise ValueError(
+                f"the real HFO's team game takes flat actions only, got action_format={action_format!r}"
+            )
         if feature_set == "high_level" and reward != "sparse" and offense_agents > 0:
             raise ValueError(
                 f"reward {reward!r} reads low-level features; with feature_set='high_level' use reward='sparse'"

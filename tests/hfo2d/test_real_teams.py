@@ -148,6 +148,8 @@ def _dash(space: HybridActionBox, power: float, direction: float) -> np.ndarray:
         ({"feature_set": "pixels"}, "unknown feature_set"),
         ({"feature_set": "high_level"}, "reward='sparse'"),
         ({"reward": "nope"}, "unknown reward"),
+        ({"defense_reward": "shaped"}, "only 'sparse'"),
+        ({"action_format": "parameterized"}, "flat actions only"),
         ({"frames_per_trial": 0}, "positive integer"),
         ({"port": 80}, "port must be"),
         ({"seed": -1}, "seed must be"),
