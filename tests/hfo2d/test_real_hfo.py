@@ -156,6 +156,17 @@ def test_hfo_command_line(fake_build: Path) -> None:
     assert "--defense-agents" not in real.RealHFOEnv(task="keeper", hfo_dir=fake_build).hfo_args()
 
 
+def test_bin_hfo_args_leaves_zero_counts_to_bin_hfo() -> None:
+    # bin/HFO's parseArgs defaults every team count to 0: a zero --offense-npcs / --defense-agents is left out
+    args = real.bin_hfo_args(offense_agents=2, defense_npcs=1, seed=None, log_dir=None)
+    assert "--offense-npcs" not in args and "--defense-agents" not in args
+    assert args[args.index("--defense-npcs") + 1] == "1" and args[args.index("--offense-agents") + 1] == "2"
+    args = real.bin_hfo_args(offense_agents=0, offense_npcs=3, defense_agents=2, defense_npcs=0, seed=5)
+    pairs = {args[i]: args[i + 1] for i in range(len(args) - 1) if not args[i + 1].startswith("--")}
+    assert pairs["--offense-npcs"] == "3" and pairs["--defense-agents"] == "2" and pairs["--seed"] == "5"
+    assert pairs["--trials"] == str(real.SESSION_TRIALS)
+
+
 # ---------------------------------------------------------------------------------------------------------------
 # Spaces and actions: hfo2d's
 # ---------------------------------------------------------------------------------------------------------------
