@@ -855,6 +855,19 @@ class _SessionEnv:
         """Steps taken in the current episode."""
         return self._steps
 
+    def _bin_hfo_args(self, seed: int | None, **teams: Any) -> list[str]:
+        """:func:`bin_hfo_args` for ``teams`` (its team counts and ``agent_play_goalie``) with this env's
+        options."""
+        return bin_hfo_args(
+            **teams,
+            frames_per_trial=self.frames_per_trial,
+            untouched_time=self.untouched_time,
+            fullstate=self.fullstate,
+            noise=self.noise,
+            seed=seed,
+            log_dir=self.log_dir,
+        )
+
     def _adopt_session(self, session: _Session) -> None:
         """``session`` (checked) becomes the running one; it is closed at interpreter exit at the latest."""
         self._session = session
@@ -1039,18 +1052,13 @@ class RealHFOEnv(_SessionEnv, gym.Env):
     # --- the HFO session ------------------------------------------------------------------------------------------
     def hfo_args(self, seed: int | None = None) -> list[str]:
         """bin/HFO's arguments for this env (less ``--port``), with ``seed`` as ``--seed`` when not None."""
-        return bin_hfo_args(
+        return self._bin_hfo_args(
+            seed,
             offense_agents=1,
             defense_npcs=DEFENSE_NPCS[self.task],
             # the still goalie: a defense agent playing goalie (unum 1)
             defense_agents=DEFENSE_AGENTS[self.task],
             agent_play_goalie=DEFENSE_AGENTS[self.task] > 0,
-            frames_per_trial=self.frames_per_trial,
-            untouched_time=self.untouched_time,
-            fullstate=self.fullstate,
-            noise=self.noise,
-            seed=seed,
-            log_dir=self.log_dir,
         )
 
     def _start_session(self) -> None:

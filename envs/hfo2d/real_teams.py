@@ -99,7 +99,6 @@ from hfo2d.real import (
     _is_int,
     _Session,
     _SessionEnv,
-    bin_hfo_args,
 )
 from hfo2d.reward import REWARD_NAMES, make_reward
 
@@ -417,18 +416,13 @@ class RealTeamParallelEnv(_SessionEnv, _ParallelBase):  # type: ignore[misc,vali
     # --- the HFO session --------------------------------------------------------------------------------------------
     def hfo_args(self, seed: int | None = None) -> list[str]:
         """bin/HFO's arguments for this game (less ``--port``), with ``seed`` as ``--seed`` when not None."""
-        return bin_hfo_args(
+        return self._bin_hfo_args(
+            seed,
             offense_agents=self.offense_agents,
             offense_npcs=self.offense_npcs,
             defense_agents=self.defense_agents,
             defense_npcs=self.defense_npcs,
             agent_play_goalie=self.agent_play_goalie,
-            frames_per_trial=self.frames_per_trial,
-            untouched_time=self.untouched_time,
-            fullstate=self.fullstate,
-            noise=self.noise,
-            seed=seed,
-            log_dir=self.log_dir,
         )
 
     def _start_session(self) -> None:
