@@ -3,10 +3,12 @@
 :class:`RealTeamParallelEnv` plays what ``bin/HFO --offense-agents N --defense-agents M --defense-npcs K`` plays:
 every learning agent is one of HFO's agent processes (a worker of :mod:`hfo2d.real`, since HFO's binding allows
 one ``connectToServer`` per process), the NPCs are agent2d's (the first defender is the goalie). It reuses
-:mod:`hfo2d.real`'s machinery: the build lookup, the launcher and its log, the workers and their wire format, the
-process groups and their clean-up, the start-up and end-of-episode timing (three NOOPs after an episode's last
-cycle, the last observation of an episode lost) and the recovery from SERVER_DOWN (the episode ends truncated for
-every agent with ``info["status"] == "SERVER_DOWN"`` and a warning; the next ``reset`` starts a new session).
+:mod:`hfo2d.real`'s machinery: the build lookup, bin/HFO's arguments (:func:`hfo2d.real.bin_hfo_args`), the
+launcher and its log, the workers and their wire format, the process groups and their clean-up, the env's side of
+a session (``hfo2d.real._SessionEnv``: its options, its start on ``reset`` and on a new seed), the start-up and
+end-of-episode timing (three NOOPs after an episode's last cycle, the last observation of an episode lost) and the
+recovery from SERVER_DOWN (the episode ends truncated for every agent with ``info["status"] == "SERVER_DOWN"`` and
+a warning; the next ``reset`` starts a new session).
 
 Agents are named ``"offense_0"``, ... then ``"defense_0"``, ..., in HFO's order: bin/Trainer.py launches the offense
 agents on their sorted uniform numbers (agent2d's offense order: one agent is 11, two are 7 and 11, ...), then the
