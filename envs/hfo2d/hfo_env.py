@@ -109,6 +109,7 @@ __all__ = [
     "TASKS",
     "TURN",
     "TURNOVER_TIME",
+    "check_render_mode",
 ]
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -297,10 +298,7 @@ class HFOEnv(gym.Env):
             raise ValueError(f"unknown feature_set {feature_set!r}; choose one of {FEATURE_SETS}")
         if reward not in REWARD_NAMES:
             raise ValueError(f"unknown reward {reward!r}; choose one of {REWARD_NAMES}")
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(
-                f"unknown render_mode {render_mode!r}; choose None or one of {self.metadata['render_modes']}"
-            )
+        check_render_mode(render_mode, self.metadata["render_modes"])
         if keeper_skill is not None:
             _check_keeper_skill(keeper_skill)
             if task != "keeper":
@@ -833,6 +831,12 @@ if (
     raise ImportError("HFO_FLAT_ACTION_LAYOUT changed: update HFOEnv._parse_flat_action's unrolled decode")
 
 _NOT_REAL = (bool, np.bool_, complex, np.complexfloating)  # numbers an action or a placement must not hold
+
+
+def check_render_mode(render_mode: str | None, render_modes: Sequence[str]) -> None:
+    """ValueError unless ``render_mode`` is None or one of the env's ``render_modes`` (its metadata's)."""
+    if render_mode is not None and render_mode not in render_modes:
+        raise ValueError(f"unknown render_mode {render_mode!r}; choose None or one of {render_modes}")
 
 
 def _observation(features: list[float]) -> np.ndarray:

@@ -269,6 +269,55 @@ def hfo_command(kind: int, power: float, direction: float) -> tuple[int, float, 
     return HFO_ACTION_CODES[kind], float(power), float(direction)
 
 
+def bin_hfo_args(
+    *,
+    offense_agents: int,
+    defense_npcs: int,
+    offense_npcs: int = 0,
+    defense_agents: int = 0,
+    agent_play_goalie: bool = False,
+    frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
+    untouched_time: int = DEFAULT_UNTOUCHED_TIME,
+    fullstate: bool = True,
+    noise: bool = True,
+    seed: int | None = None,
+    log_dir: Path | None = None,
+) -> list[str]:
+    """bin/HFO's arguments (less ``--port``) for a headless session of :data:`SESSION_TRIALS` episodes.
+
+    ``--offense-npcs`` and ``--defense-agents`` are written only when not 0, bin/HFO's default for every team count
+    (its parseArgs); ``noise=False`` is ``--deterministic``; ``log_dir`` None is ``--no-logging``.
+    """
+    args = ["--headless", "--offense-agents", str(offense_agents)]
+    if offense_npcs:
+        args += ["--offense-npcs", str(offense_npcs)]
+    if defense_agents:
+        args += ["--defense-agents", str(defense_agents)]
+    args += [
+        "--defense-npcs",
+        str(defense_npcs),
+        "--frames-per-trial",
+        str(frames_per_trial),
+        "--untouched-time",
+        str(untouched_time),
+        "--trials",
+        str(SESSION_TRIALS),
+    ]
+    if agent_play_goalie:
+        args.append("--agent-play-goalie")
+    if fullstate:
+        args.append("--fullstate")
+    if not noise:
+        args.append("--deterministic")
+    if seed is not None:
+        args += ["--seed", str(seed)]
+    if log_dir is None:
+        args.append("--no-logging")
+    else:
+        args += ["--log-dir", str(log_dir)]
+    return args
+
+
 # ---------------------------------------------------------------------------------------------------------------
 # The state behind HFO master's features (fullstate): positions for ``info``
 # ---------------------------------------------------------------------------------------------------------------
@@ -471,30 +520,14 @@ class _Session:
 
     # --- start-up -------------------------------------------------------------------------------------------------
     def _start(self, args: list[str], port: int | None, rng: np.random.Generator) -> None:
-        tries = 1 if port is not None else PORT_TRIES
-        for attempt in range(tries):
-            self.port = port if port is not None else _free_port(rng)
-            if self._start_server(args):
-                break
-            _kill_group(self.server)
-            if attempt == tries - 1:
-                raise HFOSessionError(f"rcssserver did not start on port {self.port}:\n{self.log_tail()}")
+        self._launch(args, port, rng)
         self.worker, self.sock = self._spawn_worker("--worker")
         if self.still_goalie:
             # bin/HFO asks for the defense agent once the offense agent has joined (its connectToServer then
             # waits for the game to start, which needs the goalie)
             self._wait_for_line(WAITING_FOR_GOALIE, "wait for the goalie agent")
             self.goalie, self.goalie_sock = self._spawn_worker("--goalie")
-        self._finalizer = weakref.finalize(
-            self,
-            _shutdown,
-            self._workers(),
-            self.server,
-            self.log,
-            self.log_path,
-            self._delete_log,
-            self.workdir,
-        )
+        self._arm_finalizer()
         self._handshake()
         if self.goalie_sock is not None:
             head = self._receive(
@@ -513,6 +546,30 @@ class _Session:
                     f"the still goalie joined as unum {goalie_unum} against {goalie_opponents} opponent(s); expected"
                     f" unum 1 (HFO's goalie) against 1:\n{self.log_tail()}"
                 )
+
+    def _launch(self, args: list[str], port: int | None, rng: np.random.Generator) -> int:
+        """Start bin/HFO on ``port``, else on up to PORT_TRIES free ports; the log's offset where the launch that
+        worked starts (HFOSessionError when none did)."""
+        for _ in range(1 if port is not None else PORT_TRIES):
+            self.port = port if port is not None else _free_port(rng)
+            offset = self.log.tell()
+            if self._start_server(args):
+                return offset
+            _kill_group(self.server)
+        raise HFOSessionError(f"rcssserver did not start on port {self.port}:\n{self.log_tail()}")
+
+    def _arm_finalizer(self) -> None:
+        """Stop the session's processes when it is garbage collected (once all its workers are started)."""
+        self._finalizer = weakref.finalize(
+            self,
+            _shutdown,
+            self._workers(),
+            self.server,
+            self.log,
+            self.log_path,
+            self._delete_log,
+            self.workdir,
+        )
 
     def _workers(self) -> list[tuple[subprocess.Popen[bytes] | None, socket.socket | None]]:
         return [(self.worker, self.sock), (self.goalie, self.goalie_sock)]
@@ -712,7 +769,163 @@ class _Session:
 # ---------------------------------------------------------------------------------------------------------------
 # The environment
 # ---------------------------------------------------------------------------------------------------------------
-class RealHFOEnv(gym.Env):
+def _is_int(value: Any) -> bool:
+    """An integer that is not a bool (numpy integers count)."""
+    return not isinstance(value, bool) and isinstance(value, (int, np.integer))
+
+
+class _SessionEnv:
+    """What the real-HFO envs share (:class:`RealHFOEnv`, :class:`hfo2d.real_teams.RealTeamParallelEnv`): their
+    session's options, its start on the first ``reset`` and on a new seed, its end, and the recovery when it goes
+    down.
+
+    A subclass calls :meth:`_set_session_options` in its constructor and provides ``_start_session`` (a new session,
+    adopted with :meth:`_adopt_session`, whose next episode's first observation it leaves in ``_pending``) and
+    ``_finish_episode`` (NOOPs until HFO ends the episode in progress: its end in ``_pending``, which stays None
+    when the session went down, the reason in ``_down_reason``).
+    """
+
+    _session: _Session | None
+    _pending: Any
+
+    def _set_session_options(
+        self,
+        *,
+        hfo_dir: str | os.PathLike[str] | None,
+        noise: bool,
+        seed: int | None,
+        frames_per_trial: int,
+        untouched_time: int,
+        port: int | None,
+        log_dir: str | os.PathLike[str] | None,
+        fullstate: bool,
+    ) -> None:
+        """Check and keep the session's options (ValueError names a bad one), find the build, clear the counters."""
+        for name, value in (("frames_per_trial", frames_per_trial), ("untouched_time", untouched_time)):
+            if not _is_int(value) or value < 1:
+                raise ValueError(f"{name} must be a positive integer, got {value!r}")
+        if seed is not None:
+            _check_seed(seed)
+        if port is not None and (not _is_int(port) or not 1024 <= port <= 65533):
+            raise ValueError(
+                f"port must be an integer in [1024, 65533] (the server uses port .. port + 2), got {port!r}"
+            )
+        for name, flag in (("noise", noise), ("fullstate", fullstate)):
+            if not isinstance(flag, (bool, np.bool_)):
+                raise ValueError(f"{name} must be True or False, got {flag!r}")
+        self.hfo_dir = find_hfo_dir(hfo_dir)
+        self.noise = bool(noise)
+        self.hfo_seed = None if seed is None else int(seed)
+        self.frames_per_trial = int(frames_per_trial)
+        self.untouched_time = int(untouched_time)
+        self.port = None if port is None else int(port)
+        self.log_dir = None if log_dir is None else Path(log_dir).expanduser().absolute()
+        self.fullstate = bool(fullstate)
+
+        self._session = None
+        self._session_seed = self.hfo_seed
+        self._port_rng = np.random.default_rng()
+        self._pending = None  # the next episode's first observation, once HFO has sent it
+        self._steps = 0
+        self._episode = 0
+        self._restarts = 0
+        self._status = IN_GAME
+        self._down_reason = "HFO reported SERVER_DOWN"
+        self._session_episodes = 0  # episodes started in the running session
+        self._frame_limit_steps = self.frames_per_trial - 1
+
+    def _start_session(self) -> None:
+        raise NotImplementedError
+
+    def _finish_episode(self) -> None:
+        raise NotImplementedError
+
+    @property
+    def session_port(self) -> int | None:
+        """The UDP port of the running session (None before the first reset)."""
+        return None if self._session is None else self._session.port
+
+    @property
+    def status(self) -> str:
+        """Status of the last step ("IN_GAME" after reset, "SERVER_DOWN" for a session that went down)."""
+        return self._status
+
+    @property
+    def steps(self) -> int:
+        """Steps taken in the current episode."""
+        return self._steps
+
+    def _bin_hfo_args(self, seed: int | None, **teams: Any) -> list[str]:
+        """:func:`bin_hfo_args` for ``teams`` (its team counts and ``agent_play_goalie``) with this env's
+        options."""
+        return bin_hfo_args(
+            **teams,
+            frames_per_trial=self.frames_per_trial,
+            untouched_time=self.untouched_time,
+            fullstate=self.fullstate,
+            noise=self.noise,
+            seed=seed,
+            log_dir=self.log_dir,
+        )
+
+    def _adopt_session(self, session: _Session) -> None:
+        """``session`` (checked) becomes the running one; it is closed at interpreter exit at the latest."""
+        self._session = session
+        self._session_episodes = 0
+        _LIVE_ENVS.add(self)
+
+    def _close_session(self) -> None:
+        if self._session is not None:
+            self._session.close()
+            self._session = None
+        self._pending = None
+
+    def _session_down(self) -> None:
+        tail = self._session.log_tail(8) if self._session is not None else ""
+        warnings.warn(
+            f"the HFO session went down in episode {self._episode} ({self._down_reason}); the next reset() starts "
+            "a new one." + (f" Last lines of its log:\n{tail}" if tail else ""),
+            RuntimeWarning,
+            stacklevel=3,
+        )
+        self._close_session()
+        self._restarts += 1
+        self._down_reason = "HFO reported SERVER_DOWN"
+
+    def _next_episode(self, seed: int | None) -> Any:
+        """The first observation of the next episode, which this starts: a new session on the first call, for a
+        ``seed`` other than the running session's, and after a session went down; else NOOPs to the end of the
+        episode in progress. The episode's counters are set."""
+        if seed is not None:
+            hfo_seed = int(seed) % (MAX_SEED + 1)  # rcssserver's random_seed is an int
+            if self._session is None or hfo_seed != self._session_seed:
+                self._session_seed = hfo_seed
+                self._close_session()
+        if self._session is None:
+            self._start_session()
+        elif self._pending is None:
+            self._finish_episode()
+            if self._pending is None:  # the session went down while the episode was being finished
+                self._session_down()
+                self._start_session()
+        assert self._pending is not None
+        pending, self._pending = self._pending, None
+        self._steps = 0
+        self._episode += 1
+        # Steps of an episode that HFO ends at frames_per_trial (see the module docstring); HFO's referee starts
+        # a session's first episode one cycle earlier relative to its first observation.
+        self._frame_limit_steps = self.frames_per_trial - (2 if self._session_episodes == 0 else 1)
+        self._session_episodes += 1
+        self._status = IN_GAME
+        return pending
+
+    def _stop(self) -> None:
+        """Close the session; the env is no longer closed at exit."""
+        self._close_session()
+        _LIVE_ENVS.discard(self)
+
+
+class RealHFOEnv(_SessionEnv, gym.Env):
     """HFO's 1v0 / 1v1 task in the real rcssserver, with hfo2d's observations, actions and rewards.
 
     Tasks (``task``): ``"empty_goal"`` (``HFO/RealEmptyGoal-v0``), ``"keeper"`` (``HFO/RealKeeper-v0``: HFO's
@@ -794,33 +1007,20 @@ class RealHFOEnv(gym.Env):
             raise ValueError(
                 f"RealHFOEnv does not render (render_mode={render_mode!r}); use HFO's own monitor"
             )
-        for name, value in (("frames_per_trial", frames_per_trial), ("untouched_time", untouched_time)):
-            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
-                raise ValueError(f"{name} must be a positive integer, got {value!r}")
-        if seed is not None:
-            _check_seed(seed)
-        if port is not None and (
-            isinstance(port, bool) or not isinstance(port, (int, np.integer)) or not 1024 <= port <= 65533
-        ):
-            raise ValueError(
-                f"port must be an integer in [1024, 65533] (the server uses port .. port + 2), got {port!r}"
-            )
-        for name, flag in (("noise", noise), ("fullstate", fullstate)):
-            if not isinstance(flag, (bool, np.bool_)):
-                raise ValueError(f"{name} must be True or False, got {flag!r}")
-        self.hfo_dir = find_hfo_dir(hfo_dir)
-
+        self._set_session_options(
+            hfo_dir=hfo_dir,
+            noise=noise,
+            seed=seed,
+            frames_per_trial=frames_per_trial,
+            untouched_time=untouched_time,
+            port=port,
+            log_dir=log_dir,
+            fullstate=fullstate,
+        )
         self.task = task
         self.render_mode = render_mode
         self.action_format = action_format
         self.reward_name = reward
-        self.noise = bool(noise)
-        self.hfo_seed = None if seed is None else int(seed)
-        self.frames_per_trial = int(frames_per_trial)
-        self.untouched_time = int(untouched_time)
-        self.port = None if port is None else int(port)
-        self.log_dir = None if log_dir is None else Path(log_dir).expanduser().absolute()
-        self.fullstate = bool(fullstate)
         self.has_keeper = task != "empty_goal"
         self.num_opponents = DEFENSE_NPCS[task] + DEFENSE_AGENTS[task]
         self._reward_fn = make_reward(reward)
@@ -843,57 +1043,23 @@ class RealHFOEnv(gym.Env):
             )
             self.action_space = spaces.Tuple((spaces.Discrete(3), power_direction, turn, power_direction))
 
-        self._session: _Session | None = None
-        self._session_seed = self.hfo_seed
-        self._port_rng = np.random.default_rng()
-        # the next episode's first (HFO state, side on ball, unum on ball), once HFO has sent it
-        self._pending: tuple[list[float], int, int] | None = None
+        # _pending (set above): the next episode's first (HFO state, side on ball, unum on ball)
         self._raw: list[float] = []  # HFO master's vector of the current observation
         self._features: list[float] = []
         self._on_ball: tuple[str, int] = ("U", -1)
-        self._steps = 0
-        self._episode = 0
-        self._restarts = 0
-        self._status = IN_GAME
         self._needs_reset = True
-        self._down_reason = "HFO reported SERVER_DOWN"
-        self._session_episodes = 0  # episodes started in the running session
-        self._frame_limit_steps = self.frames_per_trial - 1
 
     # --- the HFO session ------------------------------------------------------------------------------------------
     def hfo_args(self, seed: int | None = None) -> list[str]:
         """bin/HFO's arguments for this env (less ``--port``), with ``seed`` as ``--seed`` when not None."""
-        args = [
-            "--headless",
-            "--offense-agents",
-            "1",
-            "--defense-npcs",
-            str(DEFENSE_NPCS[self.task]),
-            "--frames-per-trial",
-            str(self.frames_per_trial),
-            "--untouched-time",
-            str(self.untouched_time),
-            "--trials",
-            str(SESSION_TRIALS),
-        ]
-        if DEFENSE_AGENTS[self.task]:  # the still goalie: a defense agent playing goalie (unum 1)
-            args += ["--defense-agents", str(DEFENSE_AGENTS[self.task]), "--agent-play-goalie"]
-        if self.fullstate:
-            args.append("--fullstate")
-        if not self.noise:
-            args.append("--deterministic")
-        if seed is not None:
-            args += ["--seed", str(seed)]
-        if self.log_dir is None:
-            args.append("--no-logging")
-        else:
-            args += ["--log-dir", str(self.log_dir)]
-        return args
-
-    @property
-    def session_port(self) -> int | None:
-        """The UDP port of the running session (None before the first reset)."""
-        return None if self._session is None else self._session.port
+        return self._bin_hfo_args(
+            seed,
+            offense_agents=1,
+            defense_npcs=DEFENSE_NPCS[self.task],
+            # the still goalie: a defense agent playing goalie (unum 1)
+            defense_agents=DEFENSE_AGENTS[self.task],
+            agent_play_goalie=DEFENSE_AGENTS[self.task] > 0,
+        )
 
     def _start_session(self) -> None:
         self._close_session()
@@ -912,9 +1078,7 @@ class RealHFOEnv(gym.Env):
                 f"HFO gave {session.state_size} features for {session.num_opponents} opponent(s); expected {expected}"
                 f" for {self.num_opponents} (is this HFO master, b8b2a1d or later?)"
             )
-        self._session = session
-        self._session_episodes = 0
-        _LIVE_ENVS.add(self)
+        self._adopt_session(session)
         # The first observation precedes the placement; play the NOOPs HFO plays between later episodes.
         pending: tuple[list[float], int, int] | None = None
         for _ in range(START_NOOPS):
@@ -932,25 +1096,6 @@ class RealHFOEnv(gym.Env):
             self._down_reason = str(error)
             return HFO_SERVER_DOWN, 0, -1
 
-    def _close_session(self) -> None:
-        if self._session is not None:
-            self._session.close()
-            self._session = None
-        self._pending = None
-
-    def _session_down(self) -> None:
-        reason = self._down_reason
-        tail = self._session.log_tail(8) if self._session is not None else ""
-        warnings.warn(
-            f"the HFO session went down in episode {self._episode} ({reason}); the next reset() starts a new one."
-            + (f" Last lines of its log:\n{tail}" if tail else ""),
-            RuntimeWarning,
-            stacklevel=3,
-        )
-        self._close_session()
-        self._restarts += 1
-        self._down_reason = "HFO reported SERVER_DOWN"
-
     # --- Gymnasium API ----------------------------------------------------------------------------------------------
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
@@ -961,29 +1106,8 @@ class RealHFOEnv(gym.Env):
             raise ValueError(
                 "RealHFOEnv cannot place players by hand: HFO's referee places them (no reset options)"
             )
-        if seed is not None:
-            hfo_seed = int(seed) % (MAX_SEED + 1)  # rcssserver's random_seed is an int
-            if self._session is None or hfo_seed != self._session_seed:
-                self._session_seed = hfo_seed
-                self._close_session()
-        if self._session is None:
-            self._start_session()
-        elif self._pending is None:
-            self._finish_episode()
-            if self._pending is None:  # the session went down while the episode was being finished
-                self._session_down()
-                self._start_session()
-        assert self._pending is not None
-        raw, side, unum = self._pending
-        self._pending = None
+        raw, side, unum = self._next_episode(seed)
         self._set_current(raw, side, unum)
-        self._steps = 0
-        self._episode += 1
-        # Steps of an episode that HFO ends at frames_per_trial (see the module docstring); HFO's referee starts
-        # a session's first episode one cycle earlier relative to its first observation.
-        self._frame_limit_steps = self.frames_per_trial - (2 if self._session_episodes == 0 else 1)
-        self._session_episodes += 1
-        self._status = IN_GAME
         self._needs_reset = False
         self._reward_fn.reset(self._features)
         info = self._info()
@@ -1050,21 +1174,10 @@ class RealHFOEnv(gym.Env):
 
     def close(self) -> None:
         """Stop the HFO session (server, trainer, NPCs, worker)."""
-        self._close_session()
-        _LIVE_ENVS.discard(self)
+        self._stop()
         self._needs_reset = True
 
     # --- internals ------------------------------------------------------------------------------------------------
-    @property
-    def status(self) -> str:
-        """Status of the last step ("IN_GAME" after reset)."""
-        return self._status
-
-    @property
-    def steps(self) -> int:
-        """Steps taken in the current episode."""
-        return self._steps
-
     def _set_current(self, raw: list[float], side: int, unum: int) -> None:
         self._raw = raw
         self._features = paper_from_hfo(raw, 0, self.num_opponents)
@@ -1088,8 +1201,9 @@ def _check_seed(seed: Any) -> None:
         raise ValueError(f"seed must be an integer in [0, {MAX_SEED}] (HFO's --seed), got {seed!r}")
 
 
-#: Envs with a running session, closed at interpreter exit (their sessions' finalizers would also run).
-_LIVE_ENVS: weakref.WeakSet[RealHFOEnv] = weakref.WeakSet()
+#: Envs with a running session (RealHFOEnv's and hfo2d.real_teams'), closed at interpreter exit (their sessions'
+#: finalizers would also run).
+_LIVE_ENVS: weakref.WeakSet[_SessionEnv] = weakref.WeakSet()
 
 
 @atexit.register

@@ -3,10 +3,12 @@
 :class:`RealTeamParallelEnv` plays what ``bin/HFO --offense-agents N --defense-agents M --defense-npcs K`` plays:
 every learning agent is one of HFO's agent processes (a worker of :mod:`hfo2d.real`, since HFO's binding allows
 one ``connectToServer`` per process), the NPCs are agent2d's (the first defender is the goalie). It reuses
-:mod:`hfo2d.real`'s machinery: the build lookup, the launcher and its log, the workers and their wire format, the
-process groups and their clean-up, the start-up and end-of-episode timing (three NOOPs after an episode's last
-cycle, the last observation of an episode lost) and the recovery from SERVER_DOWN (the episode ends truncated for
-every agent with ``info["status"] == "SERVER_DOWN"`` and a warning; the next ``reset`` starts a new session).
+:mod:`hfo2d.real`'s machinery: the build lookup, bin/HFO's arguments (:func:`hfo2d.real.bin_hfo_args`), the
+launcher and its log, the workers and their wire format, the process groups and their clean-up, the env's side of
+a session (``hfo2d.real._SessionEnv``: its options, its start on ``reset`` and on a new seed), the start-up and
+end-of-episode timing (three NOOPs after an episode's last cycle, the last observation of an episode lost) and the
+recovery from SERVER_DOWN (the episode ends truncated for every agent with ``info["status"] == "SERVER_DOWN"`` and
+a warning; the next ``reset`` starts a new session).
 
 Agents are named ``"offense_0"``, ... then ``"defense_0"``, ..., in HFO's order: bin/Trainer.py launches the offense
 agents on their sorted uniform numbers (agent2d's offense order: one agent is 11, two are 7 and 11, ...), then the
@@ -38,14 +40,10 @@ empty until ``reset``. Run the servers in a loopback-only network namespace (``t
 
 from __future__ import annotations
 
-import atexit
-import contextlib
 import os
 import re
 import socket
 import subprocess
-import warnings
-import weakref
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -91,10 +89,7 @@ from hfo2d.real import (
     HFO_TACKLE,
     HFO_TEAM_NAME,
     HFO_TURN,
-    MAX_SEED,
-    PORT_TRIES,
     SERVER_DOWN,
-    SESSION_TRIALS,
     SIDE_LETTERS,
     START_NOOPS,
     START_TIMEOUT_S,
@@ -103,12 +98,9 @@ from hfo2d.real import (
     WAITING_FOR_AGENT,
     HFOSessionError,
     SessionDown,
-    _check_seed,
-    _free_port,
-    _kill_group,
+    _is_int,
     _Session,
-    _shutdown,
-    find_hfo_dir,
+    _SessionEnv,
 )
 from hfo2d.reward import REWARD_NAMES, make_reward
 
@@ -201,16 +193,7 @@ class _TeamSession(_Session):
         return list(zip(self.workers, self.socks, strict=True))
 
     def _start(self, args: list[str], port: int | None, rng: np.random.Generator) -> None:
-        tries = 1 if port is not None else PORT_TRIES
-        offset = 0
-        for attempt in range(tries):
-            self.port = port if port is not None else _free_port(rng)
-            offset = self.log.tell()
-            if self._start_server(args):
-                break
-            _kill_group(self.server)
-            if attempt == tries - 1:
-                raise HFOSessionError(f"rcssserver did not start on port {self.port}:\n{self.log_tail()}")
+        offset = self._launch(args, port, rng)
         # bin/Trainer.py waits for each agent in turn (offense, then defense), printing a line for each; an
         # agent's connectToServer returns once the game starts, so every worker is started before any handshake.
         for role in self.roles:
@@ -224,16 +207,7 @@ class _TeamSession(_Session):
             worker, sock = self._spawn_worker("--worker", (role.team, feature_set, "1" if goalie else "0"))
             self.workers.append(worker)
             self.socks.append(sock)
-        self._finalizer = weakref.finalize(
-            self,
-            _shutdown,
-            self._workers(),
-            self.server,
-            self.log,
-            self.log_path,
-            self._delete_log,
-            self.workdir,
-        )
+        self._arm_finalizer()
         for k, role in enumerate(self.roles):
             head = self._receive_from(k, _HANDSHAKE_HEAD.size, START_TIMEOUT_S, f"{role.name}'s connection")
             size, teammates, opponents, unum = _HANDSHAKE_HEAD.unpack(head)
@@ -274,11 +248,7 @@ class _TeamSession(_Session):
         self.socks = [None] * len(self.socks)
 
 
-def _is_int(value: Any) -> bool:
-    return not isinstance(value, bool) and isinstance(value, (int, np.integer))
-
-
-class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
+class RealTeamParallelEnv(_SessionEnv, _ParallelBase):  # type: ignore[misc,valid-type]
     """HFO's team game in a real HFO build, as a PettingZoo ParallelEnv (see the module docstring).
 
     Args:
@@ -305,6 +275,8 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
     """
 
     metadata = {"name": "hfo_real_teams_v0", "render_modes": [], "is_parallelizable": True}
+    _session: _TeamSession | None
+    _pending: list[tuple[list[float], int, int]] | None
 
     def __init__(
         self,
@@ -370,24 +342,18 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
             )
         if render_mode is not None:
             raise ValueError(f"RealTeamParallelEnv does not render (render_mode={render_mode!r})")
-        for name, value in (("frames_per_trial", frames_per_trial), ("untouched_time", untouched_time)):
-            if not _is_int(value) or value < 1:
-                raise ValueError(f"{name} must be a positive integer, got {value!r}")
-        if seed is not None:
-            _check_seed(seed)
-        if port is not None and (not _is_int(port) or not 1024 <= port <= 65533):
-            raise ValueError(
-                f"port must be an integer in [1024, 65533] (the server uses port .. port + 2), got {port!r}"
-            )
-        for name, flag in (
-            ("noise", noise),
-            ("fullstate", fullstate),
-            ("agent_play_goalie", agent_play_goalie),
-        ):
-            if not isinstance(flag, (bool, np.bool_)):
-                raise ValueError(f"{name} must be True or False, got {flag!r}")
-        self.hfo_dir = find_hfo_dir(hfo_dir)
-
+        if not isinstance(agent_play_goalie, (bool, np.bool_)):
+            raise ValueError(f"agent_play_goalie must be True or False, got {agent_play_goalie!r}")
+        self._set_session_options(
+            hfo_dir=hfo_dir,
+            noise=noise,
+            seed=seed,
+            frames_per_trial=frames_per_trial,
+            untouched_time=untouched_time,
+            port=port,
+            log_dir=log_dir,
+            fullstate=fullstate,
+        )
         self.offense_agents = int(offense_agents)
         self.defense_agents = int(defense_agents)
         self.defense_npcs = int(defense_npcs)
@@ -395,13 +361,6 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
         self.agent_play_goalie = bool(agent_play_goalie)
         self.feature_set = feature_set
         self.reward_name = reward
-        self.noise = bool(noise)
-        self.hfo_seed = None if seed is None else int(seed)
-        self.frames_per_trial = int(frames_per_trial)
-        self.untouched_time = int(untouched_time)
-        self.port = None if port is None else int(port)
-        self.log_dir = None if log_dir is None else Path(log_dir).expanduser().absolute()
-        self.fullstate = bool(fullstate)
         self.render_mode = render_mode
 
         num_offense = self.offense_agents + self.offense_npcs
@@ -434,21 +393,10 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
         }
         self._rewards = {role.name: make_reward(reward) for role in roles if role.offense}
 
-        self._session: _TeamSession | None = None
-        self._session_seed = self.hfo_seed
-        self._port_rng = np.random.default_rng()
-        self._pending: list[tuple[list[float], int, int]] | None = None
         self._raw: dict[str, list[float]] = {}
         self._obs: dict[str, list[float]] = {}
         self._paper: dict[str, list[float]] = {}
         self._on_ball: tuple[str, int] = ("U", -1)
-        self._steps = 0
-        self._episode = 0
-        self._restarts = 0
-        self._session_episodes = 0
-        self._frame_limit_steps = self.frames_per_trial - 1
-        self._status = IN_GAME
-        self._down_reason = "HFO reported SERVER_DOWN"
 
     # --- spaces ---------------------------------------------------------------------------------------------------
     def _make_observation_space(self, teammates: int, opponents: int) -> spaces.Box:
@@ -470,41 +418,14 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
     # --- the HFO session --------------------------------------------------------------------------------------------
     def hfo_args(self, seed: int | None = None) -> list[str]:
         """bin/HFO's arguments for this game (less ``--port``), with ``seed`` as ``--seed`` when not None."""
-        args = [
-            "--headless",
-            "--offense-agents",
-            str(self.offense_agents),
-            "--offense-npcs",
-            str(self.offense_npcs),
-            "--defense-agents",
-            str(self.defense_agents),
-            "--defense-npcs",
-            str(self.defense_npcs),
-            "--frames-per-trial",
-            str(self.frames_per_trial),
-            "--untouched-time",
-            str(self.untouched_time),
-            "--trials",
-            str(SESSION_TRIALS),
-        ]
-        if self.agent_play_goalie:
-            args.append("--agent-play-goalie")
-        if self.fullstate:
-            args.append("--fullstate")
-        if not self.noise:
-            args.append("--deterministic")
-        if seed is not None:
-            args += ["--seed", str(seed)]
-        if self.log_dir is None:
-            args.append("--no-logging")
-        else:
-            args += ["--log-dir", str(self.log_dir)]
-        return args
-
-    @property
-    def session_port(self) -> int | None:
-        """The UDP port of the running session (None before the first reset)."""
-        return None if self._session is None else self._session.port
+        return self._bin_hfo_args(
+            seed,
+            offense_agents=self.offense_agents,
+            offense_npcs=self.offense_npcs,
+            defense_agents=self.defense_agents,
+            defense_npcs=self.defense_npcs,
+            agent_play_goalie=self.agent_play_goalie,
+        )
 
     def _start_session(self) -> None:
         self._close_session()
@@ -531,9 +452,7 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
                     f"HFO gave {role.name} {size} features for {teammates} teammate(s) and {opponents} opponent(s)"
                     f" (goalie {goalie}); expected {expected_size} for {expected_slots} (goalie {role.goalie})"
                 )
-        self._session = session
-        self._session_episodes = 0
-        _LIVE_ENVS.add(self)
+        self._adopt_session(session)
         # the first observation precedes the placement: play the NOOPs HFO plays between later episodes
         noops = [(HFO_NOOP, 0.0, 0.0)] * len(self.roles)
         for _ in range(START_NOOPS):
@@ -573,24 +492,6 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
             return None
         return replies
 
-    def _close_session(self) -> None:
-        if self._session is not None:
-            self._session.close()
-            self._session = None
-        self._pending = None
-
-    def _session_down(self) -> None:
-        tail = self._session.log_tail(8) if self._session is not None else ""
-        warnings.warn(
-            f"the HFO session went down in episode {self._episode} ({self._down_reason}); the next reset() starts "
-            "a new one." + (f" Last lines of its log:\n{tail}" if tail else ""),
-            RuntimeWarning,
-            stacklevel=3,
-        )
-        self._close_session()
-        self._restarts += 1
-        self._down_reason = "HFO reported SERVER_DOWN"
-
     # --- PettingZoo API ---------------------------------------------------------------------------------------------
     def reset(
         self, seed: int | None = None, options: Mapping[str, Any] | None = None
@@ -606,29 +507,9 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
                 raise ValueError(
                     f"the real HFO places the players itself; unsupported reset options {placed}"
                 )
-        if seed is not None:
-            if not _is_int(seed):
-                raise ValueError(f"seed must be an integer, got {seed!r}")
-            hfo_seed = int(seed) % (MAX_SEED + 1)  # rcssserver's random_seed is an int
-            if self._session is None or hfo_seed != self._session_seed:
-                self._session_seed = hfo_seed
-                self._close_session()
-        if self._session is None:
-            self._start_session()
-        elif self._pending is None:
-            self._finish_episode()
-            if self._pending is None:  # the session went down while the episode was being finished
-                self._session_down()
-                self._start_session()
-        assert self._pending is not None
-        pending, self._pending = self._pending, None
-        self._set_current(pending)
-        self._steps = 0
-        self._episode += 1
-        # steps of an episode HFO ends at frames_per_trial (hfo2d.real's docstring: a session's first is shorter)
-        self._frame_limit_steps = self.frames_per_trial - (2 if self._session_episodes == 0 else 1)
-        self._session_episodes += 1
-        self._status = IN_GAME
+        if seed is not None and not _is_int(seed):
+            raise ValueError(f"seed must be an integer, got {seed!r}")
+        self._set_current(self._next_episode(seed))
         self.agents = list(self.possible_agents)
         for name, reward_fn in self._rewards.items():
             reward_fn.reset(self._paper.get(name))
@@ -730,8 +611,7 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
 
     def close(self) -> None:
         """Stop the HFO session (server, trainer, NPCs, workers)."""
-        self._close_session()
-        _LIVE_ENVS.discard(self)
+        self._stop()
         self.agents = []
 
     def state(self) -> np.ndarray:
@@ -739,16 +619,6 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
         raise NotImplementedError("the real HFO exposes no global state; use each agent's observation")
 
     # --- internals ------------------------------------------------------------------------------------------------
-    @property
-    def status(self) -> str:
-        """Status of the last step ("IN_GAME" after reset, "SERVER_DOWN" for a session that went down)."""
-        return self._status
-
-    @property
-    def steps(self) -> int:
-        """Steps taken in the current episode."""
-        return self._steps
-
     def hfo_vector(self, agent: str) -> np.ndarray:
         """``agent``'s vector as HFO sent it for the current observation (low-level master or high-level)."""
         return np.asarray(self._raw[agent], dtype=np.float32)
@@ -802,14 +672,3 @@ class RealTeamParallelEnv(_ParallelBase):  # type: ignore[misc,valid-type]
         if paper is not None:
             info["kickable"] = paper[KICKABLE] > 0.0
         return info
-
-
-#: Envs with a running session, closed at interpreter exit.
-_LIVE_ENVS: weakref.WeakSet[RealTeamParallelEnv] = weakref.WeakSet()
-
-
-@atexit.register
-def _close_live_envs() -> None:
-    for env in list(_LIVE_ENVS):
-        with contextlib.suppress(Exception):
-            env.close()

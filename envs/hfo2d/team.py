@@ -96,6 +96,7 @@ from hfo2d.features import (
     low_level_feature_list,
     num_features,
 )
+from hfo2d.hfo_env import _as_float_list, check_render_mode  # the single-agent env's checks, shared
 from hfo2d.npc import DefenseNPC
 from hfo2d.physics import BallState, PlayerState, ServerParams, World, normalize_deg
 from hfo2d.protocol import (
@@ -965,25 +966,6 @@ def _defender_maker() -> Any:
     return lambda unum, params, rng: Agent2dDefender(params, rng, unum=unum)
 
 
-def _as_float_list(raw: Any, what: str) -> list[float]:
-    """``raw`` as a flat list of Python floats (1-D real numbers); ValueError naming ``what`` otherwise."""
-    if isinstance(raw, np.ndarray):
-        not_real = raw.dtype.kind in "bc"
-    else:
-        not_real = isinstance(raw, (list, tuple)) and any(
-            isinstance(value, (bool, np.bool_, complex, np.complexfloating)) for value in raw
-        )
-    if not_real:
-        raise ValueError(f"{what} must be real numbers, not booleans or complex numbers, got {raw!r}")
-    try:
-        array = np.asarray(raw, dtype=np.float64)
-    except (TypeError, ValueError) as error:
-        raise ValueError(f"{what} must be numbers, got {raw!r}") from error
-    if array.ndim != 1:
-        raise ValueError(f"{what} must be 1-D, got shape {array.shape}")
-    return array.tolist()
-
-
 class HalfFieldOffenseEnv(gym.Env):
     """HFO's Half Field Offense with bin/HFO's team sizes, one learning agent (``HFO/HalfFieldOffense-v0``).
 
@@ -1066,10 +1048,7 @@ class HalfFieldOffenseEnv(gym.Env):
         render_mode: str | None = None,
         **game_kwargs: Any,
     ) -> None:
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(
-                f"unknown render_mode {render_mode!r}; choose None or one of {self.metadata['render_modes']}"
-            )
+        check_render_mode(render_mode, self.metadata["render_modes"])
         learning = (offense_agents, defense_agents)
         if learning not in ((1, 0), (0, 1)):
             raise ValueError(

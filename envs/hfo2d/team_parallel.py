@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 from gymnasium import spaces
 
+from hfo2d.hfo_env import check_render_mode
 from hfo2d.team import TeamGame
 
 try:
@@ -62,10 +63,7 @@ class HFOTeamParallelEnv(ParallelEnv):
         render_mode: str | None = None,
         **game_kwargs: Any,
     ) -> None:
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            raise ValueError(
-                f"unknown render_mode {render_mode!r}; choose None or one of {self.metadata['render_modes']}"
-            )
+        check_render_mode(render_mode, self.metadata["render_modes"])
         self.game = TeamGame(offense_agents, defense_agents, defense_npcs, **game_kwargs)
         if not self.game.agent_names:
             raise ValueError("a ParallelEnv needs a learning agent: offense_agents + defense_agents >= 1")

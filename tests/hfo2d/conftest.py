@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -40,3 +41,56 @@ def load_benchmark_script(name: str) -> ModuleType:
 def benchmark_script() -> Callable[[str], ModuleType]:
     """:func:`load_benchmark_script`, for tests of the benchmark scripts' helpers."""
     return load_benchmark_script
+
+
+# --- the real HFO (hfo2d.real, hfo2d.real_teams) ------------------------------------------------------------------
+@pytest.fixture
+def real_hfo_build() -> Path:
+    """The HFO build in ``$HFO_DIR``, for tests that start real servers. They skip without one, and outside a
+    loopback-only network namespace (``tools/real_hfo/loopback.sh``) unless ``HFO_TESTS=1``."""
+    from hfo2d import real
+
+    build = None
+    candidate = os.environ.get(real.HFO_DIR_ENV)
+    if candidate:
+        try:
+            build = real.find_hfo_dir(candidate)
+        except FileNotFoundError:
+            build = None
+    if build is None or not (os.environ.get("HFO_TESTS") == "1" or real.in_loopback_namespace()):
+        pytest.skip(
+            "needs an HFO build ($HFO_DIR) and a loopback-only network namespace (tools/real_hfo/loopback.sh) or "
+            "HFO_TESTS=1"
+        )
+    return build
+
+
+@pytest.fixture
+def make_stand_in_build(tmp_path: Path) -> Callable[[str, str], Path]:
+    """Writes a stand-in HFO build into ``tmp_path``: ``bin/HFO`` is the given launcher script, ``hfo`` the given
+    Python binding (with an empty ``libhfo_c.so``, so that :func:`hfo2d.real.find_hfo_dir` accepts it)."""
+
+    def make(launcher: str, binding: str) -> Path:
+        (tmp_path / "bin").mkdir()
+        (tmp_path / "hfo").mkdir()
+        (tmp_path / "bin" / "HFO").write_text(launcher)
+        (tmp_path / "hfo" / "__init__.py").write_text("from .hfo import *\n")
+        (tmp_path / "hfo" / "hfo.py").write_text(binding)
+        (tmp_path / "hfo" / "libhfo_c.so").write_text("")
+        return tmp_path
+
+    return make
+
+
+def _process_group_gone(pid: int) -> bool:
+    try:
+        os.killpg(pid, 0)
+    except ProcessLookupError:
+        return True
+    return False
+
+
+@pytest.fixture(scope="session")
+def group_gone() -> Callable[[int], bool]:
+    """Whether the process group led by a pid has no process left (a session's clean-up killed it)."""
+    return _process_group_gone

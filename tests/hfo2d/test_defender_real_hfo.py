@@ -5,7 +5,6 @@ tests/hfo2d/test_defender_real_hfo.py``); skips otherwise."""
 
 from __future__ import annotations
 
-import os
 from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
@@ -15,33 +14,17 @@ import pytest
 from hfo2d import real
 
 
-def _build() -> Path | None:
-    candidate = os.environ.get(real.HFO_DIR_ENV)
-    if not candidate:
-        return None
-    try:
-        return real.find_hfo_dir(candidate)
-    except FileNotFoundError:
-        return None
-
-
-BUILD = _build()
-needs_real_hfo = pytest.mark.skipif(
-    BUILD is None or not real.in_loopback_namespace(),
-    reason="needs an HFO build ($HFO_DIR) and a loopback-only network namespace (tools/real_hfo/loopback.sh)",
-)
-
-
-@needs_real_hfo
 def test_real_defenders_commands_are_reproduced(
-    tmp_path: Path, benchmark_script: Callable[[str], ModuleType]
+    tmp_path: Path, benchmark_script: Callable[[str], ModuleType], real_hfo_build: Path
 ) -> None:
+    if not real.in_loopback_namespace():  # its fixed port must be free: HFO_TESTS=1 outside one is not enough
+        pytest.skip("needs a loopback-only network namespace (tools/real_hfo/loopback.sh)")
     fidelity = benchmark_script("defender_fidelity")
     fidelity.main(
         [
             "run",
             "--hfo-dir",
-            str(BUILD),
+            str(real_hfo_build),
             "--work-dir",
             str(tmp_path),
             "--defense-npcs",

@@ -17,6 +17,7 @@ import subprocess
 import sys
 import time
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -154,6 +155,17 @@ def test_hfo_command_line(fake_build: Path) -> None:
     )
     assert pairs["--offense-agents"] == "1" and "--fullstate" in args
     assert "--defense-agents" not in real.RealHFOEnv(task="keeper", hfo_dir=fake_build).hfo_args()
+
+
+def test_bin_hfo_args_leaves_zero_counts_to_bin_hfo() -> None:
+    # bin/HFO's parseArgs defaults every team count to 0: a zero --offense-npcs / --defense-agents is left out
+    args = real.bin_hfo_args(offense_agents=2, defense_npcs=1, seed=None, log_dir=None)
+    assert "--offense-npcs" not in args and "--defense-agents" not in args
+    assert args[args.index("--defense-npcs") + 1] == "1" and args[args.index("--offense-agents") + 1] == "2"
+    args = real.bin_hfo_args(offense_agents=0, offense_npcs=3, defense_agents=2, defense_npcs=0, seed=5)
+    pairs = {args[i]: args[i + 1] for i in range(len(args) - 1) if not args[i + 1].startswith("--")}
+    assert pairs["--offense-npcs"] == "3" and pairs["--defense-agents"] == "2" and pairs["--seed"] == "5"
+    assert pairs["--trials"] == str(real.SESSION_TRIALS)
 
 
 # ---------------------------------------------------------------------------------------------------------------
@@ -663,14 +675,8 @@ class HFOEnvironment:
 
 
 @pytest.fixture
-def stand_in_build(tmp_path: Path) -> Path:
-    (tmp_path / "bin").mkdir()
-    (tmp_path / "hfo").mkdir()
-    (tmp_path / "bin" / "HFO").write_text(FAKE_LAUNCHER)
-    (tmp_path / "hfo" / "__init__.py").write_text("from .hfo import *\n")
-    (tmp_path / "hfo" / "hfo.py").write_text(FAKE_BINDING)
-    (tmp_path / "hfo" / "libhfo_c.so").write_text("")
-    return tmp_path
+def stand_in_build(make_stand_in_build: Callable[[str, str], Path]) -> Path:
+    return make_stand_in_build(FAKE_LAUNCHER, FAKE_BINDING)
 
 
 def _flat(kind: int, power: float, direction: float) -> np.ndarray:
@@ -683,15 +689,7 @@ def _flat(kind: int, power: float, direction: float) -> np.ndarray:
     return action
 
 
-def _group_gone(pid: int) -> bool:
-    try:
-        os.killpg(pid, 0)
-    except ProcessLookupError:
-        return True
-    return False
-
-
-def test_session_processes_and_wire(stand_in_build: Path) -> None:
+def test_session_processes_and_wire(stand_in_build: Path, group_gone: Callable[[int], bool]) -> None:
     env = real.RealHFOEnv(hfo_dir=stand_in_build, seed=9)
     obs, info = env.reset()
     session = env._session
@@ -723,16 +721,16 @@ def test_session_processes_and_wire(stand_in_build: Path) -> None:
         *_, truncated, info = env.step(_flat(TURN, 0.0, -180.0))
     assert truncated and info["status"] == "SERVER_DOWN"
     assert server.poll() is not None and worker.poll() is not None
-    assert _group_gone(server.pid) and _group_gone(worker.pid)
+    assert group_gone(server.pid) and group_gone(worker.pid)
     obs, info = env.reset()
     assert info["session_restarts"] == 1
     server, worker = env._session.server, env._session.worker
     env.close()
     assert server.poll() is not None and worker.poll() is not None
-    assert _group_gone(server.pid) and _group_gone(worker.pid)
+    assert group_gone(server.pid) and group_gone(worker.pid)
 
 
-def test_still_goalie_worker(stand_in_build: Path) -> None:
+def test_still_goalie_worker(stand_in_build: Path, group_gone: Callable[[int], bool]) -> None:
     env = real.RealHFOEnv(task="static_keeper", hfo_dir=stand_in_build, seed=9)
     obs, info = env.reset()
     assert obs.shape == (66,)
@@ -757,7 +755,7 @@ def test_still_goalie_worker(stand_in_build: Path) -> None:
     goalie, server, worker = session.goalie, session.server, session.worker
     env.close()
     assert goalie.returncode == 0  # it quit when asked, on its own
-    assert _group_gone(goalie.pid) and _group_gone(server.pid) and _group_gone(worker.pid)
+    assert group_gone(goalie.pid) and group_gone(server.pid) and group_gone(worker.pid)
     # a dead goalie takes the session down at the next step (rcssserver may play on without it)
     env.reset()
     goalie = env._session.goalie
@@ -772,27 +770,8 @@ def test_still_goalie_worker(stand_in_build: Path) -> None:
 # ---------------------------------------------------------------------------------------------------------------
 # The real HFO (opt-in: inside a loopback-only network namespace, or HFO_TESTS=1)
 # ---------------------------------------------------------------------------------------------------------------
-def _real_build() -> Path | None:
-    candidate = os.environ.get(real.HFO_DIR_ENV)
-    if candidate:
-        try:
-            return real.find_hfo_dir(candidate)
-        except FileNotFoundError:
-            return None
-    return None
-
-
-REAL_BUILD = _real_build()
-needs_real_hfo = pytest.mark.skipif(
-    REAL_BUILD is None or not (os.environ.get("HFO_TESTS") == "1" or real.in_loopback_namespace()),
-    reason="needs an HFO build ($HFO_DIR) and a loopback-only network namespace (tools/real_hfo/loopback.sh) or "
-    "HFO_TESTS=1",
-)
-
-
-@needs_real_hfo
-def test_real_empty_goal_session() -> None:
-    env = gym.make("HFO/RealEmptyGoal-v0", hfo_dir=REAL_BUILD, noise=False, seed=2, frames_per_trial=200)
+def test_real_empty_goal_session(real_hfo_build: Path) -> None:
+    env = gym.make("HFO/RealEmptyGoal-v0", hfo_dir=real_hfo_build, noise=False, seed=2, frames_per_trial=200)
     unwrapped = env.unwrapped
     obs, info = env.reset()
     assert obs.shape == (58,) and obs.dtype == np.float32 and np.all(np.abs(obs) <= 1.0)
@@ -828,9 +807,8 @@ def test_real_empty_goal_session() -> None:
     assert server.poll() is not None and worker.poll() is not None
 
 
-@needs_real_hfo
-def test_real_keeper_session() -> None:
-    env = real.RealHFOEnv(task="keeper", hfo_dir=REAL_BUILD, untouched_time=30)
+def test_real_keeper_session(real_hfo_build: Path) -> None:
+    env = real.RealHFOEnv(task="keeper", hfo_dir=real_hfo_build, untouched_time=30)
     obs, info = env.reset(seed=1)
     assert obs.shape == (66,) and np.all(np.abs(obs) <= 1.0)
     keeper = info["keeper"]
@@ -847,9 +825,8 @@ def test_real_keeper_session() -> None:
     env.close()
 
 
-@needs_real_hfo
-def test_real_static_keeper_session() -> None:
-    env = gym.make("HFO/RealStaticKeeper-v0", hfo_dir=REAL_BUILD, untouched_time=20)
+def test_real_static_keeper_session(real_hfo_build: Path) -> None:
+    env = gym.make("HFO/RealStaticKeeper-v0", hfo_dir=real_hfo_build, untouched_time=20)
     unwrapped = env.unwrapped
     obs, info = env.reset(seed=1)
     assert obs.shape == (66,) and np.all(np.abs(obs) <= 1.0)

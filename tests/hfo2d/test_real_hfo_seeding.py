@@ -7,37 +7,18 @@ them (CI) they skip.
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import numpy as np
-import pytest
 
 from hfo2d import real
 from hfo2d.heuristic import heuristic
 
 
-def _real_build() -> Path | None:
-    if not os.environ.get(real.HFO_DIR_ENV):
-        return None
-    try:
-        return real.find_hfo_dir()
-    except real.HFOBuildNotFound:
-        return None
-
-
-REAL_BUILD = _real_build()
-pytestmark = pytest.mark.skipif(
-    REAL_BUILD is None or not (os.environ.get("HFO_TESTS") == "1" or real.in_loopback_namespace()),
-    reason="needs an HFO build ($HFO_DIR, tools/real_hfo/build.sh) and a loopback-only network namespace "
-    "(tools/real_hfo/loopback.sh) or HFO_TESTS=1",
-)
-
-
-def _starts(seed: int, episodes: int) -> np.ndarray:
+def _starts(build: Path, seed: int, episodes: int) -> np.ndarray:
     """Where each of ``episodes`` episodes of the scripted striker against agent2d's goalie (noise on, one session)
     starts: the agent's and the ball's global x, y in metres, at reset."""
-    env = real.RealHFOEnv(task="keeper", hfo_dir=REAL_BUILD, seed=seed)
+    env = real.RealHFOEnv(task="keeper", hfo_dir=build, seed=seed)
     starts = []
     try:
         for _ in range(episodes):
@@ -52,12 +33,12 @@ def _starts(seed: int, episodes: int) -> np.ndarray:
     return np.array(starts)
 
 
-def test_one_seed_repeats_its_start_positions() -> None:
+def test_one_seed_repeats_its_start_positions(real_hfo_build: Path) -> None:
     """HFO's referee draws the start positions from the seed (rcssserver's HFORef). Nothing else is repeated: the
     goalie's state at kick-off depends on how long the players took to connect (docs/real_hfo.md), so the episodes
     themselves are not compared."""
-    first = _starts(seed=5, episodes=3)
-    second = _starts(seed=5, episodes=3)
+    first = _starts(real_hfo_build, seed=5, episodes=3)
+    second = _starts(real_hfo_build, seed=5, episodes=3)
     np.testing.assert_allclose(first, second, atol=0.01)
-    other_seed = _starts(seed=6, episodes=1)
+    other_seed = _starts(real_hfo_build, seed=6, episodes=1)
     assert np.abs(other_seed[0] - first[0]).max() > 0.1

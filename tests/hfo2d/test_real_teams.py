@@ -16,6 +16,7 @@ import subprocess
 import sys
 import time
 import warnings
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -105,22 +106,8 @@ class HFOEnvironment:
 
 
 @pytest.fixture
-def stand_in_build(tmp_path: Path) -> Path:
-    (tmp_path / "bin").mkdir()
-    (tmp_path / "hfo").mkdir()
-    (tmp_path / "bin" / "HFO").write_text(FAKE_LAUNCHER)
-    (tmp_path / "hfo" / "__init__.py").write_text("from .hfo import *\n")
-    (tmp_path / "hfo" / "hfo.py").write_text(FAKE_BINDING)
-    (tmp_path / "hfo" / "libhfo_c.so").write_text("")
-    return tmp_path
-
-
-def _group_gone(pid: int) -> bool:
-    try:
-        os.killpg(pid, 0)
-    except ProcessLookupError:
-        return True
-    return False
+def stand_in_build(make_stand_in_build: Callable[[str, str], Path]) -> Path:
+    return make_stand_in_build(FAKE_LAUNCHER, FAKE_BINDING)
 
 
 def _dash(space: HybridActionBox, power: float, direction: float) -> np.ndarray:
@@ -234,7 +221,7 @@ def test_action_decoding(stand_in_build: Path) -> None:
 # ---------------------------------------------------------------------------------------------------------------
 # Processes and wire over the stand-in build
 # ---------------------------------------------------------------------------------------------------------------
-def test_session_plumbing(stand_in_build: Path) -> None:
+def test_session_plumbing(stand_in_build: Path, group_gone: Callable[[int], bool]) -> None:
     env = RealTeamParallelEnv(2, 1, 1, hfo_dir=stand_in_build, feature_set="hfo", seed=5)
     with pytest.raises(RuntimeError, match="reset"):
         env.step({})
@@ -276,7 +263,7 @@ def test_session_plumbing(stand_in_build: Path) -> None:
     with pytest.warns(RuntimeWarning, match="went down"):
         obs, rewards, terminated, truncated, infos = env.step(actions)
     assert all(truncated.values()) and infos["defense_0"]["status"] == "SERVER_DOWN" and env.agents == []
-    assert all(_group_gone(p.pid) for p in [server, *workers])
+    assert all(group_gone(p.pid) for p in [server, *workers])
     (stand_in_build / "down").unlink()
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -284,7 +271,7 @@ def test_session_plumbing(stand_in_build: Path) -> None:
     assert infos["offense_0"]["session_restarts"] == 1 and len(obs) == 3
     server, workers = env._session.server, list(env._session.workers)
     env.close()
-    assert all(p.poll() is not None and _group_gone(p.pid) for p in [server, *workers])
+    assert all(p.poll() is not None and group_gone(p.pid) for p in [server, *workers])
     assert env.agents == []
 
 
@@ -304,24 +291,6 @@ def test_parallel_api_on_the_stand_in(stand_in_build: Path) -> None:
 # ---------------------------------------------------------------------------------------------------------------
 # The real HFO (opt-in: inside a loopback-only network namespace, or HFO_TESTS=1)
 # ---------------------------------------------------------------------------------------------------------------
-def _real_build() -> Path | None:
-    candidate = os.environ.get(real.HFO_DIR_ENV)
-    if not candidate:
-        return None
-    try:
-        return real.find_hfo_dir(candidate)
-    except FileNotFoundError:
-        return None
-
-
-REAL_BUILD = _real_build()
-needs_real_hfo = pytest.mark.skipif(
-    REAL_BUILD is None or not (os.environ.get("HFO_TESTS") == "1" or real.in_loopback_namespace()),
-    reason="needs an HFO build ($HFO_DIR) and a loopback-only network namespace (tools/real_hfo/loopback.sh) or "
-    "HFO_TESTS=1",
-)
-
-
 def _session_processes(build: Path) -> list[str]:
     """Command lines of the running processes that belong to an HFO session (server, trainer, NPCs, workers)."""
     listing = subprocess.run(["ps", "-eo", "pid=,args="], capture_output=True, text=True, check=True).stdout
@@ -334,20 +303,18 @@ def _session_processes(build: Path) -> list[str]:
     ]
 
 
-@needs_real_hfo
-def test_real_two_agents_against_the_goalie() -> None:
-    assert REAL_BUILD is not None
+def test_real_two_agents_against_the_goalie(real_hfo_build: Path) -> None:
     # the process check is sound only in a namespace of this test's own (another session may run outside it)
     own_namespace = real.in_loopback_namespace()
-    assert not own_namespace or _session_processes(REAL_BUILD) == []
-    env = RealTeamParallelEnv(2, 0, 1, hfo_dir=REAL_BUILD, seed=3, frames_per_trial=60, untouched_time=20)
+    assert not own_namespace or _session_processes(real_hfo_build) == []
+    env = RealTeamParallelEnv(2, 0, 1, hfo_dir=real_hfo_build, seed=3, frames_per_trial=60, untouched_time=20)
     rng = np.random.default_rng(0)
     statuses = []
     obs, infos = env.reset()
     unums = sorted(info["unum"] for info in infos.values())
     assert unums == [7, 11]  # bin/Trainer.py gives the agents agent2d's offense numbers, sorted
     # rcssserver, bin/HFO, agent2d's goalie and the two workers are seen (so that the check at the end can fail)
-    assert not own_namespace or len(_session_processes(REAL_BUILD)) >= 5
+    assert not own_namespace or len(_session_processes(real_hfo_build)) >= 5
     while len(statuses) < 4:
         for agent, vector in obs.items():
             assert vector.shape == (num_features(1, 1),) and env.observation_space(agent).contains(vector)
@@ -378,7 +345,7 @@ def test_real_two_agents_against_the_goalie() -> None:
 
     parallel_api_test(env, num_cycles=80)
     env.close()
-    assert not own_namespace or _session_processes(REAL_BUILD) == []
+    assert not own_namespace or _session_processes(real_hfo_build) == []
 
 
 CRASHING_SCRIPT = """
@@ -392,22 +359,20 @@ os.kill(os.getpid(), signal.SIGKILL)
 """
 
 
-@needs_real_hfo
-def test_real_session_dies_with_a_crashed_process() -> None:
-    assert REAL_BUILD is not None
+def test_real_session_dies_with_a_crashed_process(real_hfo_build: Path) -> None:
     if not real.in_loopback_namespace():
         pytest.skip("the process check needs a namespace of this test's own (tools/real_hfo/loopback.sh)")
     done = subprocess.run(
         [sys.executable, "-c", CRASHING_SCRIPT],
         capture_output=True,
         text=True,
-        env={**os.environ, real.HFO_DIR_ENV: str(REAL_BUILD)},
+        env={**os.environ, real.HFO_DIR_ENV: str(real_hfo_build)},
         timeout=300,
     )
     assert done.returncode == -9 and len(done.stdout.split()) == 3, done.stderr[-2000:]
     # the launcher and the workers get SIGTERM when their parent dies (prctl PR_SET_PDEATHSIG); bin/HFO then stops
     # rcssserver and agent2d
     deadline = time.monotonic() + 30.0
-    while _session_processes(REAL_BUILD) and time.monotonic() < deadline:
+    while _session_processes(real_hfo_build) and time.monotonic() < deadline:
         time.sleep(0.5)
-    assert _session_processes(REAL_BUILD) == []
+    assert _session_processes(real_hfo_build) == []
