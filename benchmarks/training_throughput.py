@@ -119,7 +119,14 @@ def _section(config: Path, env_id: str) -> dict[str, Any]:
         return dict(yaml.safe_load(f)[env_id])
 
 
-def write_config(name: str, folder: Path, seconds: float, smoke: bool, num_workers: int) -> Path:
+def write_config(
+    name: str,
+    folder: Path,
+    seconds: float,
+    smoke: bool,
+    num_workers: int,
+    skill_ddpg_config: Path = SKILL_DDPG_CONFIG,
+) -> Path:
     """The contestant's config for ``HFO/Keeper-v1`` with :class:`SliceTimer` added to its callbacks."""
     if name == "hybrid_ppo":
         hyperparams = _section(HYBRID_PPO_CONFIG, HYBRID_PPO_SECTION)
@@ -130,7 +137,7 @@ def write_config(name: str, folder: Path, seconds: float, smoke: bool, num_worke
             hyperparams["policy_kwargs"] = {**hyperparams["policy_kwargs"], "net_arch": [8, 8]}
         warmup = 2 * int(hyperparams["n_steps"]) * int(hyperparams["n_envs"])
     else:
-        hyperparams = _section(SKILL_DDPG_CONFIG, ENV_ID)
+        hyperparams = _section(skill_ddpg_config, ENV_ID)
         if smoke:
             hyperparams.update(learning_starts=64, buffer_size=2_000, batch_size=16)
             hyperparams["policy_kwargs"] = {**hyperparams["policy_kwargs"], "net_arch": [8, 8]}
@@ -142,7 +149,9 @@ def write_config(name: str, folder: Path, seconds: float, smoke: bool, num_worke
     return config
 
 
-def measure(name: str, seconds: float, smoke: bool, num_workers: int) -> dict[str, Any]:
+def measure(
+    name: str, seconds: float, smoke: bool, num_workers: int, skill_ddpg_config: Path = SKILL_DDPG_CONFIG
+) -> dict[str, Any]:
     """Train contestant ``name`` in a fresh ``python -m sb3_hfo.train`` process and return its measurement."""
     env = {
         **os.environ,
@@ -150,7 +159,7 @@ def measure(name: str, seconds: float, smoke: bool, num_workers: int) -> dict[st
     }
     with tempfile.TemporaryDirectory(prefix="training_throughput_") as tmp:
         folder = Path(tmp)
-        config = write_config(name, folder, seconds, smoke, num_workers)
+        config = write_config(name, folder, seconds, smoke, num_workers, skill_ddpg_config)
         command = [sys.executable, "-m", "sb3_hfo.train", "--algo", name, "--env", ENV_ID]
         command += ["--conf-file", str(config), "--seed", "0", "-n", str(BUDGET_STEPS), "--eval-freq", "-1"]
         command += ["-f", str(folder / "logs"), "--log-interval", "1000000"]
@@ -233,6 +242,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--num-workers", type=int, default=1, help="processes stepping HybridPPO's batch (default 1)"
     )
+    parser.add_argument(
+        "--skill-ddpg-config",
+        type=Path,
+        default=SKILL_DDPG_CONFIG,
+        help="SkillDDPG's config (default zoo_configs/e6_keeper_skills_fast.yml; the paper's own E6 recipe is "
+        "zoo_configs/e6_keeper_skills.yml: one env, batch 32, 400-300-200 networks)",
+    )
     parser.add_argument("--smoke", action="store_true", help="tiny networks and warm-up (for tests)")
     parser.add_argument("--out", type=Path, default=None, help="write the results as JSON here")
     parser.add_argument(
@@ -242,6 +258,11 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.seconds <= 0 or args.rounds < 1 or args.num_workers < 1 or args.profile_rollouts < 1:
         parser.error("--seconds must be > 0, --rounds, --num-workers and --profile-rollouts >= 1")
+    if not args.skill_ddpg_config.is_file():
+        parser.error(f"--skill-ddpg-config {args.skill_ddpg_config}: no such file")
+    with open(args.skill_ddpg_config) as f:
+        if ENV_ID not in (yaml.safe_load(f) or {}):
+            parser.error(f"--skill-ddpg-config {args.skill_ddpg_config} has no {ENV_ID} section")
     if args.profile:
         profile_hybrid_ppo(args.profile_rollouts)
         return 0
@@ -255,7 +276,9 @@ def main(argv: list[str] | None = None) -> int:
     for round_index in range(args.rounds):
         print(f"round {round_index + 1}/{args.rounds}", file=sys.stderr, flush=True)
         for name in CONTESTANTS:
-            samples[name].append(measure(name, args.seconds, args.smoke, args.num_workers))
+            samples[name].append(
+                measure(name, args.seconds, args.smoke, args.num_workers, args.skill_ddpg_config)
+            )
     load_after = os.getloadavg()
     uptime_after = uptime()
     rates = {name: statistics.median(s["steps_per_s"] for s in runs) for name, runs in samples.items()}
@@ -268,6 +291,9 @@ def main(argv: list[str] | None = None) -> int:
         "seconds": args.seconds,
         "rounds": args.rounds,
         "num_workers": args.num_workers,
+        "skill_ddpg_config": str(Path(args.skill_ddpg_config).resolve().relative_to(REPO))
+        if Path(args.skill_ddpg_config).resolve().is_relative_to(REPO)
+        else str(args.skill_ddpg_config),
         "smoke": args.smoke,
         "cpu_model": cpu_model(),
         "cpu_count": os.cpu_count(),

@@ -40,10 +40,8 @@ class Task:
 #: The rows, in order. The paper's figures are those of *Learning to Play RoboCup Soccer from Scratch using Deep
 #: Learning*, Experiments section (E3 and E4 about 95 %; E6, the moving keeper, was not solved).
 TASKS: tuple[Task, ...] = (
-    Task("e1", "E1 empty goal", "98.8 %"),
-    Task(
-        "e1_hybrid_ppo", "E1 empty goal, HybridPPO (PPO over the hybrid action) from scratch", "98.8 % (DDPG)"
-    ),
+    Task("e1", "E1 empty goal, HybridPPO (PPO over the hybrid action) from scratch", "98.8 % (DDPG)"),
+    Task("e1_skill_pdqn", "E1 empty goal, the paper's method (SkillDDPG)", "98.8 %"),
     Task("e2", "E2 empty goal, skills", "95.7 %"),
     Task("e3", "E3 static keeper", "~95 %"),
     Task("e4", "E4 static keeper, skills", "~95 %"),

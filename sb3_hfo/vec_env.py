@@ -62,6 +62,9 @@ class HFOVecEnv(VecEnv):
         self.batch = batch
         self._actions: Any = None
         super().__init__(batch.num_envs, batch.single_observation_space, batch.single_action_space)
+        #: The games' registered EnvSpec (None for a batch made from bare kwargs): SB3's VecMonitor writes its id
+        #: into the monitor.csv header, as it does for a DummyVecEnv of gym.make(id).
+        self.spec = gym.spec(batch.env_id) if batch.env_id else None
 
     # --- stepping ------------------------------------------------------------------------------------------------
     def reset(self) -> VecEnvObs:

@@ -12,6 +12,9 @@ vectorization_mode="vector_entry_point")`` (:mod:`hfo2d.vector`, which also shar
   local HFO build (``hfo2d.real.RealHFOEnv``; ``hfo_dir`` or ``$HFO_DIR``; nothing of it is imported until made).
 * ``HFO/RealStaticKeeper-v0``: the real HFO against a goalie that stands still on the goal line facing the field
   (a defense agent of ``hfo2d.real``, as ``HFO/StaticKeeper-v0``'s keeper).
+* ``HFO/HalfFieldOffense-v0``: bin/HFO's team sizes (``offense_agents``, ``defense_agents``, ``defense_npcs``
+  keywords), one learning agent (:class:`hfo2d.team.HalfFieldOffenseEnv`); :func:`parallel_env` makes every agent
+  of such a game a PettingZoo ParallelEnv (PettingZoo is imported only then).
 
 Only numpy, gymnasium and pymunk are imported here; pygame is imported when rendering starts.
 """
@@ -34,6 +37,7 @@ __all__ = [
     "ServerParams",
     "World",
     "heuristic",
+    "parallel_env",
 ]
 
 ENV_IDS: dict[str, str] = {
@@ -140,3 +144,53 @@ REAL_ENV_IDS: dict[str, str] = {
 for _env_id, _task in REAL_ENV_IDS.items():
     if _env_id not in gymnasium.registry:
         gymnasium.register(id=_env_id, entry_point=REAL_ENV_ENTRY_POINT, kwargs={"task": _task})
+
+#: HFO's team game, one learning agent (hfo2d.team, imported when made).
+TEAM_ENV_ID = "HFO/HalfFieldOffense-v0"
+if TEAM_ENV_ID not in gymnasium.registry:
+    gymnasium.register(id=TEAM_ENV_ID, entry_point="hfo2d.team:HalfFieldOffenseEnv")
+
+#: The backends of :func:`parallel_env`.
+PARALLEL_BACKENDS: tuple[str, ...] = ("hfo2d", "real")
+
+
+def parallel_env(
+    offense_agents: int = 1,
+    defense_agents: int = 0,
+    defense_npcs: int = 0,
+    backend: str = "hfo2d",
+    **kwargs: Any,
+) -> Any:
+    """Every learning agent of an HFO team game as a PettingZoo ``ParallelEnv``, with bin/HFO's team sizes.
+
+    Agents ``"offense_0"``, ..., ``"defense_0"``, ...; spaces, rules and rewards: :mod:`hfo2d.team`.
+
+    Args:
+        offense_agents, defense_agents, defense_npcs: bin/HFO's ``--offense-agents``, ``--defense-agents``,
+            ``--defense-npcs``.
+        backend: ``"hfo2d"`` (this simulator, :class:`hfo2d.team_parallel.HFOTeamParallelEnv`) or ``"real"`` (a
+            real HFO build, ``hfo2d.real_teams.RealTeamParallelEnv``; ``hfo_dir`` or ``$HFO_DIR``).
+        **kwargs: the backend's other arguments (e.g. ``render_mode``, ``feature_set``, ``agent_play_goalie``).
+
+    Raises:
+        ValueError: an unknown backend, or team sizes bin/HFO rejects.
+        ImportError: PettingZoo is not installed (the ``[teams]`` extra: ``pip install -e ".[teams]"``), or the backend's module is
+            missing.
+    """
+    if backend == "hfo2d":
+        from hfo2d.team_parallel import HFOTeamParallelEnv
+
+        return HFOTeamParallelEnv(offense_agents, defense_agents, defense_npcs, **kwargs)
+    if backend == "real":
+        try:
+            from hfo2d.real_teams import RealTeamParallelEnv
+        except ModuleNotFoundError as error:
+            if error.name != "hfo2d.real_teams":
+                raise
+            raise ImportError(
+                "backend='real' needs hfo2d.real_teams, which this hfo2d does not have yet"
+            ) from None
+        return RealTeamParallelEnv(
+            offense_agents=offense_agents, defense_agents=defense_agents, defense_npcs=defense_npcs, **kwargs
+        )
+    raise ValueError(f"unknown backend {backend!r}; choose one of {PARALLEL_BACKENDS}")

@@ -325,6 +325,7 @@ def low_level_feature_list(
     max_dist: float = MAX_HFO_DIST,
     out_of_bounds_x_max: float = OUT_OF_BOUNDS_X_DIST_MAX,
     out_of_bounds_y_max: float = OUT_OF_BOUNDS_Y_DIST_MAX,
+    opponent_control: bool = False,
 ) -> list[float]:
     """The features as a list of Python floats (the fast path; see :func:`low_level_features`).
 
@@ -337,6 +338,10 @@ def low_level_feature_list(
         max_dist: normaliser of the proximities (landmarks, ball, players); the paper era's by default.
         out_of_bounds_x_max: normaliser of features 46 and 47.
         out_of_bounds_y_max: normaliser of features 48 and 49.
+        opponent_control: apply librcsc's opponent-control rule (:func:`opponent_controls_ball`): the ball's
+            velocity reads 0 while the opponent nearest the ball can kick it and the observer cannot. The real
+            HFO's agents see the ball so (measured: benchmarks/team_features_fidelity.py); off by default, which
+            keeps hfo2d's registered envs as they were.
 
     Returns:
         ``num_features(len(teammates), len(opponents))`` floats in [-1, 1].
@@ -487,6 +492,12 @@ def low_level_feature_list(
     features[KICKABLE] = 1.0 if dist <= kickable_distance else -1.0
     ball_vx = ball.vx
     ball_vy = ball.vy
+    if (
+        opponent_control
+        and dist > kickable_distance
+        and opponent_controls_ball(player, ball, opponents, dist)
+    ):
+        ball_vx = ball_vy = 0.0
     ball_speed = hypot(ball_vx, ball_vy)
     if ball_speed > 0.0:
         ball_vel_cos = ball_vx / ball_speed
@@ -541,6 +552,36 @@ def low_level_feature_list(
 
 _EMPTY_PLAYER_BLOCK = (0.0,) * FEATURES_PER_PLAYER  # the slot of a player not listed
 
+#: rcssserver's default kickable area (kickable_margin 0.7 + player_size 0.3 + ball_size 0.085), m.
+DEFAULT_KICKABLE_AREA = 1.085
+
+
+def opponent_controls_ball(
+    player: PlayerState,
+    ball: BallState,
+    opponents: Sequence[PlayerState],
+    ball_distance: float | None = None,
+) -> bool:
+    """librcsc's test for an opponent in control of the ball, after which its world model sets the ball's velocity
+    to 0 (librcsc world_model.cpp ``updateJustBeforeDecision``, ``check_player_kickable``; ball_object.cpp
+    ``setOpponentControlEffect``), whenever the observer itself cannot kick the ball.
+
+    Only the opponent nearest the ball counts (players in a tackle are skipped): it controls the ball when its
+    distance to the ball is below ``kickable_area + margin``, where the margin is ``min(0.25, 0.02 * d_ball) +
+    min(0.25, 0.02 * d_opponent)`` with ``d_ball`` and ``d_opponent`` the ball's and the opponent's distances
+    from the observer (librcsc's allowance for observation error, applied under fullstate too: up to 0.5 m).
+    """
+    candidates = [other for other in opponents if other.tackle_cycles <= 0]
+    if not candidates:
+        return False
+    nearest = min(candidates, key=lambda other: (other.x - ball.x) ** 2 + (other.y - ball.y) ** 2)
+    if ball_distance is None:
+        ball_distance = math.hypot(ball.x - player.x, ball.y - player.y)
+    margin = min(0.25, 0.02 * ball_distance) + min(
+        0.25, 0.02 * math.hypot(nearest.x - player.x, nearest.y - player.y)
+    )
+    return math.hypot(nearest.x - ball.x, nearest.y - ball.y) < DEFAULT_KICKABLE_AREA + margin
+
 
 def hfo_feature_list(
     player: PlayerState,
@@ -549,6 +590,8 @@ def hfo_feature_list(
     teammates: list[PlayerState] | tuple[PlayerState, ...] = (),
     opponents: list[PlayerState] | tuple[PlayerState, ...] = (),
     last_action_succeeded: bool = False,
+    *,
+    opponent_control: bool = False,
 ) -> list[float]:
     """HFO master's low-level vector (fullstate) of the state: layout of :func:`hfo_num_features`.
 
@@ -557,7 +600,7 @@ def hfo_feature_list(
     ``last_action_succeeded`` as +1 / -1 (HFO agent.cpp records librcsc's doDash / doTurn / doKick result: a kick
     fails when the ball is not kickable, dash and turn fail only when frozen). The observing player's own uniform
     number is not part of the vector. hfo2d's uniform numbers are all positive, so HFO's ``unum > 0`` listing
-    test reduces to the paper era's ``x > 0``.
+    test reduces to the paper era's ``x > 0``. ``opponent_control``: as in :func:`low_level_feature_list`.
 
     Returns:
         ``hfo_num_features(len(teammates), len(opponents))`` Python floats in [-1, 1].
@@ -571,6 +614,7 @@ def hfo_feature_list(
         max_dist=HFO_MASTER_MAX_DIST,
         out_of_bounds_x_max=HFO_MASTER_OUT_OF_BOUNDS_X_DIST_MAX,
         out_of_bounds_y_max=HFO_MASTER_OUT_OF_BOUNDS_Y_DIST_MAX,
+        opponent_control=opponent_control,
     )
     x = player.x
     y = player.y
@@ -694,3 +738,231 @@ def low_level_features(world: World, player: PlayerState, out: np.ndarray | None
         raise ValueError(f"out has shape {out.shape}, expected ({len(features)},)")
     out[:] = features
     return out
+
+
+# ---------------------------------------------------------------------------------------------------------------
+# HFO's high-level features (LARG/HFO b8b2a1d src/highlevel_feature_extractor.cpp, src/feature_extractor.cpp)
+# ---------------------------------------------------------------------------------------------------------------
+HIGH_LEVEL_BASIC_FEATURES = 10  # highlevel_feature_extractor.h num_basic_features
+HIGH_LEVEL_PER_TEAMMATE = 6  # features_per_teammate
+HIGH_LEVEL_PER_OPPONENT = 3  # features_per_opponent
+#: HFO's FeatureExtractor::FEAT_INVALID: a slot with nobody, or a distance with no opponent
+HIGH_LEVEL_INVALID = -2.0
+#: The x range a position is normalised over, 10 % of the half length beyond the HFO half on either side
+#: (tolerance_x): the offense's half is [0, 52.5], the defense's, in its own (mirrored) frame, [-52.5, 0].
+HIGH_LEVEL_X_TOLERANCE = 0.1 * PITCH_HALF_LENGTH
+HIGH_LEVEL_Y_TOLERANCE = 0.1 * PITCH_HALF_WIDTH
+#: The highest uniform number, the bound of the raw unum entries (HFO writes them unnormalised).
+MAX_UNUM = 11.0
+
+
+def high_level_num_features(num_teammates: int = 0, num_opponents: int = 0) -> int:
+    """Length of HFO's high-level vector: ``10 + 6 * teammates + 3 * opponents + 2`` (last action, stamina)."""
+    return (
+        HIGH_LEVEL_BASIC_FEATURES
+        + HIGH_LEVEL_PER_TEAMMATE * num_teammates
+        + HIGH_LEVEL_PER_OPPONENT * num_opponents
+        + 2
+    )
+
+
+def high_level_bounds(num_teammates: int = 0, num_opponents: int = 0) -> tuple[list[float], list[float]]:
+    """Per-feature (low, high) of the high-level vector: [-1, 1] for the normalised features, -2 (HFO's
+    FEAT_INVALID) as the low of every entry that can be invalid, ``MAX_UNUM`` as the high of the uniform numbers."""
+    size = high_level_num_features(num_teammates, num_opponents)
+    low = [-1.0] * size
+    high = [1.0] * size
+    invalid = [9] + list(range(HIGH_LEVEL_BASIC_FEATURES, size - 2))  # closest opponent and every player slot
+    for index in invalid:
+        low[index] = HIGH_LEVEL_INVALID
+    unums = HIGH_LEVEL_BASIC_FEATURES + 3 * num_teammates
+    for slot in range(num_teammates):
+        high[unums + 3 * slot + 2] = MAX_UNUM
+    for slot in range(num_opponents):
+        high[unums + 3 * num_teammates + 3 * slot + 2] = MAX_UNUM
+    return low, high
+
+
+def _hl_normalise(value: float, low: float, high: float) -> float:
+    """HFO's FeatureExtractor::normalize: clip to [low, high], then map linearly onto [-1, 1]."""
+    value = min(max(value, low), high)
+    return (value - low) / (high - low) * 2.0 - 1.0
+
+
+def _open_angle(
+    x: float,
+    y: float,
+    angle_top: float,
+    angle_bottom: float,
+    max_dist: float,
+    opponents: Sequence[PlayerState],
+) -> float:
+    """The widest angle (rad) of [angle_bottom, angle_top] seen from (x, y) that no opponent closer than
+    ``max_dist`` blocks; each blocks its bearing +- atan2(DEFAULT_KICKABLE_AREA / 2, distance) (HFO uses
+    ServerParam::defaultKickableArea as a player's width).
+
+    HFO's calcLargestOpenAngle / splitAngles: an interval an opponent touches is split into the parts below and
+    above the opponent's span (either may come out empty or negative), without wrapping angles round +-pi.
+    """
+    intervals = [(angle_bottom, angle_top)]
+    for other in opponents:
+        dx = other.x - x
+        dy = other.y - y
+        dist = math.hypot(dx, dy)
+        bearing = math.atan2(dy, dx) if dist > 0.0 else 0.0
+        half_width = math.atan2(DEFAULT_KICKABLE_AREA * 0.5, dist)
+        lower = bearing - half_width
+        upper = bearing + half_width
+        if dist < max_dist:
+            split = []
+            for first, second in intervals:
+                if upper < first or lower > second:
+                    split.append((first, second))
+                else:
+                    split.append((first, lower))
+                    split.append((upper, second))
+            intervals = split
+    return max([0.0] + [second - first for first, second in intervals])
+
+
+def _goal_open_angle(x: float, y: float, opponents: Sequence[PlayerState]) -> float:
+    """HFO's calcLargestGoalAngle: the widest open angle (rad) toward the goal mouth at x = +52.5 (its posts at
+    y = +-7.01, whatever the side: HFO does not mirror it for the defense)."""
+    top = math.atan2(GOAL_HALF_WIDTH - y, PITCH_HALF_LENGTH - x)
+    bottom = math.atan2(-GOAL_HALF_WIDTH - y, PITCH_HALF_LENGTH - x)
+    return _open_angle(x, y, top, bottom, 99999.0, opponents)
+
+
+def _closest_distance(x: float, y: float, opponents: Sequence[PlayerState]) -> float:
+    """HFO's calcClosestOpp: distance (m) from (x, y) to the nearest opponent (float max when there is none)."""
+    return min((math.hypot(other.x - x, other.y - y) for other in opponents), default=3.4028234663852886e38)
+
+
+def _librcsc_degrees(angle: float) -> float:
+    """An angle folded into [-180, 180] as librcsc's AngleDeg::normalize_angle does (180 stays 180)."""
+    if angle < -360.0 or angle > 360.0:
+        angle = math.fmod(angle, 360.0)
+    if angle < -180.0:
+        angle += 360.0
+    if angle > 180.0:
+        angle -= 360.0
+    return angle
+
+
+def mirrored_state(state: PlayerState | BallState) -> PlayerState | BallState:
+    """``state`` as a right-side (defense) player's world model sees it: librcsc turns the field round so that its
+    own team attacks +x (x, y and the velocity negated, the body angle plus 180 degrees, folded as librcsc's
+    FullstateSensor::reverse does: a body of 0 becomes 180)."""
+    from dataclasses import replace
+
+    changes: dict[str, float] = {"x": -state.x, "y": -state.y, "vx": -state.vx, "vy": -state.vy}
+    if hasattr(state, "body_deg"):
+        changes["body_deg"] = _librcsc_degrees(state.body_deg + 180.0)
+    return replace(state, **changes)  # type: ignore[arg-type,return-value]
+
+
+def high_level_feature_list(
+    player: PlayerState,
+    ball: BallState,
+    kickable_distance: float,
+    teammates: Sequence[PlayerState] = (),
+    opponents: Sequence[PlayerState] = (),
+    last_action_succeeded: bool = False,
+    *,
+    playing_offense: bool = True,
+) -> list[float]:
+    """HFO's high-level feature vector (fullstate) of the state, as LARG/HFO b8b2a1d computes it.
+
+    Layout (``high_level_num_features(T, O)`` entries; positions and angles in the observer's world-model frame,
+    which for the defense is the mirrored field, see :func:`mirrored_state`):
+
+    * 0, 1: own x over [-5.25, 57.75] (offense) or [-57.75, 5.25] (defense), own y over [-37.4, 37.4];
+    * 2: global body angle over [-pi, pi];
+    * 3, 4: ball x and y as above; 5: kickable (+1 / -1);
+    * 6, 7: distance to the goal centre ((52.5, 0) for the offense, (-52.5, 0) for the defense) over [0, maxR]
+      (maxR = 85.91 m, :data:`HFO_MASTER_MAX_DIST`), and its global direction over [-pi, pi];
+    * 8: the widest open angle toward the goal mouth at x = 52.5, over [0, pi];
+    * 9: distance to the closest opponent over [0, maxR] (-2 without opponents);
+    * per teammate, nearest first (every one with a known position and a positive uniform number, wherever it
+      stands): its open angle to the goal (T entries), its distance to its closest opponent (T), the widest open
+      pass angle to it, within +-45 degrees of its bearing, from opponents nearer than it (T), then its x, y and
+      raw uniform number (3T);
+    * per opponent, nearest first: x, y and raw uniform number (3O);
+    * the last action's status (+1 / -1) and the stamina over [0, 8000].
+
+    Empty slots are -2 (HFO's FEAT_INVALID). Angles come from ``atan2``, as HFO's ``Vector2D::th()``.
+
+    Args:
+        player: the observing player, in the server's (left-side) frame.
+        ball: the ball.
+        kickable_distance: the ball-centre distance under which the kickable flag is +1 (librcsc: 1.03 m).
+        teammates: the observer's teammates (positive uniform numbers).
+        opponents: the players of the other side.
+        last_action_succeeded: HFO's status of the agent's last action.
+        playing_offense: False for a defender: every state is mirrored first, and the x ranges are the defense's.
+    """
+    if not playing_offense:
+        player = mirrored_state(player)  # type: ignore[assignment]
+        ball = mirrored_state(ball)  # type: ignore[assignment]
+        teammates = [mirrored_state(other) for other in teammates]  # type: ignore[misc]
+        opponents = [mirrored_state(other) for other in opponents]  # type: ignore[misc]
+    x_low, x_high = (
+        (-HIGH_LEVEL_X_TOLERANCE, PITCH_HALF_LENGTH + HIGH_LEVEL_X_TOLERANCE)
+        if playing_offense
+        else (-PITCH_HALF_LENGTH - HIGH_LEVEL_X_TOLERANCE, HIGH_LEVEL_X_TOLERANCE)
+    )
+    y_low, y_high = -PITCH_HALF_WIDTH - HIGH_LEVEL_Y_TOLERANCE, PITCH_HALF_WIDTH + HIGH_LEVEL_Y_TOLERANCE
+    max_r = HFO_MASTER_MAX_DIST
+    x, y = player.x, player.y
+    body = math.radians(_librcsc_degrees(player.body_deg))  # librcsc's AngleDeg, in [-180, 180]
+    goal_x = PITCH_HALF_LENGTH if playing_offense else -PITCH_HALF_LENGTH
+    goal_dx, goal_dy = goal_x - x, -y
+    features = [
+        _hl_normalise(x, x_low, x_high),
+        _hl_normalise(y, y_low, y_high),
+        _hl_normalise(body, -math.pi, math.pi),
+        _hl_normalise(ball.x, x_low, x_high),
+        _hl_normalise(ball.y, y_low, y_high),
+        1.0 if math.hypot(ball.x - x, ball.y - y) <= kickable_distance else -1.0,
+        _hl_normalise(math.hypot(goal_dx, goal_dy), 0.0, max_r),
+        _hl_normalise(math.atan2(goal_dy, goal_dx), -math.pi, math.pi),
+        _hl_normalise(_goal_open_angle(x, y, opponents), 0.0, math.pi),
+        _hl_normalise(_closest_distance(x, y, opponents), 0.0, max_r) if opponents else HIGH_LEVEL_INVALID,
+    ]
+    listed = sorted(
+        (other for other in teammates if other.unum > 0), key=lambda o: (o.x - x) ** 2 + (o.y - y) ** 2
+    )
+    missing = len(teammates) - len(listed)
+    features += [_hl_normalise(_goal_open_angle(o.x, o.y, opponents), 0.0, math.pi) for o in listed]
+    features += [HIGH_LEVEL_INVALID] * missing
+    if opponents:
+        features += [_hl_normalise(_closest_distance(o.x, o.y, opponents), 0.0, max_r) for o in listed]
+        features += [HIGH_LEVEL_INVALID] * missing
+    else:
+        features += [HIGH_LEVEL_INVALID] * len(teammates)
+    for other in listed:
+        bearing = math.atan2(other.y - y, other.x - x)
+        dist = math.hypot(other.x - x, other.y - y)
+        pass_angle = _open_angle(x, y, bearing + math.pi / 4, bearing - math.pi / 4, dist, opponents)
+        features.append(_hl_normalise(pass_angle, 0.0, math.pi))
+    features += [HIGH_LEVEL_INVALID] * missing
+    for other in listed:
+        features += (
+            _hl_normalise(other.x, x_low, x_high),
+            _hl_normalise(other.y, y_low, y_high),
+            float(other.unum),
+        )
+    features += [HIGH_LEVEL_INVALID] * (3 * missing)
+    listed_opponents = sorted(
+        (other for other in opponents if other.unum > 0), key=lambda o: (o.x - x) ** 2 + (o.y - y) ** 2
+    )
+    for other in listed_opponents:
+        features += (
+            _hl_normalise(other.x, x_low, x_high),
+            _hl_normalise(other.y, y_low, y_high),
+            float(other.unum),
+        )
+    features += [HIGH_LEVEL_INVALID] * (3 * (len(opponents) - len(listed_opponents)))
+    features.append(1.0 if last_action_succeeded else -1.0)
+    features.append(_hl_normalise(player.stamina, 0.0, STAMINA_MAX))
+    return features

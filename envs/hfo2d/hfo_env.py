@@ -21,6 +21,8 @@ from hfo2d.features import (
     KICKABLE_BUFFER,
     hfo_feature_list,
     hfo_num_features,
+    high_level_bounds,
+    high_level_feature_list,
     low_level_feature_list,
     num_features,
 )
@@ -114,8 +116,9 @@ __all__ = [
 # ---------------------------------------------------------------------------------------------------------------
 TASKS: tuple[str, ...] = ("empty_goal", "static_keeper", "keeper")
 ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
-#: Observation layouts: the paper era's (58 / 66, the default) or HFO master's (59 / 68).
-FEATURE_SETS: tuple[str, ...] = ("paper", "hfo")
+#: Observation layouts: the paper era's (58 / 66, the default), HFO master's (59 / 68) or HFO's high-level set
+#: (12 / 15, :func:`hfo2d.features.high_level_feature_list`).
+FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
 # [pref_dash, pref_turn, pref_kick, dash_power, dash_dir, turn_dir, kick_power, kick_dir]: the flat action's size
 # and its three directions (dash_dir, turn_dir, kick_dir), from its layout (hfo2d.action_layout).
 FLAT_ACTION_SIZE = HFO_FLAT_ACTION_LAYOUT.size
@@ -152,8 +155,10 @@ class HFOEnv(gym.Env):
         With ``feature_set="hfo"``: ``(59,)`` / ``(68,)``, HFO master's layout of the same state
         (:func:`hfo2d.features.hfo_feature_list`): proximities over 85.908 m, out-of-bounds over 57.75 / 71.4 m,
         the goalie's uniform number / 100 (0.01; -1 while it is not listed) at 66, and last at 58 / 67 the last
-        action's status (+1, or -1 for a KICK out of reach; -1 after reset). Rewards and ``info`` are computed
-        from the paper features either way; :func:`hfo2d.features.paper_from_hfo` converts.
+        action's status (+1, or -1 for a KICK out of reach; -1 after reset). With ``feature_set="high_level"``:
+        ``(12,)`` / ``(15,)``, HFO's high-level features (:func:`hfo2d.features.high_level_feature_list`; -2 marks
+        an invalid entry, the goalie's uniform number is 1). Rewards and ``info`` are computed from the paper
+        features either way; :func:`hfo2d.features.paper_from_hfo` converts HFO master's.
 
         ======= =========================================================================
         index   feature
@@ -239,7 +244,8 @@ class HFOEnv(gym.Env):
         task: one of TASKS.
         render_mode: None, "human" (pygame window, drawn every step) or "rgb_array".
         action_format: "flat" or "parameterized".
-        feature_set: "paper" (default, the table above) or "hfo" (HFO master's 59 / 68 features).
+        feature_set: "paper" (default, the table above), "hfo" (HFO master's 59 / 68 features) or "high_level"
+            (HFO's high-level features, 12 / 15).
         reward: "shaped", "shaped_gap", "shaped_gap_refund" or "sparse".
         noise: False turns off player, ball and kick noise (HFO's --deterministic); a bool.
         server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}`` (a mapping; each
@@ -316,7 +322,7 @@ class HFOEnv(gym.Env):
         self.render_mode = render_mode
         self.action_format = action_format
         self.feature_set = feature_set
-        self._hfo_layout = feature_set == "hfo"
+        self._hfo_layout = feature_set != "paper"  # the observation is a vector of HFO's own layouts
         self.reward_name = reward
         self.noise = bool(noise)
         self.keeper_skill = 1.0 if keeper_skill is None else float(keeper_skill)
@@ -326,8 +332,17 @@ class HFOEnv(gym.Env):
         self._kickable_distance = self.params.kickable_area - KICKABLE_BUFFER
 
         n_opponents = 1 if self.has_keeper else 0
-        n_features = hfo_num_features(0, n_opponents) if self._hfo_layout else num_features(0, n_opponents)
-        self.observation_space = spaces.Box(-1.0, 1.0, shape=(n_features,), dtype=np.float32)
+        if feature_set == "high_level":
+            low, high = high_level_bounds(0, n_opponents)
+            n_features = len(low)
+            self.observation_space = spaces.Box(
+                np.array(low, dtype=np.float32), np.array(high, dtype=np.float32), dtype=np.float32
+            )
+        else:
+            n_features = (
+                hfo_num_features(0, n_opponents) if self._hfo_layout else num_features(0, n_opponents)
+            )
+            self.observation_space = spaces.Box(-1.0, 1.0, shape=(n_features,), dtype=np.float32)
         # step()'s packer of the observation (see _observation)
         self._observation_packer = struct.Struct(f"={n_features}f")
         if action_format == "flat":
@@ -664,7 +679,16 @@ class HFOEnv(gym.Env):
         return self._steps
 
     def _hfo_features(self, last_action_succeeded: bool) -> list[float]:
-        """HFO master's vector of the current state (feature_set \"hfo\")."""
+        """HFO master's vector of the current state (feature_set \"hfo\"), or HFO's high-level one."""
+        if self.feature_set == "high_level":
+            return high_level_feature_list(
+                self.agent,
+                self.world.ball,
+                self._kickable_distance,
+                (),
+                self._opponents,
+                last_action_succeeded,
+            )
         return hfo_feature_list(
             self.agent, self.world.ball, self._kickable_distance, (), self._opponents, last_action_succeeded
         )

@@ -156,8 +156,12 @@ DEFENSE_NPCS: dict[str, int] = {"empty_goal": 0, "static_keeper": 0, "keeper": 1
 DEFENSE_AGENTS: dict[str, int] = {"empty_goal": 0, "static_keeper": 1, "keeper": 0}
 HFO_DIR_ENV = "HFO_DIR"
 
-# HFO's action codes (hfo/hfo.py and src/common.hpp: DASH, TURN, TACKLE, KICK, ..., NOOP = 13, QUIT = 14)
-HFO_DASH, HFO_TURN, HFO_KICK, HFO_NOOP = 0, 1, 3, 13
+# HFO's action codes (hfo/hfo.py and src/common.hpp: DASH, TURN, TACKLE, KICK, ..., CATCH = 12, NOOP = 13,
+# QUIT = 14)
+HFO_DASH, HFO_TURN, HFO_TACKLE, HFO_KICK, HFO_CATCH, HFO_NOOP = 0, 1, 2, 3, 12, 13
+#: How many parameters HFO's act() takes per low-level action code (src/common.hpp NumParams); the worker sends a
+#: NOOP for any other code.
+HFO_ACTION_PARAMS: dict[int, int] = {HFO_DASH: 2, HFO_TURN: 1, HFO_TACKLE: 1, HFO_KICK: 2, HFO_CATCH: 0}
 #: hfo2d's action kind -> HFO's action code
 HFO_ACTION_CODES: dict[int, int] = {DASH: HFO_DASH, TURN: HFO_TURN, KICK: HFO_KICK}
 # HFO's game statuses (hfo/hfo.py: IN_GAME, GOAL, CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME, SERVER_DOWN)
@@ -168,6 +172,7 @@ STATUS_NAMES: tuple[str, ...] = (IN_GAME, GOAL, CAPTURED_BY_DEFENSE, OUT_OF_BOUN
 # HFO's sides (hfo/hfo.py: RIGHT, NEUTRAL, LEFT = -1, 0, 1) as the letters of the referee's messages
 SIDE_LETTERS: dict[int, str] = {-1: "R", 0: "U", 1: "L"}
 HFO_LOW_LEVEL_FEATURE_SET = 0  # hfo/hfo.py LOW_LEVEL_FEATURE_SET
+HFO_HIGH_LEVEL_FEATURE_SET = 1  # hfo/hfo.py HIGH_LEVEL_FEATURE_SET
 HFO_TEAM_NAME = "base_left"  # the offense team of bin/HFO's Trainer.py (agent2d, "base")
 HFO_DEFENSE_TEAM_NAME = "base_right"  # its defense team (bin/Trainer.py createTeam: 'base_' + 'right')
 HFO_CONFIG_SUBDIR = "bin/teams/base/config/formations-dt"  # the config dir bin/HFO gives its agents
@@ -567,8 +572,11 @@ class _Session:
             time.sleep(0.02)
         raise HFOSessionError(f"bin/HFO did not {what} within {START_TIMEOUT_S:g} s:\n{self.log_tail()}")
 
-    def _spawn_worker(self, role: str) -> tuple[subprocess.Popen[bytes], socket.socket]:
-        """Start ``python -m hfo2d.real ROLE FD HFO_DIR PORT`` in its own process group, with a socket pair."""
+    def _spawn_worker(
+        self, role: str, extra: Sequence[str] = ()
+    ) -> tuple[subprocess.Popen[bytes], socket.socket]:
+        """Start ``python -m hfo2d.real ROLE FD HFO_DIR PORT [EXTRA...]`` in its own process group, with a socket
+        pair."""
         parent, child = socket.socketpair()
         command = [
             sys.executable,
@@ -578,6 +586,7 @@ class _Session:
             str(child.fileno()),
             str(self.hfo_dir),
             str(self.port),
+            *extra,
         ]
         try:
             worker = subprocess.Popen(
@@ -1093,9 +1102,11 @@ def _close_live_envs() -> None:
 # ---------------------------------------------------------------------------------------------------------------
 # The worker process: ``python -m hfo2d.real --worker FD HFO_DIR PORT``
 # ---------------------------------------------------------------------------------------------------------------
-def _connect_worker(argv: Sequence[str], team: str, play_goalie: bool) -> tuple[socket.socket, Any, Any]:
+def _connect_worker(
+    argv: Sequence[str], team: str, play_goalie: bool, feature_set: int = HFO_LOW_LEVEL_FEATURE_SET
+) -> tuple[socket.socket, Any, Any]:
     """A worker's start: its socket (argv FD), HFO's ctypes binding from argv HFO_DIR, and one connectToServer on
-    argv PORT (it exits the process when it fails; the env then sees the socket close)."""
+    argv PORT with ``feature_set`` (it exits the process when it fails; the env then sees the socket close)."""
     fd, hfo_dir, port = int(argv[0]), argv[1], int(argv[2])
     sock = socket.socket(fileno=fd)
     sys.path.insert(0, hfo_dir)
@@ -1103,7 +1114,7 @@ def _connect_worker(argv: Sequence[str], team: str, play_goalie: bool) -> tuple[
 
     env = hfo.HFOEnvironment()
     env.connectToServer(
-        HFO_LOW_LEVEL_FEATURE_SET,
+        feature_set,
         os.path.join(hfo_dir, HFO_CONFIG_SUBDIR),
         port,
         "localhost",
@@ -1115,8 +1126,17 @@ def _connect_worker(argv: Sequence[str], team: str, play_goalie: bool) -> tuple[
 
 
 def worker_main(argv: Sequence[str]) -> int:
-    """Connect to the HFO server on PORT as the offense agent and serve act + step requests on socket FD."""
-    sock, hfo, env = _connect_worker(argv, HFO_TEAM_NAME, play_goalie=False)
+    """Connect to the HFO server on PORT and serve act + step requests on socket FD.
+
+    ``argv`` is ``FD HFO_DIR PORT`` (RealHFOEnv's offense agent: team base_left, low-level features, not the
+    goalie) or ``FD HFO_DIR PORT TEAM FEATURE_SET PLAY_GOALIE`` (hfo2d.real_teams: any agent of a team game;
+    FEATURE_SET is HFO's code, PLAY_GOALIE 0 or 1). A request's code is HFO's action code, sent with as many of
+    its two parameters as HFO's act() takes (HFO_ACTION_PARAMS); any other code plays a NOOP.
+    """
+    team, feature_set, play_goalie = HFO_TEAM_NAME, HFO_LOW_LEVEL_FEATURE_SET, False
+    if len(argv) == 6:
+        team, feature_set, play_goalie = argv[3], int(argv[4]), argv[5] == "1"
+    sock, hfo, env = _connect_worker(argv[:3], team, play_goalie=play_goalie, feature_set=feature_set)
     size = env.getStateSize()
     reply = bytearray(_REPLY_HEAD.size + 4 * size)  # head + state, sent in one piece
     state = np.frombuffer(reply, dtype=np.float32, offset=_REPLY_HEAD.size)
@@ -1135,12 +1155,11 @@ def worker_main(argv: Sequence[str]) -> int:
         code, param0, param1 = _REQUEST.unpack(request)
         if code == _QUIT:
             return 0
-        if code == HFO_TURN:
-            env.act(code, param0)
-        elif code in (HFO_DASH, HFO_KICK):
-            env.act(code, param0, param1)
-        else:
+        params = HFO_ACTION_PARAMS.get(code)
+        if params is None:
             env.act(HFO_NOOP)
+        else:
+            env.act(code, *(param0, param1)[:params])
         status = env.step()
         env.getState(state)
         on_ball = env.playerOnBall()
@@ -1213,12 +1232,13 @@ def goalie_main(argv: Sequence[str]) -> int:
 
 
 if __name__ == "__main__":
-    if len(sys.argv) == 5 and sys.argv[1] == "--worker":
+    if len(sys.argv) in (5, 8) and sys.argv[1] == "--worker":
         sys.exit(worker_main(sys.argv[2:]))
     if len(sys.argv) == 5 and sys.argv[1] == "--goalie":
         sys.exit(goalie_main(sys.argv[2:]))
     print(
-        "usage: python -m hfo2d.real --worker|--goalie FD HFO_DIR PORT (started by RealHFOEnv)",
+        "usage: python -m hfo2d.real --worker|--goalie FD HFO_DIR PORT, or --worker FD HFO_DIR PORT TEAM"
+        " FEATURE_SET PLAY_GOALIE (started by RealHFOEnv and hfo2d.real_teams)",
         file=sys.stderr,
     )
     sys.exit(2)

@@ -28,7 +28,7 @@ def committed(name: str) -> str:
 
 def test_discrete_choice_runs_both_modes_on_the_committed_model(tmp_path: Path) -> None:
     command = [sys.executable, str(PROBES / "discrete_choice.py")]
-    command += [committed("e1"), "--episodes", "2", "--seed", "0"]
+    command += [committed("e1_skill_pdqn"), "--episodes", "2", "--seed", "0"]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert completed.returncode == 0, completed.stderr[-2000:]
     lines = completed.stdout.splitlines()
@@ -56,7 +56,7 @@ def test_discrete_choice_agreement_counts_every_step(tmp_path: Path) -> None:
 def test_failure_map_groups_episodes_by_start_and_writes_a_png(tmp_path: Path) -> None:
     out = tmp_path / "map.png"
     command = [sys.executable, str(PROBES / "failure_map.py")]
-    command += [committed("e1"), "--episodes", "6", "--out", str(out)]
+    command += [committed("e1_skill_pdqn"), "--episodes", "6", "--out", str(out)]
     completed = subprocess.run(
         [*command, "--acting", "critic,kick_mask,mirror"],
         capture_output=True,
@@ -98,7 +98,7 @@ def test_start_class_bands_the_agents_lead_over_the_ball() -> None:
 def test_mirror_twin_tables_both_sides_by_start_class(tmp_path: Path) -> None:
     out = tmp_path / "twin.json"
     command = [sys.executable, str(PROBES / "mirror_twin.py")]
-    command += [committed("e1"), "--episodes", "5"]
+    command += [committed("e1_skill_pdqn"), "--episodes", "5"]
     completed = subprocess.run(
         [*command, "--json", str(out)], capture_output=True, text=True, timeout=300, cwd=tmp_path
     )

@@ -40,8 +40,9 @@ from sb3_hfo.cli.errors import (
     option_values,
 )
 from sb3_hfo.cli.evaluate import add_acting_argument
-from sb3_hfo.cli.zoo import ALGO_NAME
+from sb3_hfo.cli.zoo import ALGO_NAME, HYBRID_PPO_ALGO_NAME
 from sb3_hfo.evaluation import REMOVED_ENV_KWARGS, check_env_id, evaluate, resolve_model, wilson_interval
+from sb3_hfo.hybrid_ppo import HybridPPO
 from sb3_hfo.models import (
     EVALUATION_EPISODES,
     EVALUATION_SEED,
@@ -53,6 +54,7 @@ from sb3_hfo.models import (
     looks_like_name,
     model_file,
     read_manifest,
+    saved_algo_class,
     strip_model,
     unknown_name_message,
     write_manifest,
@@ -87,11 +89,18 @@ def playback_argv(args: Sequence[str], run_root: Path) -> list[str]:
             f"--env is required for {model} (it is not a committed model nor inside an rl-zoo3 run)"
         )
     env_name = EnvironmentName(env_id)
-    algo = option_value(rest, "--algo") or ALGO_NAME
+    algo = option_value(rest, "--algo")
+    extra: list[str] = []
+    if algo is None:
+        # The algorithm that saved the zip (SB3 zips record only the policy class): a HybridPPO model plays under
+        # rl-zoo3's name "hybrid_ppo", anything else under SkillDDPG's.
+        saved = saved_algo_class(resolved.path)
+        algo = HYBRID_PPO_ALGO_NAME if saved is not None and issubclass(saved, HybridPPO) else ALGO_NAME
+        extra += ["--algo", algo]
     run = run_root / algo / f"{env_name}_1"
     run.mkdir(parents=True, exist_ok=True)
     (run / f"{env_name}.zip").symlink_to(resolved.path.resolve())
-    extra = ["--env", env_id] if option_value(rest, "--env") is None else []
+    extra += ["--env", env_id] if option_value(rest, "--env") is None else []
     if option_values(rest, "--env-kwargs") is None:
         kwargs = {k: v for k, v in resolved.env_kwargs.items() if k not in REMOVED_ENV_KWARGS}
         if kwargs:

@@ -43,6 +43,7 @@ import numbers
 import shutil
 import sys
 import tempfile
+import traceback
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -51,6 +52,7 @@ from typing import Any
 import hfo2d  # noqa: F401  (registers the HFO/* Gymnasium ids)
 from hfo2d import ENV_IDS
 from sb3_hfo.common.schedules import SCHEDULE_KEYS, parse_schedule
+from sb3_hfo.errors import one_line
 from sb3_hfo.hybrid_ppo import HybridPPO
 from sb3_hfo.models import full_model_buffer, is_stripped
 from sb3_hfo.skill_ddpg import SkillDDPG, SkillPDQN
@@ -161,6 +163,23 @@ def split_checkpoint_options(argv: Sequence[str]) -> tuple[list[str], Checkpoint
     return rest, CheckpointOptions(freq, resume, minutes)
 
 
+#: The folders of the algorithms whose constructors check their own arguments (ValueError naming the argument).
+_ALGORITHM_FOLDERS: tuple[Path, ...] = tuple(
+    Path(module.__file__).resolve().parent
+    for module in (sys.modules[SkillDDPG.__module__], sys.modules[HybridPPO.__module__])
+)
+
+
+def raised_by_algorithm_checks(error: BaseException) -> bool:
+    """Whether ``error`` was raised inside sb3_hfo's algorithms (their constructors' argument checks) rather than
+    by rl-zoo3, an env or a bug elsewhere: its innermost frame lies in an algorithm's package."""
+    frames = traceback.extract_tb(error.__traceback__)
+    if not frames:
+        return False
+    innermost = Path(frames[-1].filename).resolve()
+    return any(innermost.is_relative_to(folder) for folder in _ALGORITHM_FOLDERS)
+
+
 def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) -> type:
     """Build :class:`HFOExperimentManager` lazily (rl_zoo3.exp_manager imports optuna, torch, ...)."""
     from rl_zoo3.exp_manager import ExperimentManager
@@ -267,12 +286,16 @@ def _experiment_manager_class(checkpointing: CheckpointOptions | None = None) ->
                 folder = folder.parent
             try:
                 return super().setup_experiment()
-            except BaseException:
+            except BaseException as error:
                 if created:
                     shutil.rmtree(created[0], ignore_errors=True)
                     for parent in created[1:]:
                         with contextlib.suppress(OSError):  # not empty: something else wrote there meanwhile
                             parent.rmdir()
+                if isinstance(error, ValueError) and raised_by_algorithm_checks(error):
+                    raise ConfigConflictError(
+                        f"a hyperparameter of --conf-file / --hyperparams: {one_line(error)}"
+                    ) from None
                 raise
 
         def _preprocess_hyperparams(self, hyperparams: dict[str, Any]) -> Any:

@@ -96,6 +96,31 @@ def test_training_throughput_times_both_contestants_in_each_round(tmp_path: Path
     assert "load average" in results["uptime_before"] and results["cpu_model"]
 
 
+def test_training_throughput_takes_the_papers_e6_config_for_skill_ddpg(tmp_path: Path) -> None:
+    out = tmp_path / "training_throughput.json"
+    command = [
+        sys.executable,
+        str(REPO / "benchmarks" / "training_throughput.py"),
+        "--smoke",
+        "--rounds",
+        "1",
+    ]
+    command += ["--seconds", "0.2", "--out", str(out)]
+    command += ["--skill-ddpg-config", str(REPO / "zoo_configs" / "e6_keeper_skills.yml")]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    results = json.loads(out.read_text())
+    assert results["skill_ddpg_config"] == "zoo_configs/e6_keeper_skills.yml"
+    assert results["n_envs"]["skill_ddpg"] == 1  # the paper's recipe: one env
+    wrong = subprocess.run(
+        [*command[:-1], str(REPO / "zoo_configs" / "e1_empty_goal.yml")],
+        capture_output=True,
+        text=True,
+        timeout=60,
+    )
+    assert wrong.returncode == 2 and "has no HFO/Keeper-v1 section" in wrong.stderr
+
+
 def test_training_throughput_profile_shows_where_hybrid_ppo_spends_its_time(tmp_path: Path) -> None:
     command = [sys.executable, str(REPO / "benchmarks" / "training_throughput.py"), "--profile"]
     completed = subprocess.run(

@@ -121,15 +121,41 @@ def test_train_config_key_typo_is_one_line(capsys: pytest.CaptureFixture[str], t
     assert not logs.exists()
 
 
-def test_train_failing_at_setup_leaves_no_run_folder(tmp_path: Path) -> None:
+def test_train_failing_at_setup_leaves_no_run_folder(
+    capsys: pytest.CaptureFixture[str], tmp_path: Path
+) -> None:
     """A value the constructor rejects fails after rl-zoo3 made the run folder; the folder goes with the run, so
-    the next run is still ``_1``."""
+    the next run is still ``_1``, and the constructor's message is one line (it was a 40-line traceback)."""
     from sb3_hfo.cli.train import main
 
     logs = tmp_path / "logs"
-    with pytest.raises(ValueError, match="mc_mixing"):
-        main(_train_argv(logs, "--hyperparams", "mc_mixing:2.0"))
+    line = _one_line_error(capsys, main, _train_argv(logs, "--hyperparams", "mc_mixing:2.0"))
+    assert "mc_mixing must lie in [0, 1], got 2.0" in line and "--hyperparams" in line
     assert not logs.exists()
+
+
+def test_a_bad_hybrid_ppo_value_is_one_line(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    from sb3_hfo.cli.train import main
+
+    config = CONFIGS / "hybrid_ppo_empty_goal.yml"
+    argv = _train_argv(
+        tmp_path / "logs", "--algo", "hybrid_ppo", "--hyperparams", "policy_kwargs:dict(skills=0)"
+    )
+    line = _one_line_error(capsys, main, [*argv[:3], str(config), *argv[4:]])
+    assert "skills must be an integer >= 1, got 0" in line
+
+
+def test_only_the_algorithms_own_checks_become_one_line() -> None:
+    """A ValueError from elsewhere (rl-zoo3, an env, a bug) keeps its traceback."""
+    from sb3_hfo.cli.zoo import raised_by_algorithm_checks
+    from sb3_hfo.skill_ddpg import SkillDDPG
+
+    with pytest.raises(ValueError) as from_algorithm:
+        SkillDDPG("HFOPolicy", "HFO/EmptyGoal-v0", mc_mixing=2.0)
+    assert raised_by_algorithm_checks(from_algorithm.value)
+    with pytest.raises(ValueError) as from_elsewhere:
+        int("not a number")
+    assert not raised_by_algorithm_checks(from_elsewhere.value)
 
 
 # --- 7, 8: record_video -------------------------------------------------------------------------------------------

@@ -89,7 +89,7 @@ def test_the_python_api_works_without_the_extras() -> None:
         "from sb3_hfo.models import load_model\n"
         "model = SkillDDPG('HFOPolicy', gym.make('HFO/EmptyGoal-v0'), learning_starts=16, batch_size=8, seed=0)\n"
         "model.learn(48)\n"
-        "e1 = load_model('e1')\n"
+        "e1 = load_model('e1_skill_pdqn')\n"
         "print('critic rate', type(e1.learning_rate_critic).__name__, e1.learning_rate_critic(0.5))\n"
         "assert evaluate(['e1', '--episodes', '2', '--seed', '0']) == 0\n"
         "print('API OK')\n"
@@ -97,10 +97,10 @@ def test_the_python_api_works_without_the_extras() -> None:
     completed = _run_python(code)
     assert completed.returncode == 0, completed.stderr[-3000:]
     assert "API OK" in completed.stdout
-    # e1 was trained through rl-zoo3 and pickles its schedule: without rl-zoo3 it loads as an equal one
+    # e1_skill_pdqn was trained through rl-zoo3 and pickles its schedule: without rl-zoo3 it loads as an equal one
     from sb3_hfo.models import load_model
 
-    with_zoo = load_model("e1").learning_rate_critic
+    with_zoo = load_model("e1_skill_pdqn").learning_rate_critic
     assert type(with_zoo).__name__ == "SimpleLinearSchedule"
     assert f"critic rate LinearToZero {with_zoo(0.5)}" in completed.stdout
 

@@ -25,7 +25,9 @@ def test_add_strips_checks_evaluates_and_writes_the_manifest_entry(tmp_path: Pat
     from sb3_hfo.cli.models import add
 
     full_path = tmp_path / "full.zip"
-    load_model("e1", device="cpu", buffer_size=1).save(full_path)  # a full zip (target networks, optimizers)
+    load_model("e1_skill_pdqn", device="cpu", buffer_size=1).save(
+        full_path
+    )  # a full zip (target networks, optimizers)
     manifest = tmp_path / "models" / "manifest.json"
     args = build_parser().parse_args(
         ["add", "tiny", str(full_path), "--config", "zoo_configs/e1_empty_goal_fast.yml", "--seed", "3"]
@@ -117,14 +119,19 @@ def test_an_unknown_name_is_one_line_listing_the_names(tool: str, capsys: pytest
     assert all(name in err for name in MANIFEST)
 
 
-def test_playback_argv_lays_a_model_out_as_an_rl_zoo3_run(tmp_path: Path) -> None:
-    name, entry = next(iter(MANIFEST.items()))
+@pytest.mark.parametrize(("name", "algo"), [("e1", "hybrid_ppo"), ("e1_skill_pdqn", "skill_ddpg")])
+def test_playback_argv_lays_a_model_out_as_an_rl_zoo3_run(name: str, algo: str, tmp_path: Path) -> None:
+    """The run layout is the saved model's algorithm's (a HybridPPO zip under "hybrid_ppo", else "skill_ddpg")."""
+    entry = MANIFEST[name]
     argv = playback_argv([name, "-n", "5"], tmp_path)
     assert argv[:2] == ["-n", "5"] and argv[argv.index("--env") + 1] == entry["env_id"]
+    assert argv[argv.index("--algo") + 1] == algo
     assert argv[-4:] == ["-f", str(tmp_path), "--exp-id", "1"]
     env_name = entry["env_id"].replace("/", "-")
-    linked = tmp_path / "skill_ddpg" / f"{env_name}_1" / f"{env_name}.zip"
+    linked = tmp_path / algo / f"{env_name}_1" / f"{env_name}.zip"
     assert linked.resolve() == (MODELS_DIR / entry["file"]).resolve()
+    given = playback_argv([name, "--algo", "skill_ddpg", "-n", "5"], tmp_path / "given")
+    assert given.count("--algo") == 1  # an explicit --algo is the user's
     assert playback_argv(["--env", "HFO/EmptyGoal-v0", "-f", "logs"], tmp_path) == [
         "--env",
         "HFO/EmptyGoal-v0",
@@ -161,7 +168,7 @@ def test_enjoy_and_record_video_play_a_committed_model_by_name(tmp_path: Path) -
 def test_train_warm_starts_from_a_committed_model(tmp_path: Path) -> None:
     config = REPO / "zoo_configs" / "empty_goal_skill_pdqn_fast.yml"
     command = ["sb3_hfo.train", "--env", "HFO/EmptyGoal-v0", "--conf-file", str(config), "-n", "64"]
-    command += ["--seed", "0", "-f", "logs", "--eval-freq", "-1", "-i", str(MODELS_DIR / "e1.zip")]
+    command += ["--seed", "0", "-f", "logs", "--eval-freq", "-1", "-i", str(MODELS_DIR / "e1_skill_pdqn.zip")]
     completed = _run_tool(command, tmp_path)
     assert completed.returncode == 0, completed.stderr[-2000:]
     assert "Loading pretrained agent" in completed.stdout

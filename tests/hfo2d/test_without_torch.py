@@ -14,7 +14,7 @@ REPO = TESTS.parents[1]
 #: Top-level modules that hfo2d and its tests must not import.
 FORBIDDEN = ("torch", "stable_baselines3", "sb3_hfo", "rl_zoo3")
 #: The benchmark scripts tests/hfo2d loads (by path, through its conftest's benchmark_script fixture).
-BENCHMARK_SCRIPTS = ("keeper_fidelity", "real_hfo_logs")
+BENCHMARK_SCRIPTS = ("keeper_fidelity", "real_hfo_logs", "team_features_fidelity")
 
 #: A pytest plugin (loaded with -p before any conftest) that makes importing the forbidden modules fail.
 BLOCKER = f"""

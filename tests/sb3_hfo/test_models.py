@@ -155,19 +155,40 @@ def test_a_committed_model_is_small_stripped_and_matches_its_manifest_entry(name
 # --- continuing to train a committed model ------------------------------------------------------------------
 
 
+@pytest.mark.parametrize("n_envs", [1, 3])
+def test_the_hybrid_ppo_e1_continues_training_with_any_number_of_envs(
+    n_envs: int, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """e1 (HybridPPO, trained on 16 games) continues with another number of envs and writes no stray logs."""
+    from stable_baselines3.common.env_util import make_vec_env
+
+    from sb3_hfo.hybrid_ppo import HybridPPO
+
+    monkeypatch.chdir(tmp_path)
+    env = make_vec_env("HFO/EmptyGoal-v0", n_envs=n_envs, seed=0)
+    model = load_model("e1", env=env, device="cpu", n_steps=16, batch_size=16, n_epochs=1)
+    assert isinstance(model, HybridPPO) and model.n_envs == n_envs
+    before = model.num_timesteps
+    model.learn(32 * n_envs, reset_num_timesteps=False)
+    assert model.num_timesteps >= before + 32 * n_envs
+    assert list(tmp_path.iterdir()) == []  # no TensorBoard folder unless asked
+
+
 @pytest.mark.parametrize("n_envs", [1, 2])
 def test_a_committed_model_continues_training_with_any_number_of_envs(
     n_envs: int, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """e1 was trained with 4 envs: its saved action noise is for 4 (issue 35, defect 1: a reshape error on 1)."""
+    """e1_skill_pdqn was trained with 4 envs: its saved action noise is for 4 (issue 35, defect 1: a reshape error on 1)."""
     from stable_baselines3.common.env_util import make_vec_env
     from stable_baselines3.common.noise import VectorizedActionNoise
 
     monkeypatch.chdir(tmp_path)
-    saved = load_model("e1", device="cpu", buffer_size=1).action_noise
+    saved = load_model("e1_skill_pdqn", device="cpu", buffer_size=1).action_noise
     assert isinstance(saved, VectorizedActionNoise) and saved.n_envs == 4  # the premise
     env = gym.make("HFO/EmptyGoal-v0") if n_envs == 1 else make_vec_env("HFO/EmptyGoal-v0", n_envs=n_envs)
-    model = load_model("e1", env=env, device="cpu", buffer_size=500, learning_starts=0, batch_size=8)
+    model = load_model(
+        "e1_skill_pdqn", env=env, device="cpu", buffer_size=500, learning_starts=0, batch_size=8
+    )
     model.learn(40)
     noises = getattr(model.action_noise, "noises", [model.action_noise])
     assert len(noises) == n_envs
@@ -182,12 +203,14 @@ def test_a_loaded_model_logs_to_tensorboard_only_where_told(
 ) -> None:
     """The saved tensorboard_log (the training run's, e.g. tbX5S1/) is not where a user's run should write."""
     monkeypatch.chdir(tmp_path)
-    model = load_model("e1", env=gym.make("HFO/EmptyGoal-v0"), device="cpu", buffer_size=500)
+    model = load_model("e1_skill_pdqn", env=gym.make("HFO/EmptyGoal-v0"), device="cpu", buffer_size=500)
     assert model.tensorboard_log is None
     model.learn(5)
     assert list(tmp_path.iterdir()) == []  # no stray log folder in the working directory
     logs = tmp_path / "my_logs"
-    told = load_model("e1", env=gym.make("HFO/EmptyGoal-v0"), buffer_size=500, tensorboard_log=str(logs))
+    told = load_model(
+        "e1_skill_pdqn", env=gym.make("HFO/EmptyGoal-v0"), buffer_size=500, tensorboard_log=str(logs)
+    )
     assert told.tensorboard_log == str(logs)
     told.learn(5)
     assert [path.name for path in tmp_path.iterdir()] == ["my_logs"] and any(logs.rglob("events.out.*"))

@@ -82,7 +82,7 @@ def test_a_wheel_holds_the_models_and_finds_them_outside_a_checkout(tmp_path: Pa
     assert completed.returncode == 0, completed.stderr[-2000:]
     module_file, algo, names_text = completed.stdout.split(" ", 2)
     assert Path(module_file).is_relative_to(tmp_path / "installed")
-    assert algo == "SkillDDPG" and "'e1'" in names_text
+    assert algo == "HybridPPO" and "'e1'" in names_text
 
 
 def _mkdir(path: Path) -> Path:

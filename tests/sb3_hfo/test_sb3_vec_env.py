@@ -137,3 +137,20 @@ def test_vector_throughput_benchmark_smoke(tmp_path: Path) -> None:
     names = [row["contestant"] for row in rows]
     assert names[0] == "single" and "batch x4" in names and "sb3 sharded x4/2" in names
     assert all(row["steps_per_s_median"] > 0 and row["ratio_to_single_median"] > 0 for row in rows)
+
+
+def test_vec_monitor_writes_the_env_id_into_its_header(tmp_path) -> None:  # noqa: ANN001
+    """VecMonitor reads ``spec.id`` for the monitor.csv header (it wrote "env_id": "None" before)."""
+    import json
+
+    from stable_baselines3.common.vec_env import VecMonitor
+
+    from sb3_hfo.vec_env import make_hfo_vec_env
+
+    env = VecMonitor(
+        make_hfo_vec_env("HFO/EmptyGoal-v0", 2, seed=0, monitor=False), filename=str(tmp_path / "run")
+    )
+    assert env.venv.spec.id == "HFO/EmptyGoal-v0"
+    env.close()
+    header = (tmp_path / "run.monitor.csv").read_text().splitlines()[0]
+    assert json.loads(header.lstrip("#"))["env_id"] == "HFO/EmptyGoal-v0"

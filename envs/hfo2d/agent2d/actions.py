@@ -729,7 +729,12 @@ def _wait_turn(
     eff: Effector, view: GoalieView, tx: float, ty: float, e: InterceptEntry, opp_min: int, ball_rand: float
 ) -> bool:
     """Body_Intercept2009::doWaitTurn: turn (instead of dashing) when the ball will come to the goalie anyway."""
-    if view.has_opp and math.sqrt((view.ox - view.px) ** 2 + (view.oy - view.py) ** 2) < 3.0:
+    # WorldModel::getOpponentNearestToSelf: a field defender's view holds its distance (several opponents), the
+    # goalie's view its one attacker
+    near = getattr(view, "opp_self_dist", None)
+    if near is None:
+        near = math.sqrt((view.ox - view.px) ** 2 + (view.oy - view.py) ** 2) if view.has_opp else math.inf
+    if near < 3.0:
         return False
     reach = e.reach_cycle
     if reach > opp_min - 5:

@@ -1531,24 +1531,74 @@ def _predict_opponent(view: GoalieView, cache: list[tuple[float, float]], rel_y:
 
     ``rel_y``: the attacker's offset from the ball's line of motion, (O - B) rotated by -angle(W).
     """
-    ox = view.ox
-    oy = view.oy
-    ux = view.ux
-    uy = view.uy
-    obody = _norm(view.obody)
+    return _predict_player(
+        view.ox,
+        view.oy,
+        view.ux,
+        view.uy,
+        view.obody,
+        view.opp_tackle_count,
+        view.wx == 0.0 and view.wy == 0.0,
+        _sqrt((view.ox - view.px) * (view.ox - view.px) + (view.oy - view.py) * (view.oy - view.py)),
+        cache,
+        rel_y,
+    )
+
+
+def predict_player_reach(
+    view: GoalieView,
+    cache: list[tuple[float, float]],
+    player: tuple[float, float, float, float, float, int],
+    teammate: bool,
+) -> int:
+    """PlayerIntercept::predict for any other field player (fullstate: counts 0, control area 1.085), on the ball
+    cache of ``view``: ``player`` is (x, y, vx, vy, body, remaining tackle freeze) in the view's frame.
+
+    librcsc treats the two sides alike but for one rule: the "no solution" distance to the ball's final point is
+    reduced by 3 % of the player's distance from the deciding player only for an opponent
+    (``rcsc/player/player_intercept.cpp``). Capped at 1000 as InterceptTable stores it.
+    """
+    x, y, vx, vy, body, frozen = player
+    wx, wy = view.wx, view.wy
+    if wx == 0.0 and wy == 0.0:
+        sin_a, cos_a = -0.0, 1.0
+    else:
+        a = -_th(wx, wy) * _D2R
+        sin_a, cos_a = _sin(a), _cos(a)
+    rel_y = (x - view.bx) * sin_a + (y - view.by) * cos_a
+    self_dist = 0.0 if teammate else _sqrt((x - view.px) * (x - view.px) + (y - view.py) * (y - view.py))
+    reach = _predict_player(x, y, vx, vy, body, frozen, wx == 0.0 and wy == 0.0, self_dist, cache, rel_y)
+    return min(1000, reach)
+
+
+def _predict_player(
+    ox: float,
+    oy: float,
+    ux: float,
+    uy: float,
+    obody: float,
+    frozen: int,
+    resting: bool,
+    self_dist: float,
+    cache: list[tuple[float, float]],
+    rel_y: float,
+) -> int:
+    """PlayerIntercept::predict for one player at (ox, oy) moving (ux, uy), body ``obody``, frozen for ``frozen``
+    more cycles by its own tackle; ``self_dist`` is its distance from the deciding player (0: no reduction)."""
+    obody = _norm(obody)
     min_cycle = int(_floor(abs(rel_y) / _REAL_SPEED_MAX))
     # librcsc PlayerObject::tackleCount counts the cycles since the tackle was first seen (0 in the first state
     # after it), where rcssserver shows a remaining freeze of tackle_cycles - 1 = 9. With the remaining freeze r
-    # (view.opp_tackle_count), tackleCount = 9 - r and isTackling() <=> tackleCount <= tackle_cycles - 2 <=> r >= 1.
+    # (frozen), tackleCount = 9 - r and isTackling() <=> tackleCount <= tackle_cycles - 2 <=> r >= 1.
     tackle_extra = 0
-    if view.opp_tackle_count > 0:
-        tackle_count = _TACKLE_CYCLES - 1 - view.opp_tackle_count
+    if frozen > 0:
+        tackle_count = _TACKLE_CYCLES - 1 - frozen
         tackle_extra = max(0, _TACKLE_CYCLES - tackle_count - 2)
         min_cycle += tackle_extra
     if min_cycle < 0:
         min_cycle = 0
     n_cache = len(cache)
-    if view.wx == 0.0 and view.wy == 0.0 and min_cycle < n_cache and _RESTING_SHORTCUTS:
+    if resting and min_cycle < n_cache and _RESTING_SHORTCUTS:
         # a resting ball: every cached point has B's value, so the distance below is one number and the reach
         # bound grows with the cycle; skip the cycles it fails at once
         xbx, xby = cache[min_cycle]
@@ -1576,9 +1626,7 @@ def _predict_opponent(view: GoalieView, cache: list[tuple[float, float]], rel_y:
     xbx, xby = cache[-1]
     n_turn, _, _, target_dist = _opp_turns(ox, oy, ux, uy, obody, 100, xbx, xby)
     dash_dist = target_dist - _KICKABLE_AREA  # |Z - B| (the same floats as |B - Z|)
-    rx = ox - view.px
-    ry = oy - view.py
-    dash_dist -= _sqrt(rx * rx + ry * ry) * 0.03  # distFromSelf (rpos.r())
+    dash_dist -= self_dist * 0.03  # distFromSelf (rpos.r()); 0 for a teammate
     if dash_dist < 0.0:
         return n_cache
     n_dash = max(1, cycles_to_reach_distance(dash_dist))

@@ -227,10 +227,17 @@ def _turn_cycles(body: float, speed: float, target_dist: float, target_angle: fl
 
 
 def _opponent_reach_step(
-    view: GoalieView, bx: float, by: float, vx: float, vy: float, move_angle: float, max_cycle: int
+    opp: tuple[float, float, float, float, float, int],
+    bx: float,
+    by: float,
+    vx: float,
+    vy: float,
+    move_angle: float,
+    max_cycle: int,
 ) -> int:
-    """TackleGenerator::predictOpponentReachStep for the attacker (fullstate: pos/body counts 0)."""
-    ox, oy, ux, uy = view.ox, view.oy, view.ux, view.uy
+    """TackleGenerator::predictOpponentReachStep for one opponent ``opp`` = (x, y, vx, vy, body, remaining
+    tackle freeze) (fullstate: pos/body counts 0)."""
+    ox, oy, ux, uy, obody, frozen = opp
     speed = math.hypot(ux, uy)
     # FieldAnalyzer::estimate_min_reach_cycle (speed max = realSpeedMax 1.0)
     tx, ty = rotate(ox - bx, oy - by, -move_angle)
@@ -259,9 +266,9 @@ def _opponent_reach_step(
         n_dash = cycles_to_reach(dash_dist)
         if n_dash > cycle:
             continue
-        n_turn = _turn_cycles(view.obody, speed, target_dist, angle_of(px - zx, py - zy))
+        n_turn = _turn_cycles(obody, speed, target_dist, angle_of(px - zx, py - zy))
         n_step = n_dash if n_turn == 0 else n_turn + n_dash + 1  # +1: observation delay
-        if view.opp_tackle_count > 0:
+        if frozen > 0:
             n_step += 5
         if n_step <= cycle:
             return cycle
@@ -329,8 +336,15 @@ def opponents_reach_step(
         if n == 1 and sol is not None:
             first = ball_move_step(math.hypot(vx, vy), math.hypot(bx - sol[0], by - sol[1]))
     min_step = first
-    if view.has_opp:
-        min_step = min(min_step, _opponent_reach_step(view, bx, by, vx, vy, move_angle, min_step))
+    # every opponent (a field defender's view lists them, nearest to the ball first; the goalie's has one), each
+    # searched only below the best step so far (predictOpponentsReachStep's max_step)
+    opponents = getattr(view, "opponents", None)
+    if opponents is None:
+        opponents = (
+            ((view.ox, view.oy, view.ux, view.uy, view.obody, view.opp_tackle_count),) if view.has_opp else ()
+        )
+    for opp in opponents:
+        min_step = min(min_step, _opponent_reach_step(opp, bx, by, vx, vy, move_angle, min_step))
     return 1000 if min_step == first else min_step
 
 
@@ -443,7 +457,8 @@ def basic_tackle(
         return False
     self_min = table.self_min
     opp_min = table.opp_min
-    mate_min = 1000  # no teammates in HFO 1v1
+    # the non-goalie teammates' reach (InterceptTable::teammateReachCycle); 1000 without any (the goalie's table)
+    mate_min = getattr(table, "mate_min", 1000)
     bx, by, wx, wy = view.bx, view.by, view.wx, view.wy
     into_goal = False
     reach_x, _ = ball_at(bx, by, wx, wy, self_min)
