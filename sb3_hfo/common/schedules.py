@@ -34,6 +34,27 @@ class LinearToZero:
         return f"LinearToZero(initial_value={self.initial_value})"
 
 
+class DecayToZero:
+    """``initial_value`` falling linearly to 0 over the first ``fraction`` of training, then 0: e.g. the weight of
+    a pull toward a reference policy that lets go part-way (``HybridPPO(reference_coef=DecayToZero(1.0, 0.5))``).
+    Called with SB3's ``progress_remaining`` (1 at the start, 0 at the end)."""
+
+    def __init__(self, initial_value: float, fraction: float) -> None:
+        if not float(initial_value) >= 0.0:
+            raise ValueError(f"DecayToZero: initial_value must be >= 0, got {initial_value!r}")
+        if not 0.0 < float(fraction) <= 1.0:
+            raise ValueError(f"DecayToZero: fraction must lie in (0, 1], got {fraction!r}")
+        self.initial_value = float(initial_value)
+        self.fraction = float(fraction)
+
+    def __call__(self, progress_remaining: float) -> float:
+        elapsed = 1.0 - progress_remaining
+        return self.initial_value * max(0.0, 1.0 - elapsed / self.fraction)
+
+    def __repr__(self) -> str:
+        return f"DecayToZero(initial_value={self.initial_value}, fraction={self.fraction})"
+
+
 #: rl-zoo3 classes an older saved model may hold, and this package's equivalents.
 _RL_ZOO3_EQUIVALENTS = {("rl_zoo3.utils", "SimpleLinearSchedule"): LinearToZero}
 

@@ -10,7 +10,17 @@ SB3's ``PPO``:
   its own format (clipped to its bounds) through the policy's adapter;
 * one optimizer per skill head plus one for the shared parts (:mod:`sb3_hfo.hybrid_ppo.policies`);
 * ``rollout/action_<name>_fraction`` (and ``rollout/skill_<s>_fraction`` with skills) log how often each discrete
-  action (skill) was sampled in the last rollout.
+  action (skill) was sampled in the last rollout;
+* two options for starting from a good policy (e.g. one distilled from an imitation clone), both off by default:
+
+  - a pull toward a frozen *reference* policy (:meth:`HybridPPO.set_reference`): the loss adds
+    ``reference_coef(progress_remaining) * mean KL(reference(.|s) || pi(.|s))`` over each minibatch's states
+    (:func:`~sb3_hfo.hybrid_ppo.distributions.hybrid_kl`), the cross-entropy to the teacher of "kickstarting"
+    (Schmitt et al. 2018, "Kickstarting deep reinforcement learning") with a coefficient that may decay to 0
+    (:class:`~sb3_hfo.common.schedules.DecayToZero`). The reference is not saved with the model;
+  - a critic warm-up: for the first ``critic_warmup_steps`` env steps the update trains the value function only
+    (no policy, entropy or pull term; the actor's weights get no gradient and do not move), so that the first
+    policy updates use advantages from a critic fitted to the starting policy rather than a random one.
 """
 
 from __future__ import annotations
@@ -29,6 +39,7 @@ from stable_baselines3.common.utils import FloatSchedule, explained_variance, ob
 from stable_baselines3.common.vec_env import VecEnv
 
 from sb3_hfo.common.domain import LEGACY_DOMAIN
+from sb3_hfo.hybrid_ppo.distributions import hybrid_kl
 from sb3_hfo.hybrid_ppo.policies import HybridActorCriticPolicy
 
 __all__ = ["HybridPPO"]
@@ -66,6 +77,8 @@ class HybridPPO(OnPolicyAlgorithm):
         vf_coef: float = 0.5,
         max_grad_norm: float = 0.5,
         target_kl: float | None = None,
+        reference_coef: float | Schedule = 0.0,
+        critic_warmup_steps: int = 0,
         stats_window_size: int = 100,
         tensorboard_log: str | None = None,
         policy_kwargs: dict[str, Any] | None = None,
@@ -109,6 +122,16 @@ class HybridPPO(OnPolicyAlgorithm):
         self.clip_range_vf = clip_range_vf
         self.normalize_advantage = normalize_advantage
         self.target_kl = target_kl
+        if not callable(reference_coef) and not float(reference_coef) >= 0.0:
+            raise ValueError(f"reference_coef must be >= 0 (or a schedule), got {reference_coef!r}")
+        if (
+            isinstance(critic_warmup_steps, bool)
+            or not isinstance(critic_warmup_steps, (int, np.integer))
+            or (critic_warmup_steps < 0)
+        ):
+            raise ValueError(f"critic_warmup_steps must be an integer >= 0, got {critic_warmup_steps!r}")
+        self.reference_coef = reference_coef
+        self.critic_warmup_steps = int(critic_warmup_steps)
         if _init_setup_model:
             # the domain is saved explicitly, so that a model without it is known to predate it (LEGACY_DOMAIN)
             self.policy_kwargs = {"domain": None, **self.policy_kwargs}
@@ -135,6 +158,10 @@ class HybridPPO(OnPolicyAlgorithm):
             n_envs=self.n_envs,
         )
         self.clip_range = FloatSchedule(self.clip_range)
+        # models saved before the options load without them: no pull, no warm-up
+        self.reference_coef = FloatSchedule(getattr(self, "reference_coef", 0.0))
+        self.critic_warmup_steps = getattr(self, "critic_warmup_steps", 0)
+        self.reference_policy: HybridActorCriticPolicy | None = None
         if self.clip_range_vf is not None:
             if isinstance(self.clip_range_vf, (float, int)) and self.clip_range_vf <= 0:
                 raise ValueError("clip_range_vf must be positive (or None to disable value clipping)")
@@ -142,6 +169,46 @@ class HybridPPO(OnPolicyAlgorithm):
 
     def _get_torch_save_params(self) -> tuple[list[str], list[str]]:
         return ["policy", *(f"policy.{name}" for name in self.policy.optimizer_names)], []
+
+    def _excluded_save_params(self) -> list[str]:
+        return [*super()._excluded_save_params(), "reference_policy"]
+
+    def set_reference(self, reference: HybridActorCriticPolicy | None) -> None:
+        """Pull the policy toward ``reference`` with weight ``reference_coef`` (``None``: no pull).
+
+        The reference is frozen here (no gradient, evaluation mode) and moved to the model's device; it must
+        have the same action adapter layout (discrete actions and parameters) and a hand-coded router.
+
+        :raises ValueError: a reference of another action layout, or one with a learned router.
+        """
+        if reference is None:
+            self.reference_policy = None
+            return
+        if not isinstance(reference, HybridActorCriticPolicy):
+            raise ValueError(
+                f"the reference must be a HybridActorCriticPolicy, got {type(reference).__name__}"
+            )
+        mine, theirs = self.policy.adapter, reference.adapter
+        if theirs.names != mine.names or not np.array_equal(theirs.parameter_mask, mine.parameter_mask):
+            raise ValueError(f"the reference's actions {theirs!r} differ from the policy's {mine!r}")
+        if reference.learned_router:
+            raise ValueError("the reference must route skills by a hand-coded router, not router='learned'")
+        reference = reference.to(self.device)
+        reference.set_training_mode(False)
+        for parameter in reference.parameters():
+            parameter.requires_grad_(False)
+        self.reference_policy = reference
+
+    def reference_kl(self, obs: th.Tensor) -> th.Tensor:
+        """``(B,)`` ``KL(reference(.|s) || pi(.|s))`` of the current policy for a batch of observations.
+
+        :raises ValueError: when no reference is set (:meth:`set_reference`).
+        """
+        if self.reference_policy is None:
+            raise ValueError("no reference policy: call set_reference first")
+        with th.no_grad():
+            reference = self.reference_policy.action_distribution(obs)
+        return hybrid_kl(reference, self.policy.action_distribution(obs))
 
     def collect_rollouts(
         self, env: VecEnv, callback: BaseCallback, rollout_buffer: RolloutBuffer, n_rollout_steps: int
@@ -206,6 +273,11 @@ class HybridPPO(OnPolicyAlgorithm):
             None if self.clip_range_vf is None else self.clip_range_vf(self._current_progress_remaining)
         )  # type: ignore[operator]
         entropy_losses, pg_losses, value_losses, clip_fractions, approx_kls = [], [], [], [], []
+        reference_kls: list[float] = []
+        reference_coef = float(self.reference_coef(self._current_progress_remaining))
+        pulled = self.reference_policy is not None and reference_coef > 0.0
+        # the critic warm-up: value loss only (the steps counted include the rollout just collected)
+        critic_only = self.num_timesteps <= self.critic_warmup_steps
         continue_training = True
         for _epoch in range(self.n_epochs):
             for batch in self.rollout_buffer.get(self.batch_size):
@@ -227,7 +299,14 @@ class HybridPPO(OnPolicyAlgorithm):
                     )
                 value_loss = th.nn.functional.mse_loss(batch.returns, values)
                 entropy_loss = -entropy.mean()
-                loss = policy_loss + self.ent_coef * entropy_loss + self.vf_coef * value_loss
+                if critic_only:
+                    loss = self.vf_coef * value_loss
+                else:
+                    loss = policy_loss + self.ent_coef * entropy_loss + self.vf_coef * value_loss
+                    if pulled:
+                        reference_kl = self.reference_kl(batch.observations).mean()
+                        loss = loss + reference_coef * reference_kl
+                        reference_kls.append(reference_kl.item())
                 with th.no_grad():
                     log_ratio = log_prob - batch.old_log_prob
                     approx_kl = th.mean(th.exp(log_ratio) - 1 - log_ratio).item()  # Schulman's k3 estimator
@@ -264,6 +343,12 @@ class HybridPPO(OnPolicyAlgorithm):
             self.logger.record("train/std", th.exp(log_std).mean().item())
         self.logger.record("train/n_updates", self._n_updates, exclude="tensorboard")
         self.logger.record("train/clip_range", clip_range)
+        self.logger.record(
+            "train/reference_coef", reference_coef if self.reference_policy is not None else 0.0
+        )
+        self.logger.record("train/critic_only", float(critic_only))
+        if reference_kls:
+            self.logger.record("train/reference_kl", np.mean(reference_kls))
         if clip_range_vf is not None:
             self.logger.record("train/clip_range_vf", clip_range_vf)
 

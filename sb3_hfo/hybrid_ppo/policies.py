@@ -54,17 +54,27 @@ def mlp(input_size: int, sizes: Sequence[int], activation_fn: type[nn.Module]) -
 
 
 class SkillHead(nn.Module):
-    """One skill's output layer: ``K`` discrete logits, ``P`` parameter means and its ``P`` log standard deviations."""
+    """One skill's output layer: ``K`` discrete logits, ``P`` parameter means and its ``P`` log standard deviations.
+    With ``squash_mean`` the means are ``tanh`` of the linear output (inside the env's bounds, ``[-1, 1]``)."""
 
-    def __init__(self, latent_size: int, n_discrete: int, n_parameters: int, log_std_init: float) -> None:
+    def __init__(
+        self,
+        latent_size: int,
+        n_discrete: int,
+        n_parameters: int,
+        log_std_init: float,
+        squash_mean: bool = False,
+    ) -> None:
         super().__init__()
         self.n_discrete = n_discrete
+        self.squash_mean = squash_mean
         self.linear = nn.Linear(latent_size, n_discrete + n_parameters)
         self.log_std = nn.Parameter(th.full((n_parameters,), float(log_std_init)))
 
     def forward(self, latent: th.Tensor) -> tuple[th.Tensor, th.Tensor]:
         out = self.linear(latent)
-        return out[:, : self.n_discrete], out[:, self.n_discrete :]
+        mean = out[:, self.n_discrete :]
+        return out[:, : self.n_discrete], th.tanh(mean) if self.squash_mean else mean
 
 
 class LearnedRouterView:
@@ -98,6 +108,9 @@ class HybridActorCriticPolicy(BasePolicy):
     :param domain: what the policy knows of the task beyond its spaces (:mod:`sb3_hfo.common.domain`): a
         ``DomainAdapter``, a domain's name (``"hfo"``) or ``None`` (default): nothing.
     :param parameter_sizes: for ``Tuple(Discrete(K), Box(P))`` action spaces, which parameters each action reads.
+    :param squash_mean: the parameter means are ``tanh`` of the heads' outputs, so inside the env's bounds (as a
+        DDPG actor's squashed output, e.g. SkillDDPG's: such an actor's layers can be copied into this policy and act
+        the same); the samples are still Gaussian around them, clipped to the bounds by the adapter.
     :param use_sde: accepted for SB3's call signature; must be False.
     """
 
@@ -114,6 +127,7 @@ class HybridActorCriticPolicy(BasePolicy):
         router: Any = None,
         parameter_sizes: Sequence[int] | None = None,
         domain: Any = None,
+        squash_mean: bool = False,
         use_sde: bool = False,
         features_extractor_class: type[BaseFeaturesExtractor] = FlattenExtractor,
         features_extractor_kwargs: dict[str, Any] | None = None,
@@ -164,6 +178,7 @@ class HybridActorCriticPolicy(BasePolicy):
         self.activation_fn = activation_fn
         self.log_std_init = float(log_std_init)
         self.ortho_init = ortho_init
+        self.squash_mean = bool(squash_mean)
 
         self.features_extractor = self.make_features_extractor()
         features = self.features_extractor.features_dim
@@ -171,7 +186,9 @@ class HybridActorCriticPolicy(BasePolicy):
         self.critic_trunk, latent_vf = mlp(features, net_arch["vf"], activation_fn)
         self.value_net = nn.Linear(latent_vf, 1)
         self.heads = nn.ModuleList(
-            SkillHead(latent_pi, self.adapter.n_discrete, self.adapter.n_parameters, log_std_init)
+            SkillHead(
+                latent_pi, self.adapter.n_discrete, self.adapter.n_parameters, log_std_init, self.squash_mean
+            )
             for _ in range(self.n_skills)
         )
         self.router_net = nn.Linear(latent_pi, self.n_skills) if self.learned_router else None
@@ -225,6 +242,7 @@ class HybridActorCriticPolicy(BasePolicy):
             router=self.router,
             parameter_sizes=self.parameter_sizes,
             domain=self.domain,
+            squash_mean=self.squash_mean,
             lr_schedule=self._dummy_schedule,
             features_extractor_class=self.features_extractor_class,
             features_extractor_kwargs=self.features_extractor_kwargs,
@@ -308,6 +326,21 @@ class HybridActorCriticPolicy(BasePolicy):
             log_prob = log_prob + log_rho.gather(-1, skills.unsqueeze(-1)).squeeze(-1)
             entropy = entropy + categorical_entropy(log_rho)
         return values, log_prob, entropy
+
+    def action_distribution(self, obs: PyTorchObs) -> HybridDistribution:
+        """The hybrid distribution of each row's routed skill head (for a pull toward a reference policy, or
+        distillation). A hand-coded router only: with a learned router the skill is part of the action, and this
+        distribution would leave it out.
+
+        :raises ValueError: with ``router="learned"``.
+        """
+        if self.learned_router:
+            raise ValueError(
+                "action_distribution needs a hand-coded router (or one skill); with router='learned' the skill "
+                "choice is part of the action"
+            )
+        latent, _, _ = self.actor_outputs(obs)
+        return self._distribution(latent, self._fixed_skills(obs, latent.shape[0]))
 
     def predict_values(self, obs: PyTorchObs) -> th.Tensor:
         """``(B, 1)`` state values."""
