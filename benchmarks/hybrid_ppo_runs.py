@@ -48,7 +48,7 @@ import torch as th
 from stable_baselines3.common.callbacks import BaseCallback, CallbackList
 from stable_baselines3.common.vec_env import VecNormalize
 
-from sb3_hfo.callbacks import KeeperSkillCurriculumCallback
+from sb3_hfo.callbacks import GoalRateKeeperCurriculumCallback, KeeperSkillCurriculumCallback
 from sb3_hfo.common.schedules import parse_schedule
 from sb3_hfo.evaluation import wilson_interval
 from sb3_hfo.hybrid_ppo import HybridPPO
@@ -176,8 +176,16 @@ class RunRecorder(BaseCallback):
     evaluation env, saves that model and appends a row (steps, seconds, steps/s, load, training goal rate, the
     evaluation) to ``curve.jsonl``."""
 
-    def __init__(self, out: Path, minutes: float, eval_every: int, evaluate: Any) -> None:
+    def __init__(
+        self,
+        out: Path,
+        minutes: float,
+        eval_every: int,
+        evaluate: Any,
+        curriculum: BaseCallback | None = None,
+    ) -> None:
         super().__init__()
+        self.curriculum = curriculum  # its training keeper_skill goes into every row
         self.out, self.budget_s, self.eval_every, self.evaluate = out, minutes * 60.0, eval_every, evaluate
         self.started = time.time()
         self.next_eval = eval_every
@@ -208,6 +216,7 @@ class RunRecorder(BaseCallback):
             "steps_per_s": round(self.num_timesteps / max(seconds, 1e-9), 1),
             "load1": round(load_average(), 2),
             "train_goal_rate": round(float(np.mean(buffer)), 3) if len(buffer) else None,
+            "keeper_skill": getattr(self.curriculum, "skill", None),
             "eval": evaluation,
             "final": final,
         }
@@ -233,6 +242,12 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--hp", default="{}", help="JSON: hyperparameters over the preset's")
     parser.add_argument("--env-kwargs", default="{}", help="JSON: env kwargs over the preset's")
     parser.add_argument("--curriculum", default=None, help="START:END:FRACTION of keeper_skill, or 'none'")
+    parser.add_argument(
+        "--paced",
+        default=None,
+        help="START:STEP:THRESHOLD:WINDOW: keeper_skill from START, raised by STEP whenever the training goal rate "
+        "over WINDOW episodes at the current skill reaches THRESHOLD (replaces --curriculum)",
+    )
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument(
         "--init",
@@ -255,6 +270,16 @@ def main(argv: list[str] | None = None) -> None:
         curriculum = (
             None if args.curriculum == "none" else tuple(float(v) for v in args.curriculum.split(":"))
         )
+    paced = None
+    if args.paced is not None:
+        try:
+            start, step, threshold, window = args.paced.split(":")
+            paced = (float(start), float(step), float(threshold), int(window))
+        except ValueError:
+            parser.error(
+                f"--paced takes START:STEP:THRESHOLD:WINDOW (e.g. 0:0.1:0.7:200), got {args.paced!r}"
+            )
+        curriculum = None
     if (args.out / "curve.jsonl").exists():
         parser.error(f"{args.out} already holds a run (curve.jsonl); choose another --out")
     args.out.mkdir(parents=True, exist_ok=True)
@@ -269,6 +294,7 @@ def main(argv: list[str] | None = None) -> None:
         "steps": steps,
         "minutes": args.minutes,
         "curriculum": curriculum,
+        "paced_curriculum": paced,
         "torch_threads": args.threads,
         "command": " ".join([Path(sys.argv[0]).name, *(argv if argv is not None else sys.argv[1:])]),
         "load1_at_start": load_average(),
@@ -281,8 +307,8 @@ def main(argv: list[str] | None = None) -> None:
     norm_reward = hp.pop("norm_reward", False)
     hp["learning_rate"] = parse_schedule(hp["learning_rate"])
     train_kwargs = dict(env_kwargs)
-    if curriculum is not None:
-        train_kwargs["keeper_skill"] = curriculum[0]
+    if curriculum is not None or paced is not None:
+        train_kwargs["keeper_skill"] = curriculum[0] if curriculum is not None else paced[0]
     env = make_hfo_vec_env(preset["env_id"], n_envs, seed=args.seed, **train_kwargs)
     if norm_reward:  # rewards scaled by a running std of the discounted return; HFO's features are in [-1, 1]
         env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=hp.get("gamma", 0.99))
@@ -298,11 +324,19 @@ def main(argv: list[str] | None = None) -> None:
             policy_model, preset["env_id"], env_kwargs, eval_episodes, seed=10_000 + args.seed
         )
 
-    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate)
-    callbacks: list[BaseCallback] = [recorder]
+    callbacks: list[BaseCallback] = []
     if curriculum is not None:
         start, end, fraction = curriculum
         callbacks.append(KeeperSkillCurriculumCallback(start, end, ramp_fraction=fraction))
+    if paced is not None:
+        start, step, threshold, window = paced
+        callbacks.append(
+            GoalRateKeeperCurriculumCallback(
+                start, 1.0, skill_step=step, threshold=threshold, window=window, verbose=1
+            )
+        )
+    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate, curriculum=(callbacks or [None])[0])
+    callbacks.insert(0, recorder)
     model.learn(steps, callback=CallbackList(callbacks), progress_bar=False)
     recorder.row(final=True)
     env.close()
