@@ -48,7 +48,11 @@ import torch as th
 from stable_baselines3.common.callbacks import BaseCallback, CallbackList
 from stable_baselines3.common.vec_env import VecNormalize
 
-from sb3_hfo.callbacks import GoalRateKeeperCurriculumCallback, KeeperSkillCurriculumCallback
+from sb3_hfo.callbacks import (
+    GoalRateKeeperCurriculumCallback,
+    GoalRateStartShiftCallback,
+    KeeperSkillCurriculumCallback,
+)
 from sb3_hfo.common.schedules import parse_schedule
 from sb3_hfo.evaluation import wilson_interval
 from sb3_hfo.hybrid_ppo import HybridPPO
@@ -182,10 +186,12 @@ class RunRecorder(BaseCallback):
         minutes: float,
         eval_every: int,
         evaluate: Any,
-        curriculum: BaseCallback | None = None,
+        curricula: list[BaseCallback] | None = None,
     ) -> None:
         super().__init__()
-        self.curriculum = curriculum  # its training keeper_skill goes into every row
+        self.curricula = (
+            curricula or []
+        )  # their training settings (keeper_skill, start_shift) go into every row
         self.out, self.budget_s, self.eval_every, self.evaluate = out, minutes * 60.0, eval_every, evaluate
         self.started = time.time()
         self.next_eval = eval_every
@@ -216,7 +222,12 @@ class RunRecorder(BaseCallback):
             "steps_per_s": round(self.num_timesteps / max(seconds, 1e-9), 1),
             "load1": round(load_average(), 2),
             "train_goal_rate": round(float(np.mean(buffer)), 3) if len(buffer) else None,
-            "keeper_skill": getattr(self.curriculum, "skill", None),
+            **{
+                getattr(curriculum, "logged_name", "keeper_skill"): getattr(
+                    curriculum, "value", getattr(curriculum, "skill", None)
+                )
+                for curriculum in self.curricula
+            },
             "eval": evaluation,
             "final": final,
         }
@@ -247,6 +258,13 @@ def main(argv: list[str] | None = None) -> None:
         default=None,
         help="START:STEP:THRESHOLD:WINDOW: keeper_skill from START, raised by STEP whenever the training goal rate "
         "over WINDOW episodes at the current skill reaches THRESHOLD (replaces --curriculum)",
+    )
+    parser.add_argument(
+        "--paced-start",
+        default=None,
+        help="SHIFT:STEP:THRESHOLD:WINDOW: a start-distance curriculum, the ball's start moved SHIFT m toward the "
+        "goal (hfo2d's start_shift), lowered by STEP down to 0 whenever the training goal rate over WINDOW episodes "
+        "at the current shift reaches THRESHOLD",
     )
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument(
@@ -280,6 +298,15 @@ def main(argv: list[str] | None = None) -> None:
                 f"--paced takes START:STEP:THRESHOLD:WINDOW (e.g. 0:0.1:0.7:200), got {args.paced!r}"
             )
         curriculum = None
+    paced_start = None
+    if args.paced_start is not None:
+        try:
+            shift, step, threshold, window = args.paced_start.split(":")
+            paced_start = (float(shift), float(step), float(threshold), int(window))
+        except ValueError:
+            parser.error(
+                f"--paced-start takes SHIFT:STEP:THRESHOLD:WINDOW (e.g. 30:5:0.7:200), got {args.paced_start!r}"
+            )
     if (args.out / "curve.jsonl").exists():
         parser.error(f"{args.out} already holds a run (curve.jsonl); choose another --out")
     args.out.mkdir(parents=True, exist_ok=True)
@@ -295,6 +322,7 @@ def main(argv: list[str] | None = None) -> None:
         "minutes": args.minutes,
         "curriculum": curriculum,
         "paced_curriculum": paced,
+        "paced_start_curriculum": paced_start,
         "torch_threads": args.threads,
         "command": " ".join([Path(sys.argv[0]).name, *(argv if argv is not None else sys.argv[1:])]),
         "load1_at_start": load_average(),
@@ -309,6 +337,8 @@ def main(argv: list[str] | None = None) -> None:
     train_kwargs = dict(env_kwargs)
     if curriculum is not None or paced is not None:
         train_kwargs["keeper_skill"] = curriculum[0] if curriculum is not None else paced[0]
+    if paced_start is not None:
+        train_kwargs["start_shift"] = paced_start[0]
     env = make_hfo_vec_env(preset["env_id"], n_envs, seed=args.seed, **train_kwargs)
     if norm_reward:  # rewards scaled by a running std of the discounted return; HFO's features are in [-1, 1]
         env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=hp.get("gamma", 0.99))
@@ -335,7 +365,12 @@ def main(argv: list[str] | None = None) -> None:
                 start, 1.0, skill_step=step, threshold=threshold, window=window, verbose=1
             )
         )
-    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate, curriculum=(callbacks or [None])[0])
+    if paced_start is not None:
+        shift, step, threshold, window = paced_start
+        callbacks.append(
+            GoalRateStartShiftCallback(shift, 0.0, step, threshold=threshold, window=window, verbose=1)
+        )
+    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate, curricula=list(callbacks))
     callbacks.insert(0, recorder)
     model.learn(steps, callback=CallbackList(callbacks), progress_bar=False)
     recorder.row(final=True)
