@@ -264,7 +264,7 @@ def main(argv: list[str] | None = None) -> None:
         default=None,
         help="SHIFT:STEP:THRESHOLD:WINDOW: a start-distance curriculum, the ball's start moved SHIFT m toward the "
         "goal (hfo2d's start_shift), lowered by STEP down to 0 whenever the training goal rate over WINDOW episodes "
-        "at the current shift reaches THRESHOLD",
+        "at the current shift reaches THRESHOLD (with --paced: once the goalie is at full strength)",
     )
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument(
@@ -367,8 +367,12 @@ def main(argv: list[str] | None = None) -> None:
         )
     if paced_start is not None:
         shift, step, threshold, window = paced_start
+        # with a paced goalie too, the starts move away from the goal once the goalie is at full strength
+        keeper = next((c for c in callbacks if isinstance(c, GoalRateKeeperCurriculumCallback)), None)
         callbacks.append(
-            GoalRateStartShiftCallback(shift, 0.0, step, threshold=threshold, window=window, verbose=1)
+            GoalRateStartShiftCallback(
+                shift, 0.0, step, threshold=threshold, window=window, verbose=1, wait_for=keeper
+            )
         )
     recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate, curricula=list(callbacks))
     callbacks.insert(0, recorder)

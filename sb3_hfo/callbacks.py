@@ -186,6 +186,8 @@ class GoalRatePacedCurriculumCallback(BaseCallback):
     :param threshold: the goal rate (in (0, 1]) that earns a move.
     :param window: the number of episodes, at least 1, over which the goal rate is measured.
     :param logged_name: the logger key's name under ``rollout/``.
+    :param wait_for: another paced curriculum of the same run: this one moves only once that one has reached its
+        final value (e.g. the goalie at full strength before the starts move away from the goal).
     """
 
     def __init__(
@@ -198,6 +200,7 @@ class GoalRatePacedCurriculumCallback(BaseCallback):
         window: int = 200,
         logged_name: str = "curriculum_value",
         verbose: int = 0,
+        wait_for: GoalRatePacedCurriculumCallback | None = None,
     ) -> None:
         super().__init__(verbose)
         for name, value in (("initial", initial), ("final", final)):
@@ -216,6 +219,8 @@ class GoalRatePacedCurriculumCallback(BaseCallback):
         self.threshold = float(threshold)
         self.window = int(window)
         self.logged_name = logged_name
+        self.wait_for = wait_for
+        self._wait_for_changes = 0  # changes of wait_for seen: each one restarts this curriculum's count
         self.value = self.initial
         self.history: list[tuple[int, float]] = []
         self._outcomes: list[bool] = []  # goals of the counted episodes since the last change
@@ -242,12 +247,22 @@ class GoalRatePacedCurriculumCallback(BaseCallback):
         recent = self._outcomes[-self.window :]
         return float(np.mean(recent)) if recent else None
 
+    @property
+    def finished(self) -> bool:
+        """Whether the value has reached ``final``."""
+        return self.value == self.final
+
     def _next_value(self) -> float:
         if self.final >= self.value:
             return min(round(self.value + self.step, 6), self.final)
         return max(round(self.value - self.step, 6), self.final)
 
     def _on_step(self) -> bool:
+        if self.wait_for is not None and len(self.wait_for.history) != self._wait_for_changes:
+            # the other curriculum changed the task: the episodes counted so far, and those running, do not count
+            self._wait_for_changes = len(self.wait_for.history)
+            self._outcomes = []
+            self._fresh[:] = False
         dones = np.asarray(self.locals["dones"], dtype=bool)
         infos = self.locals["infos"]
         for game in np.flatnonzero(dones):
@@ -255,7 +270,13 @@ class GoalRatePacedCurriculumCallback(BaseCallback):
                 self._outcomes.append(bool(infos[game].get("is_success", False)))
             self._fresh[game] = True  # its next episode starts with the current value
         rate = self.goal_rate()
-        if self.value != self.final and len(self._outcomes) >= self.window and rate >= self.threshold:
+        waiting = self.wait_for is not None and not self.wait_for.finished
+        if (
+            not self.finished
+            and not waiting
+            and len(self._outcomes) >= self.window
+            and rate >= self.threshold
+        ):
             self._set_value(self._next_value())
             self._fresh[:] = False
             if self.verbose:
@@ -320,6 +341,7 @@ class GoalRateStartShiftCallback(GoalRatePacedCurriculumCallback):
         threshold: float = 0.7,
         window: int = 200,
         verbose: int = 0,
+        wait_for: GoalRatePacedCurriculumCallback | None = None,
     ) -> None:
         if not 0.0 <= final_shift <= initial_shift:  # also rejects NaN
             raise ValueError(
@@ -334,4 +356,5 @@ class GoalRateStartShiftCallback(GoalRatePacedCurriculumCallback):
             window,
             "start_shift",
             verbose,
+            wait_for,
         )

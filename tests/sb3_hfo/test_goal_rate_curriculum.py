@@ -105,3 +105,23 @@ def test_start_shift_falls_toward_hfo_starts() -> None:
     assert model.logger.name_to_value["rollout/start_shift"] == 0.0
     with pytest.raises(ValueError, match="final_shift"):
         GoalRateStartShiftCallback(initial_shift=5.0, final_shift=10.0)
+
+
+def test_start_shift_waits_for_the_goalie_at_full_strength() -> None:
+    keeper, model = _callback_on("HFO/Keeper-v1", initial_skill=0.5, skill_step=0.5, threshold=0.5, window=2)
+    shift = GoalRateStartShiftCallback(
+        initial_shift=10.0, shift_step=10.0, threshold=0.5, window=2, wait_for=keeper
+    )
+    keeper.init_callback(model)
+    shift.init_callback(model)
+
+    def both(goals: list[bool]) -> None:
+        for callback in (keeper, shift):
+            _finish(callback, [True, True], goals)
+
+    both([True, True])  # first episodes: not counted
+    both([True, True])  # the goalie reaches 1.0; the starts waited for it
+    assert keeper.skill == 1.0 and shift.value == 10.0
+    both([True, True])  # episodes running at the change: not counted by the goalie's; counted by the starts'
+    assert shift.value == 0.0
+    assert model.get_env().get_attr("start_shift") == [0.0, 0.0]
