@@ -11,6 +11,12 @@ A training run of :class:`sb3_hfo.hybrid_ppo.HybridPPO` on ``n_envs`` games of o
 * an optional curriculum on the goalie's strength (``--curriculum START:END:FRACTION``: ``keeper_skill`` rises
   linearly from START to END over the first FRACTION of the steps, by
   :class:`sb3_hfo.callbacks.KeeperSkillCurriculumCallback`);
+* or a curriculum paced by the agent (``--paced START:STEP:THRESHOLD:WINDOW``: ``keeper_skill`` rises by STEP
+  whenever the training goal rate over WINDOW episodes at the current skill reaches THRESHOLD,
+  :class:`sb3_hfo.callbacks.GoalRateKeeperCurriculumCallback`), and a start-distance curriculum
+  (``--paced-start SHIFT:STEP:THRESHOLD:WINDOW``: the ball starts SHIFT m closer to the goal than HFO's starts,
+  hfo2d's ``start_shift``, and moves back by STEP at the same kind of pace, once a ``--paced`` goalie is at full
+  strength; :class:`sb3_hfo.callbacks.GoalRateStartShiftCallback`); the curricula's values go into every row;
 * the final model (``final.zip``: the figures that count come from it, evaluated over 1,000 episodes with
   ``python -m sb3_hfo.evaluate RUN/final.zip --env ID --episodes 1000 --seed 0``).
 
@@ -27,6 +33,8 @@ How the model is made: from reward alone. No demonstrations, no scripted labels,
 Presets (``--hp JSON`` overrides any hyperparameter; ``--env-kwargs JSON`` the env's):
 
 * ``e1``: HFO/EmptyGoal-v0, HFO's shaped reward, zoo_configs/hybrid_ppo_empty_goal.yml's recipe.
+* ``e2_field_half`` / ``e2_learned``: E1's recipe with the paper's two skills (``policy_kwargs`` ``skills=2``,
+  ``domain="hfo"``), routed by the field half (the paper's rule) or by a learned categorical over the skills.
 * ``e6``: HFO/Keeper-v1 (agent2d's goalie), the shaped reward toward the goalie gap with lost shots refunded
   (``reward="shaped_gap_refund"``, hfo2d.reward; not HFO's own reward, documented there), and a curriculum from a
   goalie that never moves (``keeper_skill`` 0) to the full goalie over the first half of the steps.
