@@ -2,7 +2,7 @@
 
 For a model with ``skills=2`` (``router="learned"`` or ``"field_half"``), plays ``--episodes`` greedy episodes
 on 16 games of ``--env`` (hfo2d's batch) and counts, over every step, the skill that acted against the half of
-the attacked half-field the agent stood in (the split of the seed paper's field-half router, x = 26.25 m; the
+the attacked half-field the agent stood in, and against whether the ball was kickable (the split of the seed paper's field-half router, x = 26.25 m; the
 column and threshold come from the policy's domain adapter, :data:`sb3_hfo.hfo.HFO_DOMAIN`). With the learned
 router the skill is its greedy choice (the argmax of the router's categorical, what ``predict(deterministic=True)``
 plays); with ``field_half`` the table is diagonal by construction (a check of the bookkeeping).
@@ -23,6 +23,7 @@ from sb3_hfo.hybrid_ppo import HybridPPO
 from sb3_hfo.vec_env import make_hfo_vec_env
 
 HALVES = ("far half (x < 26.25 m)", "near half (x >= 26.25 m)")
+POSSESSION = ("ball not kickable", "ball kickable")
 
 
 def router_usage(model: HybridPPO, env_id: str, episodes: int, seed: int) -> dict:
@@ -36,6 +37,7 @@ def router_usage(model: HybridPPO, env_id: str, episodes: int, seed: int) -> dic
     n_games = min(16, episodes)
     env = make_hfo_vec_env(env_id, n_games, seed=seed, monitor=False)
     counts = np.zeros((2, policy.n_skills), dtype=np.int64)
+    by_possession = np.zeros((2, policy.n_skills), dtype=np.int64)
     started, finished, goals = n_games, 0, 0
     active = np.ones(n_games, dtype=bool)
     obs = env.reset()
@@ -44,6 +46,9 @@ def router_usage(model: HybridPPO, env_id: str, episodes: int, seed: int) -> dic
         # feature above the threshold: the half away from the goal (row 0), as FieldHalfRouter splits
         near = (obs[:, domain.field_half_column] <= domain.field_half_threshold).astype(np.int64)
         np.add.at(counts, (near[active], skills[active]), 1)
+        if domain.kickable_column is not None:  # the kickable feature is +1 with the ball in reach, else -1
+            kickable = (obs[:, domain.kickable_column] > 0).astype(np.int64)
+            np.add.at(by_possession, (kickable[active], skills[active]), 1)
         actions, _ = model.predict(obs, deterministic=True)
         obs, _, dones, infos = env.step(actions)
         for game in np.flatnonzero(dones & active):
@@ -63,6 +68,9 @@ def router_usage(model: HybridPPO, env_id: str, episodes: int, seed: int) -> dic
         "skill_share": {
             half: [round(float(c) / max(int(row.sum()), 1), 4) for c in row]
             for half, row in zip(HALVES, counts, strict=True)
+        },
+        "steps_by_possession": {
+            state: [int(c) for c in row] for state, row in zip(POSSESSION, by_possession, strict=True)
         },
     }
 

@@ -26,6 +26,8 @@ def test_field_half_router_table_is_diagonal_and_learned_router_counts_every_ste
     far, near = (fixed["steps"][half] for half in router_usage.HALVES)
     assert far[1] == 0 and near[0] == 0 and far[0] + near[1] > 0
     assert fixed["episodes"] == 4
+    # both tables count the same steps
+    assert sum(map(sum, fixed["steps_by_possession"].values())) == sum(map(sum, fixed["steps"].values()))
     learned = router_usage.router_usage(_model(skills=2, router="learned"), "HFO/EmptyGoal-v0", 4, seed=0)
     assert learned["router"] == "learned" and learned["episodes"] == 4
     for half in router_usage.HALVES:
