@@ -11,6 +11,12 @@ A training run of :class:`sb3_hfo.hybrid_ppo.HybridPPO` on ``n_envs`` games of o
 * an optional curriculum on the goalie's strength (``--curriculum START:END:FRACTION``: ``keeper_skill`` rises
   linearly from START to END over the first FRACTION of the steps, by
   :class:`sb3_hfo.callbacks.KeeperSkillCurriculumCallback`);
+* or a curriculum paced by the agent (``--paced START:STEP:THRESHOLD:WINDOW``: ``keeper_skill`` rises by STEP
+  whenever the training goal rate over WINDOW episodes at the current skill reaches THRESHOLD,
+  :class:`sb3_hfo.callbacks.GoalRateKeeperCurriculumCallback`), and a start-distance curriculum
+  (``--paced-start SHIFT:STEP:THRESHOLD:WINDOW``: the ball starts SHIFT m closer to the goal than HFO's starts,
+  hfo2d's ``start_shift``, and moves back by STEP at the same kind of pace, once a ``--paced`` goalie is at full
+  strength; :class:`sb3_hfo.callbacks.GoalRateStartShiftCallback`); the curricula's values go into every row;
 * the final model (``final.zip``: the figures that count come from it, evaluated over 1,000 episodes with
   ``python -m sb3_hfo.evaluate RUN/final.zip --env ID --episodes 1000 --seed 0``).
 
@@ -27,6 +33,8 @@ How the model is made: from reward alone. No demonstrations, no scripted labels,
 Presets (``--hp JSON`` overrides any hyperparameter; ``--env-kwargs JSON`` the env's):
 
 * ``e1``: HFO/EmptyGoal-v0, HFO's shaped reward, zoo_configs/hybrid_ppo_empty_goal.yml's recipe.
+* ``e2_field_half`` / ``e2_learned``: E1's recipe with the paper's two skills (``policy_kwargs`` ``skills=2``,
+  ``domain="hfo"``), routed by the field half (the paper's rule) or by a learned categorical over the skills.
 * ``e6``: HFO/Keeper-v1 (agent2d's goalie), the shaped reward toward the goalie gap with lost shots refunded
   (``reward="shaped_gap_refund"``, hfo2d.reward; not HFO's own reward, documented there), and a curriculum from a
   goalie that never moves (``keeper_skill`` 0) to the full goalie over the first half of the steps.
@@ -48,7 +56,11 @@ import torch as th
 from stable_baselines3.common.callbacks import BaseCallback, CallbackList
 from stable_baselines3.common.vec_env import VecNormalize
 
-from sb3_hfo.callbacks import KeeperSkillCurriculumCallback
+from sb3_hfo.callbacks import (
+    GoalRateKeeperCurriculumCallback,
+    GoalRateStartShiftCallback,
+    KeeperSkillCurriculumCallback,
+)
 from sb3_hfo.common.schedules import parse_schedule
 from sb3_hfo.evaluation import wilson_interval
 from sb3_hfo.hybrid_ppo import HybridPPO
@@ -74,6 +86,33 @@ PRESETS: dict[str, dict[str, Any]] = {
             "policy_kwargs": {"net_arch": [64, 64], "log_std_init": -0.5},
         },
     },
+    # E2 (issue 33, item 4: the learned router against the hand-coded one): E1's recipe with the paper's two
+    # skills (one actor head and one Adam each); ``field_half`` routes by the ball's field half (the paper's rule),
+    # ``learned`` adds a categorical over the skills that PPO learns as a first-level choice.
+    "e2_field_half": {
+        "env_id": "HFO/EmptyGoal-v0",
+        "env_kwargs": {},
+        "steps": 1_600_000,
+        "curriculum": None,
+        "hp": {
+            "n_envs": 16,
+            "n_steps": 256,
+            "batch_size": 512,
+            "n_epochs": 10,
+            "learning_rate": "lin_5e-4",
+            "gamma": 0.99,
+            "gae_lambda": 0.95,
+            "ent_coef": 0.0,
+            "norm_reward": True,
+            "policy_kwargs": {
+                "net_arch": [64, 64],
+                "log_std_init": -0.5,
+                "skills": 2,
+                "router": "field_half",
+                "domain": "hfo",
+            },
+        },
+    },
     "e6": {
         "env_id": "HFO/Keeper-v1",
         "env_kwargs": {"reward": "shaped_gap_refund"},
@@ -93,6 +132,9 @@ PRESETS: dict[str, dict[str, Any]] = {
         },
     },
 }
+
+PRESETS["e2_learned"] = json.loads(json.dumps(PRESETS["e2_field_half"]))
+PRESETS["e2_learned"]["hp"]["policy_kwargs"]["router"] = "learned"
 
 #: Tiny settings for ``--smoke`` (CI runs the script for seconds).
 SMOKE = {
@@ -146,8 +188,18 @@ class RunRecorder(BaseCallback):
     evaluation env, saves that model and appends a row (steps, seconds, steps/s, load, training goal rate, the
     evaluation) to ``curve.jsonl``."""
 
-    def __init__(self, out: Path, minutes: float, eval_every: int, evaluate: Any) -> None:
+    def __init__(
+        self,
+        out: Path,
+        minutes: float,
+        eval_every: int,
+        evaluate: Any,
+        curricula: list[BaseCallback] | None = None,
+    ) -> None:
         super().__init__()
+        self.curricula = (
+            curricula or []
+        )  # their training settings (keeper_skill, start_shift) go into every row
         self.out, self.budget_s, self.eval_every, self.evaluate = out, minutes * 60.0, eval_every, evaluate
         self.started = time.time()
         self.next_eval = eval_every
@@ -178,6 +230,12 @@ class RunRecorder(BaseCallback):
             "steps_per_s": round(self.num_timesteps / max(seconds, 1e-9), 1),
             "load1": round(load_average(), 2),
             "train_goal_rate": round(float(np.mean(buffer)), 3) if len(buffer) else None,
+            **{
+                getattr(curriculum, "logged_name", "keeper_skill"): getattr(
+                    curriculum, "value", getattr(curriculum, "skill", None)
+                )
+                for curriculum in self.curricula
+            },
             "eval": evaluation,
             "final": final,
         }
@@ -203,6 +261,19 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--hp", default="{}", help="JSON: hyperparameters over the preset's")
     parser.add_argument("--env-kwargs", default="{}", help="JSON: env kwargs over the preset's")
     parser.add_argument("--curriculum", default=None, help="START:END:FRACTION of keeper_skill, or 'none'")
+    parser.add_argument(
+        "--paced",
+        default=None,
+        help="START:STEP:THRESHOLD:WINDOW: keeper_skill from START, raised by STEP whenever the training goal rate "
+        "over WINDOW episodes at the current skill reaches THRESHOLD (replaces --curriculum)",
+    )
+    parser.add_argument(
+        "--paced-start",
+        default=None,
+        help="SHIFT:STEP:THRESHOLD:WINDOW: a start-distance curriculum, the ball's start moved SHIFT m toward the "
+        "goal (hfo2d's start_shift), lowered by STEP down to 0 whenever the training goal rate over WINDOW episodes "
+        "at the current shift reaches THRESHOLD (with --paced: once the goalie is at full strength)",
+    )
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument(
         "--init",
@@ -225,6 +296,25 @@ def main(argv: list[str] | None = None) -> None:
         curriculum = (
             None if args.curriculum == "none" else tuple(float(v) for v in args.curriculum.split(":"))
         )
+    paced = None
+    if args.paced is not None:
+        try:
+            start, step, threshold, window = args.paced.split(":")
+            paced = (float(start), float(step), float(threshold), int(window))
+        except ValueError:
+            parser.error(
+                f"--paced takes START:STEP:THRESHOLD:WINDOW (e.g. 0:0.1:0.7:200), got {args.paced!r}"
+            )
+        curriculum = None
+    paced_start = None
+    if args.paced_start is not None:
+        try:
+            shift, step, threshold, window = args.paced_start.split(":")
+            paced_start = (float(shift), float(step), float(threshold), int(window))
+        except ValueError:
+            parser.error(
+                f"--paced-start takes SHIFT:STEP:THRESHOLD:WINDOW (e.g. 30:5:0.7:200), got {args.paced_start!r}"
+            )
     if (args.out / "curve.jsonl").exists():
         parser.error(f"{args.out} already holds a run (curve.jsonl); choose another --out")
     args.out.mkdir(parents=True, exist_ok=True)
@@ -239,6 +329,8 @@ def main(argv: list[str] | None = None) -> None:
         "steps": steps,
         "minutes": args.minutes,
         "curriculum": curriculum,
+        "paced_curriculum": paced,
+        "paced_start_curriculum": paced_start,
         "torch_threads": args.threads,
         "command": " ".join([Path(sys.argv[0]).name, *(argv if argv is not None else sys.argv[1:])]),
         "load1_at_start": load_average(),
@@ -251,8 +343,10 @@ def main(argv: list[str] | None = None) -> None:
     norm_reward = hp.pop("norm_reward", False)
     hp["learning_rate"] = parse_schedule(hp["learning_rate"])
     train_kwargs = dict(env_kwargs)
-    if curriculum is not None:
-        train_kwargs["keeper_skill"] = curriculum[0]
+    if curriculum is not None or paced is not None:
+        train_kwargs["keeper_skill"] = curriculum[0] if curriculum is not None else paced[0]
+    if paced_start is not None:
+        train_kwargs["start_shift"] = paced_start[0]
     env = make_hfo_vec_env(preset["env_id"], n_envs, seed=args.seed, **train_kwargs)
     if norm_reward:  # rewards scaled by a running std of the discounted return; HFO's features are in [-1, 1]
         env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=hp.get("gamma", 0.99))
@@ -268,11 +362,28 @@ def main(argv: list[str] | None = None) -> None:
             policy_model, preset["env_id"], env_kwargs, eval_episodes, seed=10_000 + args.seed
         )
 
-    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate)
-    callbacks: list[BaseCallback] = [recorder]
+    callbacks: list[BaseCallback] = []
     if curriculum is not None:
         start, end, fraction = curriculum
         callbacks.append(KeeperSkillCurriculumCallback(start, end, ramp_fraction=fraction))
+    if paced is not None:
+        start, step, threshold, window = paced
+        callbacks.append(
+            GoalRateKeeperCurriculumCallback(
+                start, 1.0, skill_step=step, threshold=threshold, window=window, verbose=1
+            )
+        )
+    if paced_start is not None:
+        shift, step, threshold, window = paced_start
+        # with a paced goalie too, the starts move away from the goal once the goalie is at full strength
+        keeper = next((c for c in callbacks if isinstance(c, GoalRateKeeperCurriculumCallback)), None)
+        callbacks.append(
+            GoalRateStartShiftCallback(
+                shift, 0.0, step, threshold=threshold, window=window, verbose=1, wait_for=keeper
+            )
+        )
+    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate, curricula=list(callbacks))
+    callbacks.insert(0, recorder)
     model.learn(steps, callback=CallbackList(callbacks), progress_bar=False)
     recorder.row(final=True)
     env.close()

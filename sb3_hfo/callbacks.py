@@ -161,3 +161,200 @@ class KeeperSkillCurriculumCallback(BaseCallback):
             self._set_skill(quantised)
         self.logger.record("rollout/keeper_skill", self.skill)
         return True
+
+
+class GoalRatePacedCurriculumCallback(BaseCallback):
+    """A training env setting moved one step toward its final value whenever the agent scores often enough.
+
+    :class:`KeeperSkillCurriculumCallback` moves the goalie's skill on a step schedule, whatever the agent does; in
+    the E6 runs from reward (HybridPPO on ``HFO/Keeper-v1``, research/RESULTS.md) the training goal rate fell from
+    48 % to 5 % while the skill rose: the task outgrew the policy. Here the pace is the agent's: the value starts
+    at ``initial`` and moves by ``step`` toward ``final`` once at least ``window`` episodes were played at the
+    current value and the goal rate over the last ``window`` of them is at least ``threshold``. It never moves
+    back. An episode counts only if it started after the last change (an env applies the value at its next reset,
+    so the episode running at a change was played partly at the old one).
+
+    Each change calls ``env_method(name, value)`` on the training VecEnv. Goals are read from
+    ``info["is_success"]`` at the end of each episode (HFO sets it on a GOAL). The value is logged as
+    ``rollout/<logged_name>`` and the counted goal rate as ``rollout/curriculum_goal_rate``; :attr:`history` lists
+    ``(timestep, value)`` at every change.
+
+    :param env_method: the env method that takes the new value (e.g. ``"set_keeper_skill"``).
+    :param initial: the value at the start.
+    :param final: the last value; the value moves toward it from either side.
+    :param step: the size of each move, > 0.
+    :param threshold: the goal rate (in (0, 1]) that earns a move.
+    :param window: the number of episodes, at least 1, over which the goal rate is measured.
+    :param logged_name: the logger key's name under ``rollout/``.
+    :param wait_for: another paced curriculum of the same run: this one moves only once that one has reached its
+        final value (e.g. the goalie at full strength before the starts move away from the goal).
+    """
+
+    def __init__(
+        self,
+        env_method: str,
+        initial: float,
+        final: float,
+        step: float,
+        threshold: float = 0.7,
+        window: int = 200,
+        logged_name: str = "curriculum_value",
+        verbose: int = 0,
+        wait_for: GoalRatePacedCurriculumCallback | None = None,
+    ) -> None:
+        super().__init__(verbose)
+        for name, value in (("initial", initial), ("final", final)):
+            if not np.isfinite(value):
+                raise ValueError(f"{name} must be a finite number, got {value!r}")
+        if not (np.isfinite(step) and step > 0):
+            raise ValueError(f"step must be a finite number > 0, got {step!r}")
+        if not 0 < threshold <= 1:
+            raise ValueError(f"threshold must be in (0, 1], got {threshold!r}")
+        if isinstance(window, bool) or not isinstance(window, (int, np.integer)) or window < 1:
+            raise ValueError(f"window must be an integer >= 1, got {window!r}")
+        self.env_method_name = env_method
+        self.initial = float(initial)
+        self.final = float(final)
+        self.step = float(step)
+        self.threshold = float(threshold)
+        self.window = int(window)
+        self.logged_name = logged_name
+        self.wait_for = wait_for
+        self._wait_for_changes = 0  # changes of wait_for seen: each one restarts this curriculum's count
+        self.value = self.initial
+        self.history: list[tuple[int, float]] = []
+        self._outcomes: list[bool] = []  # goals of the counted episodes since the last change
+        self._fresh = np.zeros(0, dtype=bool)  # per game: its current episode started after the last change
+
+    def _init_callback(self) -> None:
+        try:
+            self._set_value(self.initial)
+        except (AttributeError, ValueError) as error:
+            raise ValueError(
+                f"{type(self).__name__} needs training envs with {self.env_method_name}: {error}"
+            ) from error
+        # SB3 reset the envs before this call, with the setting they were made with: their first episodes do not count
+        self._fresh = np.zeros(self.training_env.num_envs, dtype=bool)
+
+    def _set_value(self, value: float) -> None:
+        self.value = value
+        self.training_env.env_method(self.env_method_name, value)
+        self.history.append((int(self.num_timesteps), value))
+        self._outcomes = []
+
+    def goal_rate(self) -> float | None:
+        """The goal rate over the last ``window`` counted episodes at the current value (None before any)."""
+        recent = self._outcomes[-self.window :]
+        return float(np.mean(recent)) if recent else None
+
+    @property
+    def finished(self) -> bool:
+        """Whether the value has reached ``final``."""
+        return self.value == self.final
+
+    def _next_value(self) -> float:
+        if self.final >= self.value:
+            return min(round(self.value + self.step, 6), self.final)
+        return max(round(self.value - self.step, 6), self.final)
+
+    def _on_step(self) -> bool:
+        if self.wait_for is not None and len(self.wait_for.history) != self._wait_for_changes:
+            # the other curriculum changed the task: the episodes counted so far, and those running, do not count
+            self._wait_for_changes = len(self.wait_for.history)
+            self._outcomes = []
+            self._fresh[:] = False
+        dones = np.asarray(self.locals["dones"], dtype=bool)
+        infos = self.locals["infos"]
+        for game in np.flatnonzero(dones):
+            if self._fresh[game]:
+                self._outcomes.append(bool(infos[game].get("is_success", False)))
+            self._fresh[game] = True  # its next episode starts with the current value
+        rate = self.goal_rate()
+        waiting = self.wait_for is not None and not self.wait_for.finished
+        if (
+            not self.finished
+            and not waiting
+            and len(self._outcomes) >= self.window
+            and rate >= self.threshold
+        ):
+            self._set_value(self._next_value())
+            self._fresh[:] = False
+            if self.verbose:
+                print(
+                    f"{self.logged_name} -> {self.value} at {self.num_timesteps} steps (goal rate {rate:.3f})",
+                    flush=True,
+                )
+        self.logger.record(f"rollout/{self.logged_name}", self.value)
+        if rate is not None:
+            self.logger.record("rollout/curriculum_goal_rate", rate)
+        return True
+
+
+class GoalRateKeeperCurriculumCallback(GoalRatePacedCurriculumCallback):
+    """The goalie's ``keeper_skill`` raised by ``skill_step`` from ``initial_skill`` to ``final_skill`` (both in
+    [0, 1]) at the agent's pace: see :class:`GoalRatePacedCurriculumCallback`. :attr:`skill` is the current one."""
+
+    def __init__(
+        self,
+        initial_skill: float = 0.0,
+        final_skill: float = 1.0,
+        skill_step: float = 0.1,
+        threshold: float = 0.7,
+        window: int = 200,
+        verbose: int = 0,
+    ) -> None:
+        for name, value in (("initial_skill", initial_skill), ("final_skill", final_skill)):
+            if not 0.0 <= value <= 1.0:  # also rejects NaN
+                raise ValueError(f"{name} must be in [0, 1], got {value!r}")
+        if final_skill < initial_skill:
+            raise ValueError(f"final_skill ({final_skill}) must not be below initial_skill ({initial_skill})")
+        if not 0 < skill_step <= 1:
+            raise ValueError(f"skill_step must be in (0, 1], got {skill_step!r}")
+        super().__init__(
+            "set_keeper_skill",
+            initial_skill,
+            final_skill,
+            skill_step,
+            threshold,
+            window,
+            "keeper_skill",
+            verbose,
+        )
+
+    @property
+    def skill(self) -> float:
+        """The training goalie's current skill."""
+        return self.value
+
+
+class GoalRateStartShiftCallback(GoalRatePacedCurriculumCallback):
+    """A start-distance curriculum: hfo2d's ``start_shift`` (metres the ball's start range is moved toward the
+    goal) lowered by ``shift_step`` from ``initial_shift`` to ``final_shift`` at the agent's pace (see
+    :class:`GoalRatePacedCurriculumCallback`): the agent first learns to score from close, then from farther out,
+    down to HFO's own starts at 0."""
+
+    def __init__(
+        self,
+        initial_shift: float = 30.0,
+        final_shift: float = 0.0,
+        shift_step: float = 5.0,
+        threshold: float = 0.7,
+        window: int = 200,
+        verbose: int = 0,
+        wait_for: GoalRatePacedCurriculumCallback | None = None,
+    ) -> None:
+        if not 0.0 <= final_shift <= initial_shift:  # also rejects NaN
+            raise ValueError(
+                f"need 0 <= final_shift <= initial_shift, got {final_shift!r} and {initial_shift!r}"
+            )
+        super().__init__(
+            "set_start_shift",
+            initial_shift,
+            final_shift,
+            shift_step,
+            threshold,
+            window,
+            "start_shift",
+            verbose,
+            wait_for,
+        )

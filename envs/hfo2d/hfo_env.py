@@ -264,6 +264,9 @@ class HFOEnv(gym.Env):
             as a truncation). The other ids are judged as described above (rules "hfo2d_v0").
         frames_per_trial: steps after which an episode is truncated.
         untouched_time: cycles without a player near the ball after which the episode ends.
+        start_shift: metres, in [0, MAX_START_SHIFT], added to the ball's start x (toward the goal; the agent's
+            start follows the ball's by HFO's offsets). 0 (default) is HFO's start distribution; more starts the
+            play closer to the goal: a start-distance curriculum for training (``set_start_shift``), not HFO.
 
     Version History:
         * v1 (``HFO/Keeper-v1`` only): the goalie is HFO's own (agent2d's, with librcsc's intercept table, body
@@ -289,6 +292,7 @@ class HFOEnv(gym.Env):
         frames_per_trial: int = DEFAULT_FRAMES_PER_TRIAL,
         untouched_time: int = DEFAULT_UNTOUCHED_TIME,
         feature_set: str = "paper",
+        start_shift: float = 0.0,
     ) -> None:
         if task not in TASKS:
             raise ValueError(f"unknown task {task!r}; choose one of {TASKS}")
@@ -324,6 +328,8 @@ class HFOEnv(gym.Env):
         self.reward_name = reward
         self.noise = bool(noise)
         self.keeper_skill = 1.0 if keeper_skill is None else float(keeper_skill)
+        _check_start_shift(start_shift)
+        self.start_shift = float(start_shift)
         self.goalie = goalie
         self.params: ServerParams = ServerParams.with_overrides(server_params)
         self.has_keeper = task != "empty_goal"
@@ -432,7 +438,7 @@ class HFOEnv(gym.Env):
                     npc.restart()
             self._clear_server_state()
 
-        ball_x = rng.uniform(*BALL_X_RANGE)
+        ball_x = rng.uniform(*BALL_X_RANGE) + self.start_shift
         ball_y = rng.uniform(*BALL_Y_RANGE)
         offset_x, offset_y = OFFENSE_OFFSETS[int(rng.integers(len(OFFENSE_OFFSETS)))]
         agent_x = min(
@@ -589,6 +595,15 @@ class HFOEnv(gym.Env):
             )
         _check_keeper_skill(skill)
         self.keeper_skill = float(skill)
+
+    def set_start_shift(self, metres: float) -> None:
+        """Move the ball's start range ``metres`` toward the goal (see ``start_shift``); from the next reset.
+
+        For start-distance curricula (``sb3_hfo.callbacks.GoalRateStartShiftCallback`` calls it through the VecEnv's
+        ``env_method``); an episode in progress keeps its start.
+        """
+        _check_start_shift(metres)
+        self.start_shift = float(metres)
 
     def render(self) -> np.ndarray | None:
         """Draw the current state: a pygame window ("human") or an RGB array (H, W, 3) uint8 ("rgb_array").
@@ -851,6 +866,17 @@ def _observation(features: list[float]) -> np.ndarray:
 
 
 _FLOAT32_PACKERS: dict[int, struct.Struct] = {}
+
+
+#: m; the largest ``start_shift``: the ball then starts 7-17.5 m from the goal line, clear of the goalie's area
+MAX_START_SHIFT = 35.0
+
+
+def _check_start_shift(metres: Any) -> None:
+    if isinstance(metres, bool) or not isinstance(metres, (int, float, np.number)):
+        raise ValueError(f"start_shift must be a number of metres in [0, {MAX_START_SHIFT}], got {metres!r}")
+    if not 0.0 <= float(metres) <= MAX_START_SHIFT:  # also rejects NaN
+        raise ValueError(f"start_shift must lie in [0, {MAX_START_SHIFT}] m, got {metres!r}")
 
 
 def _check_keeper_skill(skill: Any) -> None:
