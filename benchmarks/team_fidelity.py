@@ -231,7 +231,12 @@ def print_table(rows: Sequence[dict[str, Any]]) -> None:
 
 def cmd_report(args: argparse.Namespace) -> dict[str, Any]:
     runs = [json.loads(Path(path).read_text()) for path in args.results]
-    cells = [cell for run in runs for cell in run["cells"]]
+    # the per-episode status lists stay in the play files; the joined file keeps their counts (summary)
+    cells = [
+        {key: value for key, value in cell.items() if key != "statuses"}
+        for run in runs
+        for cell in run["cells"]
+    ]
     rows = join_cells(cells)
     print_table(rows)
     return {
