@@ -483,12 +483,12 @@ class Agent2dGoalie:
         kick_opp = False
         others: tuple[tuple[float, float, float, float, float, int], ...] | None = None
         if len(opponents) > 1:
-            attacker, kick_opp, others, opp_self_dist = self._several_opponents(
+            attacker, (ox, oy), kick_opp, others, opp_self_dist = self._several_opponents(
                 opponents, bx, by, px, py, d_b
             )
             frozen = attacker.tackle_cycles
             opp_raw = (attacker.x, attacker.y, attacker.vx, attacker.vy, attacker.body_deg)
-            ox = oy = ux = uy = obody = None
+            ux = uy = obody = None  # converted when first read, as with one attacker
         elif attacker is not None:
             # the attacker's numbers are converted when the decision first reads them (_FullstateView); the
             # kickable test needs its position unless the raw position is surely too far from the ball
@@ -569,43 +569,52 @@ class Agent2dGoalie:
     @staticmethod
     def _several_opponents(
         opponents: list[PlayerState], bx: float, by: float, px: float, py: float, d_b: float
-    ) -> tuple[PlayerState, bool, tuple[tuple[float, float, float, float, float, int], ...], float]:
+    ) -> tuple[
+        PlayerState,
+        tuple[float, float],
+        bool,
+        tuple[tuple[float, float, float, float, float, int], ...],
+        float,
+    ]:
         """librcsc's world model with several opponents (HFO team games), from their fullstate numbers in GF.
 
         Returns the opponent nearest to the ball (WorldModel::opponentsFromBall's first: the player the decision
-        reads as "the attacker", as the field defender's view does), ``kick_opp`` (updatePlayerStateCache's test on
-        the first opponent from the ball that is not frozen by a tackle), every other opponent as (x, y, vx, vy,
-        body, tackle freeze) for the intercept table's opponent reach and the nearest-opponent distances, and the
-        distance of the opponent nearest to the goalie (getOpponentNearestToSelf)."""
+        reads as "the attacker", as the field defender's view does) and its position, ``kick_opp``
+        (updatePlayerStateCache's test on the first opponent from the ball that is not frozen by a tackle), every
+        other opponent as (x, y, vx, vy, body, tackle freeze) for the intercept table's opponent reach and the
+        nearest-opponent distances, and the distance of the opponent nearest to the goalie
+        (getOpponentNearestToSelf)."""
         fs = fullstate_value
-        numbers = [
-            (
-                -fs(o.x),
-                -fs(o.y),
-                -fs(o.vx),
-                -fs(o.vy),
-                norm_deg(fs(o.body_deg) + 180.0),
-                o.tackle_cycles,
-            )
-            for o in opponents
-        ]
+        # positions first (every opponent's is needed); the rest only for the opponents after the first
+        positions = [(-fs(o.x), -fs(o.y)) for o in opponents]
         # stable: equal distances keep the server order, as librcsc's sort of its opponent list does
         order = sorted(
-            range(len(opponents)), key=lambda k: math.hypot(numbers[k][0] - bx, numbers[k][1] - by)
+            range(len(opponents)), key=lambda k: math.hypot(positions[k][0] - bx, positions[k][1] - by)
         )
         kick_opp = False
         for k in order:
-            o = numbers[k]
-            if o[5] <= 0:
+            o = positions[k]
+            if opponents[k].tackle_cycles <= 0:
                 opp_ball = math.hypot(o[0] - bx, o[1] - by)
                 opp_self = math.hypot(o[0] - px, o[1] - py)
                 kick_opp = opp_ball < KICKABLE_AREA + min(
                     KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
                 ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
                 break
-        others = tuple(numbers[k] for k in order[1:])
-        opp_self_dist = min(math.hypot(o[0] - px, o[1] - py) for o in numbers)
-        return opponents[order[0]], kick_opp, others, opp_self_dist
+        others = tuple(
+            (
+                positions[k][0],
+                positions[k][1],
+                -fs(opponents[k].vx),
+                -fs(opponents[k].vy),
+                norm_deg(fs(opponents[k].body_deg) + 180.0),
+                opponents[k].tackle_cycles,
+            )
+            for k in order[1:]
+        )
+        opp_self_dist = min(math.hypot(x - px, y - py) for x, y in positions)
+        first = order[0]
+        return opponents[first], positions[first], kick_opp, others, opp_self_dist
 
     def _update_last_kicker(self, view: GoalieView, has_attacker: bool) -> None:
         """WorldModel::updateLastKicker, reduced to HFO 1v1: ours after the goalie's own tackle (or kick), theirs
