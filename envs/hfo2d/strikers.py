@@ -40,7 +40,7 @@ kick model), so a shot cancels the ball's current velocity and sends it at up to
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,6 +53,7 @@ from hfo2d.features import (
     BALL_SPEED_MAX,
     BALL_VEL_ANGLE_COS,
     BALL_VEL_ANGLE_SIN,
+    FEATURES_PER_PLAYER,
     FIRST_LANDMARK,
     GOAL_HALF_WIDTH,
     GOALIE_ANGLE_COS,
@@ -65,7 +66,9 @@ from hfo2d.features import (
     PITCH_HALF_LENGTH,
     SELF_BODY_COS,
     SELF_BODY_SIN,
+    hfo_num_features,
     landmark_position,
+    paper_from_hfo,
 )
 from hfo2d.heuristic import BALL_DECAY, BODY_CLEARANCE, MAX_POWER, PLAYER_RUN_SPEED, SHOT_SPEED, _kick_command
 
@@ -78,6 +81,7 @@ SIDE_STEP_OFFSET = 0.8  # m beside the ball to stand on before kicking it back p
 SIDE_STEP_RANGE = 4.0  # m; closer than this to the ball, a side step replaces the direct approach
 MAX_PREDICTION_CYCLES = 20
 STOPPED_BALL_SPEED = 0.05  # m/cycle under which a held ball counts as stopped
+GOALIE_UNUM = 1  # HFO's goalie (bin/Teams.py launches the defense's unum 1 with -g)
 
 
 @dataclass(frozen=True)
@@ -475,3 +479,37 @@ def make_striker(name: str, **kwargs: float) -> Striker:
     if kwargs:
         raise ValueError(f"striker {name!r} takes no options, got {kwargs}")
     return STRIKERS[name]()
+
+
+def goalie_view_from_hfo(features: Sequence[float], num_teammates: int, num_opponents: int) -> np.ndarray:
+    """What a striker reads in a team game: HFO master's vector cut down to the 1v1 layout (basic + goalie block).
+
+    The strikers know one opponent, the goalie (features 58-65). In a team game the paper-era blocks are sorted
+    by distance and carry no uniform numbers, so the goalie is found through HFO master's uniform-number entries
+    (``unum / 100`` per slot, :func:`hfo2d.features.hfo_feature_list`): the opponent slot numbered 1. The vector
+    is converted with :func:`hfo2d.features.paper_from_hfo`, then its 58 basic features and the goalie's block
+    are kept (zeros when the goalie is not listed, which a striker reads as "no goalie"). Both hfo2d's team game
+    and the real HFO give this vector with ``feature_set="hfo"``, so a striker plays the same in both; it is
+    what ``hfo2d.team.TeamGame`` gives its own scripted strikers, up to float32 rounding.
+
+    Args:
+        features: HFO master's vector of an offense player, ``hfo_num_features(num_teammates, num_opponents)``.
+        num_teammates, num_opponents: its slot counts.
+
+    Returns:
+        66 float32 features (58 + the goalie's 8).
+
+    Raises:
+        ValueError: a vector of the wrong length or negative slot counts (from ``paper_from_hfo``).
+    """
+    paper = paper_from_hfo(features, num_teammates, num_opponents)
+    players = num_teammates + num_opponents
+    unums = hfo_num_features(num_teammates, num_opponents) - 1 - players  # first uniform-number entry
+    view = np.zeros(NUM_BASIC_FEATURES + FEATURES_PER_PLAYER, dtype=np.float32)
+    view[:NUM_BASIC_FEATURES] = paper[:NUM_BASIC_FEATURES]
+    for slot in range(num_teammates, players):
+        if round(float(features[unums + slot]) * 100.0) == GOALIE_UNUM:
+            first = NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * slot
+            view[NUM_BASIC_FEATURES:] = paper[first : first + FEATURES_PER_PLAYER]
+            break
+    return view

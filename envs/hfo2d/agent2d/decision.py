@@ -374,6 +374,9 @@ def is_ball_chase_situation(v: GoalieView, table: InterceptTable, d_b: float | N
     # F. the opponent is nearer to the intercept point by more than 2 m
     my_dist = math.hypot(v.px - ix, v.py - iy)
     opp_dist = math.hypot(v.ox - ix, v.oy - iy) if v.has_opp else 10000.0
+    # getOpponentNearestTo: every opponent of a team game (the goalie's view lists the others; none in 1v1)
+    for other in getattr(v, "other_opponents", ()):
+        opp_dist = min(opp_dist, math.hypot(other[0] - ix, other[1] - iy))
     return not opp_dist < my_dist - 2.0
 
 

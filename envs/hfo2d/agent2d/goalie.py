@@ -180,7 +180,10 @@ class _FullstateView(GoalieView):
     when first needed, as most decisions need none of them. A field left None at construction is lazy; the raw
     server values are in ``_opp_raw``."""
 
-    __slots__ = ("_opp_raw", "_ox", "_oy", "_ux", "_uy", "_obody")
+    # With several opponents (team games) ``other_opponents`` holds every opponent but the nearest to the ball as
+    # (x, y, vx, vy, body, tackle freeze) in GF, and ``opp_self_dist`` the distance of the one nearest to the
+    # goalie; with one attacker both stay unset (readers use getattr), so HFO 1v1 takes its old path unchanged.
+    __slots__ = ("_opp_raw", "_ox", "_oy", "_ux", "_uy", "_obody", "other_opponents", "opp_self_dist")
 
     def __init__(
         self,
@@ -472,16 +475,21 @@ class Agent2dGoalie:
             self._body_key = key
             self._body_numbers = (body, stamina, effort, recovery)
         d_b = math.hypot(bx - px, by - py)
-        attacker = None
         side = keeper.side
-        for player in world.players:
-            if player.side != side:
-                attacker = player
-                break
+        opponents = [player for player in world.players if player.side != side]
+        attacker = opponents[0] if opponents else None
         ox = oy = ux = uy = obody = 0.0
         frozen = 0
         kick_opp = False
-        if attacker is not None:
+        others: tuple[tuple[float, float, float, float, float, int], ...] | None = None
+        if len(opponents) > 1:
+            attacker, (ox, oy), kick_opp, others, opp_self_dist = self._several_opponents(
+                opponents, bx, by, px, py, d_b
+            )
+            frozen = attacker.tackle_cycles
+            opp_raw = (attacker.x, attacker.y, attacker.vx, attacker.vy, attacker.body_deg)
+            ux = uy = obody = None  # converted when first read, as with one attacker
+        elif attacker is not None:
             # the attacker's numbers are converted when the decision first reads them (_FullstateView); the
             # kickable test needs its position unless the raw position is surely too far from the ball
             ox = oy = ux = uy = obody = None
@@ -544,6 +552,9 @@ class Agent2dGoalie:
         )
         if attacker is not None:
             view._opp_raw = opp_raw
+        if others is not None:
+            view.other_opponents = others
+            view.opp_self_dist = opp_self_dist
         if self._last_kicker_ours or not self._play_on or self._last_body_kind == "tackle":
             self._update_last_kicker(view, attacker is not None)
             view.lk_not_ours = not self._last_kicker_ours
@@ -554,6 +565,56 @@ class Agent2dGoalie:
         if kick_opp and not view.self_kickable:
             view.wx = view.wy = 0.0  # BallObject::setOpponentControlEffect
         return view
+
+    @staticmethod
+    def _several_opponents(
+        opponents: list[PlayerState], bx: float, by: float, px: float, py: float, d_b: float
+    ) -> tuple[
+        PlayerState,
+        tuple[float, float],
+        bool,
+        tuple[tuple[float, float, float, float, float, int], ...],
+        float,
+    ]:
+        """librcsc's world model with several opponents (HFO team games), from their fullstate numbers in GF.
+
+        Returns the opponent nearest to the ball (WorldModel::opponentsFromBall's first: the player the decision
+        reads as "the attacker", as the field defender's view does) and its position, ``kick_opp``
+        (updatePlayerStateCache's test on the first opponent from the ball that is not frozen by a tackle), every
+        other opponent as (x, y, vx, vy, body, tackle freeze) for the intercept table's opponent reach and the
+        nearest-opponent distances, and the distance of the opponent nearest to the goalie
+        (getOpponentNearestToSelf)."""
+        fs = fullstate_value
+        # positions first (every opponent's is needed); the rest only for the opponents after the first
+        positions = [(-fs(o.x), -fs(o.y)) for o in opponents]
+        # stable: equal distances keep the server order, as librcsc's sort of its opponent list does
+        order = sorted(
+            range(len(opponents)), key=lambda k: math.hypot(positions[k][0] - bx, positions[k][1] - by)
+        )
+        kick_opp = False
+        for k in order:
+            o = positions[k]
+            if opponents[k].tackle_cycles <= 0:
+                opp_ball = math.hypot(o[0] - bx, o[1] - by)
+                opp_self = math.hypot(o[0] - px, o[1] - py)
+                kick_opp = opp_ball < KICKABLE_AREA + min(
+                    KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
+                ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
+                break
+        others = tuple(
+            (
+                positions[k][0],
+                positions[k][1],
+                -fs(opponents[k].vx),
+                -fs(opponents[k].vy),
+                norm_deg(fs(opponents[k].body_deg) + 180.0),
+                opponents[k].tackle_cycles,
+            )
+            for k in order[1:]
+        )
+        opp_self_dist = min(math.hypot(x - px, y - py) for x, y in positions)
+        first = order[0]
+        return opponents[first], positions[first], kick_opp, others, opp_self_dist
 
     def _update_last_kicker(self, view: GoalieView, has_attacker: bool) -> None:
         """WorldModel::updateLastKicker, reduced to HFO 1v1: ours after the goalie's own tackle (or kick), theirs

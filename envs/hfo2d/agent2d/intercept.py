@@ -410,9 +410,14 @@ def _opp_part(view: GoalieView, ball: tuple) -> int:
     if not view.has_opp:
         return 1000
     cache, _, sin_a, cos_a = ball
-    return min(
+    reach = min(
         1000, _predict_opponent(view, cache, (view.ox - view.bx) * sin_a + (view.oy - view.by) * cos_a)
     )
+    # InterceptTable::update takes the fastest of all opponents: a team game's goalie view lists the others
+    # (hfo2d.agent2d.goalie; unset with one attacker)
+    for other in getattr(view, "other_opponents", ()):
+        reach = min(reach, predict_player_reach(view, cache, other, teammate=False))
+    return reach
 
 
 class _LazyTable(InterceptTable):
