@@ -167,3 +167,14 @@ def test_hybrid_ppo_runs_smoke_writes_curve_run_record_and_final_model(tmp_path:
     assert completed.returncode == 0, completed.stderr[-2000:]
     record = json.loads((init / "run.json").read_text())
     assert record["init"] == str(out / "final.zip") and record["curriculum"] is None
+
+
+def test_core_scaling_times_one_process_and_several_side_by_side() -> None:
+    command = [sys.executable, str(REPO / "benchmarks" / "core_scaling.py"), "--seconds", "0.2"]
+    completed = subprocess.run([*command, "--processes", "2"], capture_output=True, text=True, timeout=120)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    results = json.loads(completed.stdout.splitlines()[-1])
+    assert len(results["side_by_side"]) == 2 and len(results["alone"]) == 1
+    assert all(row["steps_per_s"] > 0 for rows in results.values() for row in rows)
+    refused = subprocess.run([*command, "--processes", "0"], capture_output=True, text=True, timeout=60)
+    assert refused.returncode == 2 and "--processes >= 1" in refused.stderr
