@@ -8,9 +8,10 @@ An env holds a list of ``(player, npc)`` pairs and plays every NPC the same way,
    arrives (the NPC keeps its decision); then the agents' commands; then :meth:`DefenseNPC.apply` sends the NPC's;
 3. :meth:`DefenseNPC.act` (decide, then apply) in the cycles where no agent plays (real HFO's wait cycles).
 
-Three NPCs implement it today: HFO's own goalie (:class:`hfo2d.agent2d.goalie.Agent2dGoalie`, ``HFO/Keeper-v1``),
-hfo2d's first goalie (:class:`hfo2d.keeper.ScriptedKeeper`, ``HFO/Keeper-v0``) and :class:`StillGoalie`
-(``HFO/StaticKeeper-v0``). agent2d's field defenders, and later its offense, are to follow the same interface.
+Four NPCs implement it today: HFO's own goalie (:class:`hfo2d.agent2d.goalie.Agent2dGoalie`, ``HFO/Keeper-v1``),
+agent2d's field defenders (:class:`hfo2d.agent2d.defender.Agent2dDefender`, the team game's defense NPCs after the
+goalie), hfo2d's first goalie (:class:`hfo2d.keeper.ScriptedKeeper`, ``HFO/Keeper-v0``) and :class:`StillGoalie`
+(``HFO/StaticKeeper-v0``). agent2d's offense, when it is ported, is to follow the same interface.
 """
 
 from __future__ import annotations
