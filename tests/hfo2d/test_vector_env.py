@@ -185,6 +185,45 @@ def test_game_of_batch_reproduces_golden_rollout(case: tuple) -> None:
     batch.close()
 
 
+@pytest.mark.parametrize("cpus", [1, 64])
+def test_the_spinning_hand_over_plays_the_same_games_and_spins_only_with_a_core_each(
+    cpus: int, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Workers and parent hand commands over by shared counters (spinning) only while every stepping process has a
+    core of its own; either way game i plays bit for bit as in the one-process batch."""
+    import hfo2d.vector as vector
+
+    monkeypatch.setattr(vector, "_available_cpus", lambda: cpus)
+    num_envs = 4
+    single = gym.make_vec("HFO/Keeper-v1", num_envs, vectorization_mode="vector_entry_point")
+    sharded = ShardedHFOVectorEnv("HFO/Keeper-v1", num_envs, 2)
+    try:
+        assert (sharded._spin_seconds > 0) == (cpus >= 2)
+        for mine, theirs in zip(sharded.reset(seed=5), single.reset(seed=5), strict=True):
+            _assert_same(mine, theirs, "reset")
+        for actions in _actions(60, num_envs, seed=1):
+            for name, a, b in zip(
+                ("o", "r", "te", "tr", "info"), sharded.step(actions), single.step(actions), strict=True
+            ):
+                _assert_same(a, b, name)
+        # every command was announced and answered once: the counters agree with the pipes
+        assert sharded._sent[1] == sharded._answered[1] == 61
+    finally:
+        sharded.close()
+
+
+def test_all_shards_in_workers_on_two_cores_do_not_spin(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Two workers and a waiting parent are three processes: on two cores none of them spins."""
+    import hfo2d.vector as vector
+
+    monkeypatch.setattr(vector, "_available_cpus", lambda: 2)
+    sharded = ShardedHFOVectorEnv("HFO/EmptyGoal-v0", 4, 2, in_process_shard=False)
+    try:
+        assert sharded._spin_seconds == 0.0
+    finally:
+        sharded.close()
+
+
 @pytest.mark.parametrize(
     ("num_workers", "in_process_shard"), [(1, False), (2, True), (2, False), (3, True)], ids=str
 )
