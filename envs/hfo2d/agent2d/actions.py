@@ -19,8 +19,13 @@ receives. The goalie is player type 0 and, with fullstate, every accuracy count 
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING, Any
 
+from hfo2d.agent2d.tackle import client_tackle_dir
 from hfo2d.physics import ServerParams
+
+if TYPE_CHECKING:
+    from hfo2d.physics import PlayerState, World
 
 from . import common as _common
 from .common import (
@@ -910,3 +915,20 @@ def body_intercept(
             return False
 
     return _inertia_dash(eff, view, tx, ty, e, save_recovery)
+
+
+def send_command(world: World, player: PlayerState, view: GoalieView, command: Any) -> bool:
+    """Send an agent2d body command of kind "turn", "dash" or "tackle" through librcsc's client conversions, as
+    agent2d's goalie and field defenders both do; returns False for other kinds (the caller's: the goalie's catch,
+    the defender's kick)."""
+    kind = command.kind
+    if kind == "turn":
+        world.turn(player, client_turn_moment(view, command.a))
+    elif kind == "dash":
+        power, direction = client_dash(view, command.a, command.b)
+        world.dash(player, power, direction)
+    elif kind == "tackle":
+        world.tackle(player, client_tackle_dir(command.a), command.foul)
+    else:
+        return False
+    return True

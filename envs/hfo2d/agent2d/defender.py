@@ -49,9 +49,8 @@ from hfo2d.agent2d.actions import (
     body_go_to_point,
     body_intercept,
     body_turn_to_point,
-    client_dash,
-    client_turn_moment,
     safety_dash_power,
+    send_command,
 )
 from hfo2d.agent2d.common import (
     Command,
@@ -69,7 +68,7 @@ from hfo2d.agent2d.formation import normal_formation
 from hfo2d.agent2d.formation_data import GOALIE_CATCH_OUR
 from hfo2d.agent2d.goalie import KICKABLE_OPP_ERROR_MAX, KICKABLE_OPP_ERROR_RATE, fullstate_value
 from hfo2d.agent2d.intercept import build_intercept_table, predict_player_reach
-from hfo2d.agent2d.tackle import basic_tackle, client_tackle_dir
+from hfo2d.agent2d.tackle import basic_tackle
 from hfo2d.physics import PlayerState, ServerParams, World
 
 __all__ = ["Agent2dDefender", "DefenderView", "TeamInterceptTable", "hold_ball_kick"]
@@ -292,16 +291,7 @@ class Agent2dDefender:
             return
         if self._server_params is not _common.BOUND_PARAMS:
             bind_server_params(self._server_params)
-        view = self.last_view
-        kind = command.kind
-        if kind == "turn":
-            world.turn(player, client_turn_moment(view, command.a))
-        elif kind == "dash":
-            power, direction = client_dash(view, command.a, command.b)
-            world.dash(player, power, direction)
-        elif kind == "tackle":
-            world.tackle(player, client_tackle_dir(command.a), command.foul)
-        elif kind == "kick":
+        if not send_command(world, player, self.last_view, command) and command.kind == "kick":
             world.kick(player, *client_kick(command.a, command.b))
 
     # -------------------------------------------------------------------------------------------------------------

@@ -20,7 +20,7 @@ import struct
 import numpy as np
 
 from hfo2d.agent2d import common as _common
-from hfo2d.agent2d.actions import client_dash, client_turn_moment
+from hfo2d.agent2d.actions import send_command
 from hfo2d.agent2d.common import (
     Command,
     Effector,
@@ -33,7 +33,6 @@ from hfo2d.agent2d.common import (
 )
 from hfo2d.agent2d.decision import FreeKickState, decide
 from hfo2d.agent2d.intercept import build_intercept_table
-from hfo2d.agent2d.tackle import client_tackle_dir
 from hfo2d.physics import PlayerState, ServerParams, World
 from hfo2d.protocol import AGENT2D_FIRST_BODY_DEGS
 
@@ -429,19 +428,13 @@ class Agent2dGoalie:
             return
         if self._server_params is not _common.BOUND_PARAMS:
             bind_server_params(self._server_params)
-        view = self.last_view
         kind = command.kind
-        if kind == "turn":
-            world.turn(keeper, client_turn_moment(view, command.a))
-        elif kind == "dash":
-            power, direction = client_dash(view, command.a, command.b)
-            world.dash(keeper, power, direction)
-        elif kind == "catch":
+        if kind == "catch":
             # PlayerCatchCommand: the direction is written with a C++ stream's default 6 significant digits
             if world.catch(keeper, float(f"{norm_deg(command.a):.6g}")):
                 self._catch_pending = True
-        elif kind == "tackle":
-            world.tackle(keeper, client_tackle_dir(command.a), command.foul)
+        elif kind in ("turn", "dash", "tackle"):
+            send_command(world, keeper, self.last_view, command)
         # kind "move" (Bhv_GoalieFreeKick): rcssserver player.cpp Player::move ignores it in PlayOn, the only
         # server play mode of an HFO episode
         self._last_body_kind = kind
