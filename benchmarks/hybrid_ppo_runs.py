@@ -86,33 +86,6 @@ PRESETS: dict[str, dict[str, Any]] = {
             "policy_kwargs": {"net_arch": [64, 64], "log_std_init": -0.5},
         },
     },
-    # E2 (issue 33, item 4: the learned router against the hand-coded one): E1's recipe with the paper's two
-    # skills (one actor head and one Adam each); ``field_half`` routes by the ball's field half (the paper's rule),
-    # ``learned`` adds a categorical over the skills that PPO learns as a first-level choice.
-    "e2_field_half": {
-        "env_id": "HFO/EmptyGoal-v0",
-        "env_kwargs": {},
-        "steps": 1_600_000,
-        "curriculum": None,
-        "hp": {
-            "n_envs": 16,
-            "n_steps": 256,
-            "batch_size": 512,
-            "n_epochs": 10,
-            "learning_rate": "lin_5e-4",
-            "gamma": 0.99,
-            "gae_lambda": 0.95,
-            "ent_coef": 0.0,
-            "norm_reward": True,
-            "policy_kwargs": {
-                "net_arch": [64, 64],
-                "log_std_init": -0.5,
-                "skills": 2,
-                "router": "field_half",
-                "domain": "hfo",
-            },
-        },
-    },
     "e6": {
         "env_id": "HFO/Keeper-v1",
         "env_kwargs": {"reward": "shaped_gap_refund"},
@@ -133,8 +106,13 @@ PRESETS: dict[str, dict[str, Any]] = {
     },
 }
 
-PRESETS["e2_learned"] = json.loads(json.dumps(PRESETS["e2_field_half"]))
-PRESETS["e2_learned"]["hp"]["policy_kwargs"]["router"] = "learned"
+# E2 (issue 33, item 4: the learned router against the hand-coded one): E1's recipe with the paper's two skills (one
+# actor head and one Adam each); ``field_half`` routes by the ball's field half (the paper's rule), ``learned`` adds
+# a categorical over the skills that PPO learns as a first-level choice.
+for _router in ("field_half", "learned"):
+    _preset = json.loads(json.dumps(PRESETS["e1"]))  # a deep copy
+    _preset["hp"]["policy_kwargs"].update(skills=2, router=_router, domain="hfo")
+    PRESETS[f"e2_{_router}"] = _preset
 
 #: Tiny settings for ``--smoke`` (CI runs the script for seconds).
 SMOKE = {
