@@ -291,6 +291,10 @@ class _Agent:
     reward: Any  # an hfo2d.reward reward function (offense) or None (defense)
     last_action_succeeded: bool = False
     previous_ball_proximity: float | None = None
+    # per-step constants, looked up once here (a frozen layout hashes all its fields on every dict lookup):
+    # the flat action's length and its decoding (_FLAT_DECODING[layout])
+    flat_size: int = 0
+    flat_decoding: tuple[tuple[int, tuple[tuple[float, float], ...]], ...] = ()
 
 
 class TeamGame:
@@ -467,7 +471,17 @@ class TeamGame:
             HybridActionBox(layout) if self.action_format == "flat" else _parameterized_space(layout)
         )
         reward = make_reward(self.reward_name) if offense else None
-        return _Agent(name, player, offense, layout, observation_space, action_space, reward)
+        return _Agent(
+            name,
+            player,
+            offense,
+            layout,
+            observation_space,
+            action_space,
+            reward,
+            flat_size=layout.size,
+            flat_decoding=_FLAT_DECODING[layout],
+        )
 
     def agent(self, name: str) -> _Agent:
         """The agent called ``name`` ("offense_0", ...); ValueError for an unknown name."""
@@ -734,7 +748,8 @@ class TeamGame:
                 features[SELF_FROZEN] = 1.0
         else:
             features = paper
-        return np.frombuffer(struct.pack(f"={len(features)}f", *features), np.float32).copy()
+        # native float32s (struct "=f" rounds to nearest), in a fresh writable array of its own
+        return np.frombuffer(bytearray(_float32_packer(len(features))(*features)), np.float32)
 
     def _defense_reward(
         self, agent: _Agent, paper: list[float], status: str
@@ -812,13 +827,14 @@ class TeamGame:
         """(index of the action in the agent's layout, its parameters in HFO's units); ValueError if invalid."""
         layout = agent.layout
         if self.action_format == "flat":
-            if type(action) is np.ndarray and action.dtype.kind == "f" and action.shape == (layout.size,):
+            size = agent.flat_size
+            if type(action) is np.ndarray and action.dtype.kind == "f" and action.shape == (size,):
                 values = action.tolist()  # the usual case, without _as_float_list's checks
             else:
                 values = _as_float_list(action, f"{agent.name}'s flat action")
-            if len(values) != layout.size:
+            if len(values) != size:
                 raise ValueError(
-                    f"{agent.name}'s flat action must have shape ({layout.size},) ({', '.join(layout.names)}), "
+                    f"{agent.name}'s flat action must have shape ({size},) ({', '.join(layout.names)}), "
                     f"got {np.shape(action)}"
                 )
             for index, value in enumerate(values):
@@ -826,12 +842,12 @@ class TeamGame:
                     what = "not finite" if not math.isfinite(value) else "outside [0, 1]"
                     raise ValueError(f"{agent.name}'s flat action element {index} is {what}: {value!r}")
             # HybridActionLayout.decode (the largest preference, the first on ties), its slices computed once
-            n_discrete = layout.n_discrete
+            decoding = agent.flat_decoding
             kind = 0
-            for index in range(1, n_discrete):
+            for index in range(1, len(decoding)):
                 if values[index] > values[kind]:
                     kind = index
-            start, bounds = _FLAT_DECODING[layout][kind]
+            start, bounds = decoding[kind]
             return kind, [low + (high - low) * values[start + k] for k, (low, high) in enumerate(bounds)]
         n = layout.n_discrete
         with_parameters = [k for k in range(n) if layout.parameter_sizes[k] > 0]
@@ -885,6 +901,17 @@ _FLAT_DECODING: dict[HybridActionLayout, tuple[tuple[int, tuple[tuple[float, flo
     )
     for layout in (HFO_FLAT_ACTION_LAYOUT, DEFENDER_FLAT_ACTION_LAYOUT, GOALIE_FLAT_ACTION_LAYOUT)
 }
+
+
+_FLOAT32_PACKERS: dict[int, Any] = {}
+
+
+def _float32_packer(count: int) -> Any:
+    """``struct.Struct(f"={count}f").pack``, compiled once per length (struct.pack parses its format each call)."""
+    pack = _FLOAT32_PACKERS.get(count)
+    if pack is None:
+        pack = _FLOAT32_PACKERS[count] = struct.Struct(f"={count}f").pack
+    return pack
 
 
 def _mirrored_player(player: PlayerState) -> PlayerState:

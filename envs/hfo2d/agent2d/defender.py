@@ -66,8 +66,13 @@ from hfo2d.agent2d.common import (
 )
 from hfo2d.agent2d.formation import normal_formation
 from hfo2d.agent2d.formation_data import GOALIE_CATCH_OUR
-from hfo2d.agent2d.goalie import KICKABLE_OPP_ERROR_MAX, KICKABLE_OPP_ERROR_RATE, fullstate_value
-from hfo2d.agent2d.intercept import build_intercept_table, predict_player_reach
+from hfo2d.agent2d.goalie import (
+    _PACK_FOUR,
+    KICKABLE_OPP_ERROR_MAX,
+    KICKABLE_OPP_ERROR_RATE,
+    fullstate_value,
+)
+from hfo2d.agent2d.intercept import build_intercept_table, full_self_cache, predict_player_reach
 from hfo2d.agent2d.tackle import basic_tackle
 from hfo2d.physics import PlayerState, ServerParams, World
 
@@ -149,6 +154,9 @@ class TeamInterceptTable(InterceptTable):
     a teammate, the goalie included, can kick; 1000 without one)."""
 
     mate_min: int = 1000
+    #: the lazy table (build_intercept_table(view, full=False)) the fields were read from: its ball cache serves
+    #: the full self cache when Body_Intercept needs it (intercept.full_self_cache)
+    source: InterceptTable | None = None
 
 
 def _fs_player(p: PlayerState) -> OtherPlayer:
@@ -213,6 +221,8 @@ class Agent2dDefender:
     def __setstate__(self, state: dict[str, object]) -> None:
         self.__dict__.update(state)
         self._server_params = canonical_params(self._server_params)
+        if "_ball_key" not in state:  # pickled before the conversions were kept
+            self._forget_conversions()
 
     def restart(self) -> None:
         """Forget the client state, as a player made afresh (the params, generator, skill and unum stay)."""
@@ -227,6 +237,15 @@ class Agent2dDefender:
         self._play_on = True
         self._set_play_count = 0  # WorldModel::setplayCount: cycles since the set play began
         self._effector = Effector()
+        self._forget_conversions()
+
+    def _forget_conversions(self) -> None:
+        # _view's last conversions of the ball (x, y, vx, vy) and of its own (body, stamina, effort, recovery), by
+        # the bytes of their server values (fullstate_value is a function of the bits)
+        self._ball_key: bytes | None = None
+        self._ball_numbers = (0.0, 0.0, 0.0, 0.0)
+        self._body_key: bytes | None = None
+        self._body_numbers = (0.0, 0.0, 0.0, 0.0)
 
     def set_skill(self, skill: float) -> None:
         """Play with quality ``skill`` in [0, 1] from now on."""
@@ -299,9 +318,24 @@ class Agent2dDefender:
         """librcsc's world model just before the decision (updateJustBeforeDecision), in DF."""
         fs = fullstate_value
         ball = world.ball
-        bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+        # (the same numbers as last cycle for the same server values, as in Agent2dGoalie._view: a resting ball
+        # and a defender that does not turn or tire repeat them)
+        key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
+        if key == self._ball_key:
+            bx, by, wx, wy = self._ball_numbers
+        else:
+            bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+            self._ball_key = key
+            self._ball_numbers = (bx, by, wx, wy)
         px, py, vx, vy = -fs(me.x), -fs(me.y), -fs(me.vx), -fs(me.vy)
-        body = norm_deg(fs(me.body_deg) + 180.0)
+        key = _PACK_FOUR(me.body_deg, me.stamina, me.effort, me.recovery)
+        if key == self._body_key:
+            body, stamina, effort, recovery = self._body_numbers
+        else:
+            body = norm_deg(fs(me.body_deg) + 180.0)
+            stamina, effort, recovery = fs(me.stamina), fs(me.effort), fs(me.recovery)
+            self._body_key = key
+            self._body_numbers = (body, stamina, effort, recovery)
         d_b = math.hypot(bx - px, by - py)
         opponents: list[OtherPlayer] = []
         teammates: list[OtherPlayer] = []
@@ -359,9 +393,9 @@ class Agent2dDefender:
             vx=vx,
             vy=vy,
             body=body,
-            stamina=fs(me.stamina),
-            effort=fs(me.effort),
-            recovery=fs(me.recovery),
+            stamina=stamina,
+            effort=effort,
+            recovery=recovery,
             bx=bx,
             by=by,
             wx=wx,
@@ -447,7 +481,7 @@ class Agent2dDefender:
             mate_min = 1000
             for t in view.teammates:
                 mate_min = min(mate_min, predict_player_reach(view, cache, t, teammate=True))
-        return TeamInterceptTable(cache, base.self_cache, base.self_min, opp_min, False, mate_min)
+        return TeamInterceptTable(cache, base.self_cache, base.self_min, opp_min, False, mate_min, base)
 
     @staticmethod
     def _forced_kickable(view: DefenderView, table: TeamInterceptTable) -> None:
@@ -491,7 +525,10 @@ class Agent2dDefender:
         if not view.mate_kick and (s <= INTERCEPT_SURE_CYCLES or (s <= m and s < o + INTERCEPT_SURE_CYCLES)):
             self.last_branch = "intercept"
             if not table.complete:
-                table.self_cache = build_intercept_table(view).self_cache
+                if table.source is not None:
+                    table.self_cache = full_self_cache(table.source)
+                else:
+                    table.self_cache = build_intercept_table(view).self_cache
                 table.complete = True
             body_intercept(eff, view, table, True, view.ball_rand)
             return

@@ -21,6 +21,7 @@ exactly on an edge, where both neighbouring triangles interpolate the same posit
 from __future__ import annotations
 
 import math
+import struct
 from collections.abc import Sequence
 
 from hfo2d.agent2d import formation_data
@@ -38,6 +39,11 @@ GRID_CELL = (
 _CELL_MARGIN = (
     1.0e-6  # a triangle is listed in the cells its bounding box meets, widened by this (edge tolerance)
 )
+
+
+# Formation.position's memo: keyed by the focus point's bits (so that -0.0 and 0.0 stay apart), at most this big
+_PACK_POINT = struct.Struct("<2d").pack
+_MEMO_SIZE = 4096
 
 
 def _round_sample(v: float) -> float:
@@ -115,6 +121,7 @@ class Formation:
         ]
         self.unums = len(self.positions[0])
         self.triangles = delaunay(self.ball_points)
+        self._memo: dict[tuple[int, bytes], Point] = {}
         pts = self.ball_points
         # A grid of GRID_CELL m cells over the samples' bounding box, each listing (in triangle order) the
         # triangles whose bounding box meets it: the search of librcsc's findTriangleContains (the first triangle,
@@ -164,10 +171,23 @@ class Formation:
         return best
 
     def position(self, unum: int, fx: float, fy: float) -> Point:
-        """Unum ``unum``'s formation position for the focus point (fx, fy)."""
+        """Unum ``unum``'s formation position for the focus point (fx, fy).
+
+        Memoised by unum and the focus point's bits (a resting ball, and with it the defenders' focus point,
+        repeats from cycle to cycle); the position is a function of those alone."""
         if not 1 <= unum <= self.unums:
             raise ValueError(f"unum must be in 1..{self.unums}, got {unum!r}")
-        k = unum - 1
+        key = (unum, _PACK_POINT(fx, fy))
+        position = self._memo.get(key)
+        if position is None:
+            position = self._position(unum - 1, fx, fy)
+            if len(self._memo) >= _MEMO_SIZE:
+                self._memo.clear()
+            self._memo[key] = position
+        return position
+
+    def _position(self, k: int, fx: float, fy: float) -> Point:
+        """librcsc FormationDT::getPosition for the unum of index ``k`` (unum - 1)."""
         tri = self._find_triangle(fx, fy)
         if tri is None:
             return self.positions[self._nearest_sample(fx, fy)][k]

@@ -300,6 +300,24 @@ def build_intercept_table(
     return InterceptTable(ball[0], entries, self_min, _opp_part(view, ball))
 
 
+def full_self_cache(table: InterceptTable) -> list[InterceptEntry]:
+    """The self cache of ``build_intercept_table(view)`` (full) for the view of a lazy table
+    (``build_intercept_table(view, full=False)``), on the lazy table's ball cache: what Body_Intercept needs after
+    a decision that read only ``self_min`` and ``opp_min``, without building the ball cache and the opponent's
+    reach a second time. The same numbers as the full table's (the self part is a function of the view and of
+    the ball cache, and the ball cache of the view's ball; a view whose ``self_kickable`` was set since has no
+    self candidates either way)."""
+    if not isinstance(table, _LazyTable):
+        raise TypeError(f"full_self_cache needs a lazy table (build_intercept_table(..., full=False)), got {table!r}")
+    view = table._view
+    player_rand, ball_rand = table._rands
+    if player_rand is None:
+        player_rand = getattr(view, "player_rand", 0.1)
+    if ball_rand is None:
+        ball_rand = getattr(view, "ball_rand", 0.05)
+    return _self_part(view, table._ball_now(), player_rand, ball_rand, True)[0]
+
+
 def _ball_part(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float, float]:
     """createBallCache (empty past B for a kickable goalie), whether the ball rests, and sin, cos of -angle(W):
     the frame along the ball's velocity that the short-step, long-step and opponent predictions share."""
