@@ -5,7 +5,7 @@
 #
 #   benchmarks/team_instructions.sh ENVS_DIR CONFIG [CYCLES]
 #
-# ENVS_DIR: the envs/ folder of the checkout to measure (e.g. an old commit unpacked with
+# Run it in the project's environment (its python must import numpy, gymnasium, pymunk). ENVS_DIR: the envs/ folder of the checkout to measure (e.g. an old commit unpacked with
 # `git archive COMMIT envs | tar -x -C /tmp/old`); CONFIG: "keeper" (HFO/Keeper-v1) or OvD (O offense agents
 # against D agent2d defense NPCs, e.g. 2v2); CYCLES: default 1000. Random flat actions with seed 0, episode
 # resets included; the count of a run of 0 cycles (imports, construction) is subtracted. Hash seed, ASLR, BLAS

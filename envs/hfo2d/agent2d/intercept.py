@@ -308,7 +308,9 @@ def full_self_cache(table: InterceptTable) -> list[InterceptEntry]:
     the ball cache, and the ball cache of the view's ball; a view whose ``self_kickable`` was set since has no
     self candidates either way)."""
     if not isinstance(table, _LazyTable):
-        raise TypeError(f"full_self_cache needs a lazy table (build_intercept_table(..., full=False)), got {table!r}")
+        raise TypeError(
+            f"full_self_cache needs a lazy table (build_intercept_table(..., full=False)), got {table!r}"
+        )
     view = table._view
     player_rand, ball_rand = table._rands
     if player_rand is None:
