@@ -227,16 +227,16 @@ def _provenance(args: argparse.Namespace) -> dict[str, Any]:
             "give --config (a zoo config) or --script with --command (a benchmark script), not both"
         )
     if args.config is not None:
-        fields: dict[str, Any] = {"config": args.config}
-    elif args.script is not None and args.command_line is not None:
-        fields = {"config": None, "script": args.script, "command": args.command_line}
-    else:
+        if not Path(args.config).is_file():
+            raise UserError(f"--config {args.config}: no such file")
+        return {"config": args.config}
+    if args.script is None or args.command_line is None:
         raise UserError("say how the model was trained: --config FILE, or --script FILE with --command LINE")
+    fields = {"config": None, "script": args.script, "command": args.command_line}
     try:
         check_provenance(fields, Path.cwd())
     except ValueError as error:
-        option = "--config" if args.config is not None else "--script/--command"
-        raise UserError(f"{option}: {error}") from None
+        raise UserError(f"--script/--command: {error}") from None
     return fields
 
 
@@ -302,6 +302,13 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
             full.policy.acting = args.acting
     except ValueError as error:
         raise UserError(str(error)) from error
+    # HybridPPO's policy acts by its own distribution: no acting strategies to record
+    acting = format_acting(full.policy.acting) if hasattr(full.policy, "acting") else None
+    source_evaluation = (  # checked before anything is written
+        _source_evaluation(args, Path(resolved.path), env_id, env_kwargs, acting or "")
+        if args.evaluation_json
+        else None
+    )
     out = model_file({"file": f"{args.name}.zip"}, manifest_path)
     with tempfile.TemporaryDirectory() as tmp:
         full_with_options = Path(tmp) / "full.zip"
@@ -320,10 +327,9 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     finally:
         env.close()
     print(f"{out}: {size:,} bytes; the same actions as {resolved.path} in {compared} steps")
-    acting = format_acting(stripped.policy.acting) if hasattr(stripped.policy, "acting") else None
     evaluated_file: dict[str, str] | None = None
-    if args.evaluation_json:
-        evaluation = _source_evaluation(args, Path(resolved.path), env_id, env_kwargs, acting or "")
+    if source_evaluation is not None:
+        evaluation = source_evaluation
         evaluated_file = {"file": Path(resolved.path).name, "sha256": _sha256(Path(resolved.path))}
     else:
         result = evaluate(
@@ -343,7 +349,6 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
         **provenance,
         "seed": args.seed,
         "source": args.source_note or str(args.source),
-        # HybridPPO's policy acts by its own distribution: no acting strategies to record
         "acting": acting,
         "evaluation_command": f"python -m sb3_hfo.evaluate {args.name} --episodes {args.episodes} "
         f"--seed {args.eval_seed} --json {args.name}.json",
