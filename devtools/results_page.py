@@ -90,7 +90,7 @@ def _rows(models: dict[str, dict[str, Any]]) -> list[tuple[Task, dict[str, Any] 
 def table(models: dict[str, dict[str, Any]]) -> str:
     """The results table (Markdown): one row per task."""
     lines = [
-        "| task | paper | here (hfo2d), 1,000 episodes | model (config, training seed) | real HFO |",
+        "| task | paper | here (hfo2d), 1,000 episodes | model (config or script, training seed) | real HFO |",
         "|---|---|---|---|---|",
     ]
     for task, entry in _rows(models):
