@@ -182,7 +182,9 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", type=Path, required=True, help="run folder (created; must not hold a curve)")
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--teacher", default="e6_imitation", help="the clone: a manifest name or a SkillDDPG zip")
+    parser.add_argument(
+        "--teacher", default="e6_imitation", help="the clone: a manifest name or a SkillDDPG zip"
+    )
     parser.add_argument("--steps", type=int, default=4_000_000, help="PPO's step budget")
     parser.add_argument("--minutes", type=float, default=30.0, help="wall-clock budget of PPO's training")
     parser.add_argument("--n-envs", type=int, default=16)
