@@ -1,7 +1,8 @@
-"""RL from the clone (issue 33): HybridPPO on HFO/Keeper-v1 started from the committed ``e6`` clone, pulled toward it.
+"""RL from the clone (issue 33): HybridPPO on HFO/Keeper-v1 started from the committed ``e6_imitation`` clone, pulled toward it.
 
-``e6`` is a SkillDDPG skills actor (two heads routed by ``field_half``) that DAgger taught to play like the scripted
-striker ``hfo2d.strikers.soft_dribble`` (an imitation, not RL). This run:
+``e6_imitation`` (named ``e6`` until this script's model took that name) is a SkillDDPG skills actor (two heads
+routed by ``field_half``) that DAgger taught to play like the scripted striker ``hfo2d.strikers.soft_dribble`` (an
+imitation, not RL); below it is called e6. This run:
 
 1. **Distils** e6's actor into a :class:`sb3_hfo.hybrid_ppo.HybridPPO` policy of the same shape (trunk
    ``[256, 128, 64]`` with LeakyReLU, two heads routed by ``field_half``): the student's trunk and heads start as
@@ -181,7 +182,9 @@ def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", type=Path, required=True, help="run folder (created; must not hold a curve)")
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--teacher", default="e6", help="the clone: a manifest name or a SkillDDPG zip")
+    parser.add_argument(
+        "--teacher", default="e6_imitation", help="the clone: a manifest name or a SkillDDPG zip"
+    )
     parser.add_argument("--steps", type=int, default=4_000_000, help="PPO's step budget")
     parser.add_argument("--minutes", type=float, default=30.0, help="wall-clock budget of PPO's training")
     parser.add_argument("--n-envs", type=int, default=16)

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from sb3_hfo.models import read_manifest
+from sb3_hfo.models import read_manifest, trained_with
 
 REPO = Path(__file__).resolve().parent.parent
 #: The checkout's manifest (not an installed package's): the page describes this repository.
@@ -46,6 +46,8 @@ TASKS: tuple[Task, ...] = (
     Task("e3", "E3 static keeper", "~95 %"),
     Task("e4", "E4 static keeper, skills", "~95 %"),
     Task("e6", "E6 moving keeper, skills: HFO's goalie (`HFO/Keeper-v1`)", "not solved"),
+    Task("e6_imitation", "E6, the imitation clone that `e6` starts from (`HFO/Keeper-v1`)", "not solved"),
+    Task("e6_from_reward", "E6 from reward alone (`HFO/Keeper-v1`)", "not solved"),
     Task("e6_keeper_v0", "E6 against hfo2d's earlier goalie (`HFO/Keeper-v0`)", "not solved"),
 )
 
@@ -67,12 +69,13 @@ def rate_text(result: dict[str, Any]) -> str:
     return f"{_percent(result['scoring_rate'])} % [{_percent(low)}, {_percent(high)}]"
 
 
-def _config_stem(entry: dict[str, Any]) -> str:
-    return Path(entry["config"]).stem
+def _recipe_stem(entry: dict[str, Any]) -> str:
+    """zoo_configs/<task>_....yml (named by its task), or the benchmark script of a model without a config."""
+    return Path(trained_with(entry)).stem
 
 
 def _model_text(name: str, entry: dict[str, Any]) -> str:
-    config_id = _config_stem(entry)  # zoo_configs/<task>_....yml, named by its task
+    config_id = _recipe_stem(entry)
     method = f"; {entry['method']}" if entry.get("method") else ""
     return f"`{name}` ({config_id}, seed {entry['seed']}{method})"
 
@@ -87,7 +90,7 @@ def _rows(models: dict[str, dict[str, Any]]) -> list[tuple[Task, dict[str, Any] 
 def table(models: dict[str, dict[str, Any]]) -> str:
     """The results table (Markdown): one row per task."""
     lines = [
-        "| task | paper | here (hfo2d), 1,000 episodes | model (config, training seed) | real HFO |",
+        "| task | paper | here (hfo2d), 1,000 episodes | model (config or script, training seed) | real HFO |",
         "|---|---|---|---|---|",
     ]
     for task, entry in _rows(models):
@@ -124,14 +127,17 @@ METHODS = """\
   best of this project's runs on its task (several configs and seeds; the others are in
   [research/RESULTS.md](../research/RESULTS.md)); a "best checkpoint" is the model rl-zoo3 kept by its periodic
   50- or 20-episode evaluations during training. Being the best of many runs, each figure is an optimistic
-  estimate of what its config gives on a new seed; the seed spread is in the results diary. The files hold the
+  estimate of what its config gives on a new seed; the seed spread is in the results diary. A model that a
+  benchmark script made has no zoo config: its entry names the script and its exact command, and the script's
+  section of [benchmarks/README.md](../benchmarks/README.md) gives every seed. The files hold the
   policy's weights without the optimizers' state and the target networks (`sb3_hfo.models`); when a model was
   added, its stripped file played the same actions as the full model at every step of 10 episodes.
 * **hfo2d figure.** `python -m sb3_hfo.evaluate NAME --episodes 1000 --seed 0 --json NAME.json`: 1,000 greedy
   episodes of the task's env (HFO's random starts and referee, noise on), the first reset seeded with 0; the
   scoring rate is goals / episodes with a Wilson score 95 % interval (about ±1 point at 98 %, ±3 at 35 %). The JSON
   is stored in the manifest as it came out. `python -m sb3_hfo.cli.models add` ran this evaluation when it committed
-  the model.
+  the model, or (an entry with `evaluated_file`) took it from this very evaluation of the unstripped file, named
+  there by its sha256.
 * **Real HFO.** The same agent in a real HFO build (LARG/HFO b8b2a1d with its rcssserver 15.2.2 and librcsc forks,
   fullstate, noise on) through `HFO/RealEmptyGoal-v0`, `HFO/RealStaticKeeper-v0` or `HFO/RealKeeper-v0`
   (agent2d's goalie): `HFO_DIR=... python -m sb3_hfo.evaluate NAME --env HFO/RealKeeper-v0 --episodes 1000
@@ -142,6 +148,15 @@ METHODS = """\
 * **Regenerating this page.** `python devtools/results_page.py` rewrites this page and the README's table from the
   manifest; a test checks that both are what the manifest gives.
 """
+
+
+def _trained_with_line(entry: dict[str, Any]) -> str:
+    if entry.get("config") is not None:
+        return f"* trained with: `{entry['config']}`, `--seed {entry['seed']}`; {entry['source']}"
+    return (
+        f"* trained with: `{entry['script']}` (a benchmark script, no zoo config), seed {entry['seed']}: "
+        f"`{entry['command']}`; {entry['source']}"
+    )
 
 
 def _details(models: dict[str, dict[str, Any]]) -> str:
@@ -157,7 +172,7 @@ def _details(models: dict[str, dict[str, Any]]) -> str:
             f"### `{task.name}`: {task.task}",
             "",
             f"* file: `sb3_hfo/pretrained/{entry['file']}`, {entry['bytes']:,} bytes",
-            f"* trained with: `{entry['config']}`, `--seed {entry['seed']}`; {entry['source']}",
+            _trained_with_line(entry),
             f"* env: `{entry['env_id']}`, env kwargs: {env_kwargs}; acting: {acting}",
             f"* hfo2d: **{rate_text(evaluation)}**, {evaluation['goals']} goals in {evaluation['episodes']:,} "
             f"episodes (evaluation seed {evaluation['seed']}; {counts}), on {entry['evaluation_machine']}: "

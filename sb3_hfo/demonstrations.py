@@ -228,7 +228,7 @@ def clone_striker(
     synchronised at the end; the critic is not trained.
 
     This is imitation of a hand-written policy, not learning from reward: results obtained with it are labelled so
-    (docs/results.md, the committed model ``e6``).
+    (docs/results.md, the committed model ``e6_imitation``).
 
     Args:
         model: a :class:`~sb3_hfo.SkillDDPG` with an :class:`~sb3_hfo.HFOPolicy` whose actor picks the discrete

@@ -8,9 +8,10 @@ stripped zip, or a full one, through ``SkillDDPG.load``: the target networks are
 ones and the optimizers start afresh, so the loaded model acts exactly as the full one (:func:`check_same_actions`
 checks it on every model the ``add`` command writes) and can be trained further like a freshly warm-started one.
 
-The manifest names each model (``e1``, ``e6``, ...) and records its config, training seed, env id, the acting
-strategies it was saved with (their text form), the JSON of its 1,000-episode evaluation
-(:mod:`sb3_hfo.evaluation`) and, where measured, its real-HFO figure. ``evaluate``, ``enjoy`` and ``record_video``
+The manifest names each model (``e1``, ``e6``, ...) and records how it was trained (its zoo config, or, for a
+model a benchmark script made, ``"config": null`` with that ``script`` and its exact ``command``: :func:`trained_with`,
+:func:`check_provenance`), its training seed, env id, the acting strategies it was saved with (their text form),
+the JSON of its 1,000-episode evaluation (:mod:`sb3_hfo.evaluation`) and, where measured, its real-HFO figure. ``evaluate``, ``enjoy`` and ``record_video``
 accept a manifest name wherever they accept a model. The command line that lists, adds and records models is
 :mod:`sb3_hfo.cli.models` (``python -m sb3_hfo.cli.models list``).
 """
@@ -237,6 +238,29 @@ def write_manifest(models: dict[str, dict[str, Any]], path: Path = MANIFEST_PATH
 def manifest_entry(name: str, path: Path = MANIFEST_PATH) -> dict[str, Any] | None:
     """The manifest entry called ``name``, or None."""
     return read_manifest(path).get(name)
+
+
+def trained_with(entry: dict[str, Any]) -> str:
+    """The file a manifest entry's model was trained with, from the repository's root: its zoo config, or the
+    benchmark script that made it when it has no config (``"config": null``)."""
+    return str(entry["config"] if entry.get("config") is not None else entry.get("script"))
+
+
+def check_provenance(entry: dict[str, Any], root: Path) -> None:
+    """ValueError unless ``entry`` says how its model was trained: a ``config`` file under ``root``, or
+    ``"config": null`` with a ``script`` file under ``root`` and the ``command`` that ran it (naming the script)."""
+    config = entry.get("config", "missing")
+    if config is not None:
+        if not isinstance(config, str) or not (root / config).is_file():
+            raise ValueError(
+                f"config {config!r}: no such file under {root} (null for a benchmark script's model)"
+            )
+        return
+    script, command = entry.get("script"), entry.get("command")
+    if not isinstance(script, str) or not (root / script).is_file():
+        raise ValueError(f"a model without a config needs its script, a file under {root}; got {script!r}")
+    if not isinstance(command, str) or Path(script).name not in command:
+        raise ValueError(f"a model made by {script} needs the command that ran it; got {command!r}")
 
 
 def model_file(entry: dict[str, Any], manifest_path: Path = MANIFEST_PATH) -> Path:

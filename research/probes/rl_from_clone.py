@@ -1,6 +1,6 @@
 """Reinforcement learning from the cloned E6 actor: can reward improve the imitation of a scripted striker?
 
-The committed ``e6`` model (``zoo_configs/x35_keeper_v1_skills_cloned_soft_dribble.yml``) is the skills actor
+The committed ``e6_imitation`` model (named ``e6`` until 2026-12-05; ``zoo_configs/keeper_v1_skills_cloned_striker.yml``) is the skills actor
 taught by DAgger to play like ``hfo2d.strikers.soft_dribble``; its critic was never trained. This probe starts
 SkillDDPG from that actor on ``HFO/Keeper-v1`` and first trains the critic alone (the actor's learning rate is 0
 for the first ``--critic-warmup`` fraction of the run), so that the actor's first gradients come from a critic
@@ -62,7 +62,7 @@ def delayed_rate(rate: float, warmup: float):  # noqa: ANN201  (an SB3 schedule)
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--model", type=Path, default=MODELS_DIR / "e6.zip")
+    parser.add_argument("--model", type=Path, default=MODELS_DIR / "e6_imitation.zip")
     parser.add_argument("--steps", type=int, default=200_000)
     parser.add_argument(
         "--critic-warmup", type=float, default=0.25, help="fraction of the run with actor lr 0"

@@ -352,7 +352,7 @@ def test_episode_benchmarks_refuse_a_bad_episode_count(tmp_path: Path, episodes:
 
 
 def test_rl_from_clone_starts_from_the_cloned_actor_and_reports_each_evaluation(tmp_path: Path) -> None:
-    committed("e6")
+    committed("e6_imitation")
     command = [sys.executable, str(PROBES / "rl_from_clone.py"), "--steps", "800", "--eval-freq", "100"]
     command += ["--eval-episodes", "2", "--out", str(tmp_path / "run"), "--seed", "0"]
     completed = subprocess.run(command, capture_output=True, text=True, timeout=600, cwd=tmp_path)

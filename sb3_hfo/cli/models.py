@@ -7,6 +7,10 @@ One command adds (or replaces) a model::
 
 It strips the model into ``sb3_hfo/pretrained/<name>.zip``, checks that the stripped model's actions equal the
 full one's, evaluates it over 1,000 episodes (``--episodes``, ``--eval-seed``) and writes the manifest entry. A
+model that a benchmark script made, not a zoo config, gives ``--script benchmarks/X.py --command "python
+benchmarks/X.py ..."`` instead of ``--config`` (the entry then holds ``"config": null``). ``--evaluation-json F``
+takes that evaluation from an ``evaluate --json`` run of SOURCE itself (checked: the same file by sha256, env,
+episodes, seed and acting) instead of playing the episodes again. A
 real-HFO evaluation of a committed model (``python -m sb3_hfo.evaluate NAME --env HFO/RealKeeper-v0 ... --json F``)
 is recorded in its entry with ``python -m sb3_hfo.cli.models real NAME F --source "..."``.
 ``python -m sb3_hfo.cli.models list`` prints the manifest. The models themselves, stripping and loading are
@@ -49,6 +53,7 @@ from sb3_hfo.models import (
     MANIFEST_PATH,
     MAX_MODEL_BYTES,
     MODELS_DIR,
+    check_provenance,
     check_same_actions,
     load_model,
     looks_like_name,
@@ -56,6 +61,7 @@ from sb3_hfo.models import (
     read_manifest,
     saved_algo_class,
     strip_model,
+    trained_with,
     unknown_name_message,
     write_manifest,
 )
@@ -214,6 +220,63 @@ def record_real_hfo(args: argparse.Namespace, manifest_path: Path = MANIFEST_PAT
     return entry
 
 
+def _provenance(args: argparse.Namespace) -> dict[str, Any]:
+    """The entry's ``config`` (a zoo config) or ``config: null`` with the ``script`` and ``command`` that made it."""
+    if args.config is not None and (args.script is not None or args.command_line is not None):
+        raise UserError(
+            "give --config (a zoo config) or --script with --command (a benchmark script), not both"
+        )
+    if args.config is not None:
+        if not Path(args.config).is_file():
+            raise UserError(f"--config {args.config}: no such file")
+        return {"config": args.config}
+    if args.script is None or args.command_line is None:
+        raise UserError("say how the model was trained: --config FILE, or --script FILE with --command LINE")
+    fields = {"config": None, "script": args.script, "command": args.command_line}
+    try:
+        check_provenance(fields, Path.cwd())
+    except ValueError as error:
+        raise UserError(f"--script/--command: {error}") from None
+    return fields
+
+
+def _source_evaluation(
+    args: argparse.Namespace, source: Path, env_id: str, env_kwargs: dict[str, Any], acting: str
+) -> dict[str, Any]:
+    """The ``evaluate --json`` result in ``args.evaluation_json``, checked to be SOURCE's evaluation as ``add``
+    would run it (the same file by sha256, env id and kwargs, episodes, first seed, greedy, acting)."""
+    path = args.evaluation_json
+    try:
+        result = json.loads(Path(path).read_text())
+    except FileNotFoundError:
+        raise UserError(f"--evaluation-json {path}: no such file") from None
+    except (OSError, ValueError) as error:
+        raise UserError(f"--evaluation-json {path}: not an evaluate --json file ({error})") from None
+    if not isinstance(result, dict) or "model" not in result or "goals" not in result:
+        raise UserError(f"--evaluation-json {path}: not an evaluate --json file (no model or goals)")
+    evaluated = Path(str(result["model"]))
+    if not evaluated.is_file() or _sha256(evaluated) != _sha256(source):
+        raise UserError(
+            f"--evaluation-json {path} evaluated {evaluated}, not {source} (missing, or sha256 differs)"
+        )
+    wanted = {
+        "env_id": env_id,
+        "env_kwargs": env_kwargs,
+        "episodes": args.episodes,
+        "seed": args.eval_seed,
+        "deterministic": True,
+        "acting": acting,
+    }
+    differing = [
+        f"{key} {result.get(key)!r} (wanted {value!r})"
+        for key, value in wanted.items()
+        if result.get(key) != value
+    ]
+    if differing:
+        raise UserError(f"--evaluation-json {path}: another evaluation: " + ", ".join(differing))
+    return result
+
+
 def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[str, Any]:
     """Strip, check, evaluate and record one model (see the module docstring); returns its manifest entry."""
     if not looks_like_name(args.name) or not args.name.replace("_", "").replace("-", "").isalnum():
@@ -224,8 +287,7 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     if env_id is None:
         raise UserError("--env is required (the source is not inside an rl-zoo3 run folder)")
     check_env_id(env_id)
-    if not Path(args.config).is_file():
-        raise UserError(f"--config {args.config}: no such file")
+    provenance = _provenance(args)
     real_hfo = _real_hfo_entry(args)
     env_kwargs = {k: v for k, v in resolved.env_kwargs.items() if k not in REMOVED_ENV_KWARGS}
 
@@ -240,6 +302,13 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
             full.policy.acting = args.acting
     except ValueError as error:
         raise UserError(str(error)) from error
+    # HybridPPO's policy acts by its own distribution: no acting strategies to record
+    acting = format_acting(full.policy.acting) if hasattr(full.policy, "acting") else None
+    source_evaluation = (  # checked before anything is written
+        _source_evaluation(args, Path(resolved.path), env_id, env_kwargs, acting or "")
+        if args.evaluation_json
+        else None
+    )
     out = model_file({"file": f"{args.name}.zip"}, manifest_path)
     with tempfile.TemporaryDirectory() as tmp:
         full_with_options = Path(tmp) / "full.zip"
@@ -258,24 +327,29 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     finally:
         env.close()
     print(f"{out}: {size:,} bytes; the same actions as {resolved.path} in {compared} steps")
-    result = evaluate(
-        str(out), env_id=env_id, episodes=args.episodes, seed=args.eval_seed, env_kwargs=env_kwargs
-    )
-    evaluation = asdict(result)
+    evaluated_file: dict[str, str] | None = None
+    if source_evaluation is not None:
+        evaluation = source_evaluation
+        evaluated_file = {"file": Path(resolved.path).name, "sha256": _sha256(Path(resolved.path))}
+    else:
+        result = evaluate(
+            str(out), env_id=env_id, episodes=args.episodes, seed=args.eval_seed, env_kwargs=env_kwargs
+        )
+        evaluation = asdict(result)
     evaluation["model"] = _recorded_path(out)
-    low, high = result.scoring_rate_ci95
-    print(f"{args.name}: {result.scoring_rate:.1%} [{low:.1%}, {high:.1%}] over {result.episodes} episodes")
+    low, high = evaluation["scoring_rate_ci95"]
+    rate, episodes = evaluation["scoring_rate"], evaluation["episodes"]
+    print(f"{args.name}: {rate:.1%} [{low:.1%}, {high:.1%}] over {episodes} episodes")
     entry = {
         "file": out.name,
         "bytes": size,
         "sha256": _sha256(out),
         "env_id": env_id,
         "env_kwargs": env_kwargs,
-        "config": args.config,
+        **provenance,
         "seed": args.seed,
         "source": args.source_note or str(args.source),
-        # HybridPPO's policy acts by its own distribution: no acting strategies to record
-        "acting": format_acting(stripped.policy.acting) if hasattr(stripped.policy, "acting") else None,
+        "acting": acting,
         "evaluation_command": f"python -m sb3_hfo.evaluate {args.name} --episodes {args.episodes} "
         f"--seed {args.eval_seed} --json {args.name}.json",
         "evaluation": evaluation,
@@ -285,6 +359,9 @@ def add(args: argparse.Namespace, manifest_path: Path = MANIFEST_PATH) -> dict[s
     }
     if args.method:
         entry["method"] = args.method
+    if evaluated_file:
+        # the episodes were played by the unstripped SOURCE, whose stripped copy acts the same (checked above)
+        entry["evaluated_file"] = evaluated_file
     entry = json.loads(json.dumps(entry))  # as the manifest holds it (tuples become lists)
     models = read_manifest(manifest_path)
     models[args.name] = entry
@@ -303,7 +380,19 @@ def build_parser() -> argparse.ArgumentParser:
     add_parser = commands.add_parser("add", help="strip, check, evaluate and record a model")
     add_parser.add_argument("name", help="manifest name, e.g. e1")
     add_parser.add_argument("source", help="a SkillDDPG .zip or rl-zoo3 run folder")
-    add_parser.add_argument("--config", required=True, help="the zoo_configs/ file it was trained with")
+    add_parser.add_argument("--config", default=None, help="the zoo_configs/ file it was trained with")
+    add_parser.add_argument("--script", default=None, help="instead of --config: the script that made it")
+    add_parser.add_argument(
+        "--command",
+        dest="command_line",
+        default=None,
+        help="with --script: the exact command line that ran it",
+    )
+    add_parser.add_argument(
+        "--evaluation-json",
+        default=None,
+        help="an evaluate --json file of SOURCE (instead of evaluating again)",
+    )
     add_parser.add_argument("--seed", type=non_negative_int, required=True, help="its training seed")
     add_parser.add_argument("--env", default=None, help="env id (default: the run folder's)")
     add_parser.add_argument("--source-note", default=None, help="where the model came from (default: SOURCE)")
@@ -336,7 +425,7 @@ def print_manifest(manifest_path: Path = MANIFEST_PATH) -> None:
         print(
             f"{name}: {entry['env_id']} {evaluation['scoring_rate']:.1%} [{low:.1%}, {high:.1%}] "
             f"({evaluation['episodes']} episodes), {entry['file']} {entry['bytes']:,} bytes, "
-            f"{entry['config']} seed {entry['seed']}"
+            f"{trained_with(entry)} seed {entry['seed']}"
         )
 
 

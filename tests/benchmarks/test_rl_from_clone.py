@@ -29,7 +29,7 @@ def test_rl_from_clone_smoke_distils_the_clone_then_trains_with_the_pull(tmp_pat
     assert [row["steps"] for row in rows] == [1024, 2048, 2048]
     record = json.loads((out / "run.json").read_text())
     assert record["method"] == "reinforcement learning from reward, started from the imitation clone"
-    assert record["reward"] == "shaped_gap_refund" and record["teacher"] == "e6"
+    assert record["reward"] == "shaped_gap_refund" and record["teacher"] == "e6_imitation"
     final = HybridPPO.load(out / "final.zip", device="cpu")
     assert final.policy.squash_mean and final.policy.n_skills == 2
     assert final.reference_policy is None  # the reference is not saved

@@ -216,3 +216,74 @@ def test_add_takes_a_hybrid_ppo_model(tmp_path: Path) -> None:
     assert isinstance(load_model(manifest.parent / "hybrid.zip"), HybridPPO)
     with pytest.raises(UserError, match="no acting strategies"):
         add(build_parser().parse_args([*command, "--acting", "critic"]), manifest_path=manifest)
+
+
+def test_add_records_a_benchmark_script_s_model_with_the_evaluation_of_its_source(tmp_path: Path) -> None:
+    """--script/--command give a model without a zoo config ("config": null); --evaluation-json takes the
+    evaluation of SOURCE itself, and refuses one of another file or of other settings."""
+    from dataclasses import asdict
+
+    from sb3_hfo.cli.models import add
+    from sb3_hfo.hybrid_ppo import HybridPPO
+
+    full_path = tmp_path / "final.zip"
+    HybridPPO("MlpPolicy", "HFO/EmptyGoal-v0", n_steps=32, batch_size=32, seed=0).save(full_path)
+    result = asdict(evaluate(str(full_path), env_id="HFO/EmptyGoal-v0", episodes=3, seed=0))
+    evaluation_json = tmp_path / "eval.json"
+    evaluation_json.write_text(json.dumps(result))  # as evaluate --json writes it
+    manifest = tmp_path / "models" / "manifest.json"
+    script = "benchmarks/rl_from_clone.py"
+    command = [
+        "add",
+        "scripted",
+        str(full_path),
+        "--seed",
+        "2",
+        "--env",
+        "HFO/EmptyGoal-v0",
+        "--episodes",
+        "3",
+    ]
+    provenance = ["--script", script, "--command", f"python {script} --seed 2 --out DIR"]
+    entry = add(
+        build_parser().parse_args([*command, *provenance, "--evaluation-json", str(evaluation_json)]),
+        manifest_path=manifest,
+    )
+    assert (
+        entry["config"] is None
+        and entry["script"] == script
+        and entry["command"].startswith("python " + script)
+    )
+    evaluation = entry["evaluation"]
+    assert evaluation["goals"] == result["goals"] and evaluation["status_counts"] == result["status_counts"]
+    assert evaluation["model"] == "models/scripted.zip"  # the committed copy, which acts as SOURCE does
+    import hashlib
+
+    assert entry["evaluated_file"] == {
+        "file": "final.zip",
+        "sha256": hashlib.sha256(full_path.read_bytes()).hexdigest(),
+    }
+    again = evaluate(str(manifest.parent / "scripted.zip"), env_id="HFO/EmptyGoal-v0", episodes=3, seed=0)
+    assert again.goals == evaluation["goals"] and again.status_counts == evaluation["status_counts"]
+
+    other = tmp_path / "other.zip"
+    HybridPPO("MlpPolicy", "HFO/EmptyGoal-v0", n_steps=32, batch_size=32, seed=1).save(other)
+    refusals = [
+        ([*command, *provenance, "--evaluation-json", str(tmp_path / "none.json")], "no such file"),
+        ([*command, "--config", "zoo_configs/hybrid_ppo_empty_goal.yml", *provenance], "not both"),
+        ([*command, "--script", script], "--script FILE with --command LINE"),
+        ([*command, "--script", script, "--command", "python other.py"], "needs the command"),
+    ]
+    for argv, message in refusals:
+        with pytest.raises(UserError, match=message):
+            add(build_parser().parse_args(argv), manifest_path=manifest)
+    for changed, message in (({"model": str(other)}, "sha256 differs"), ({"seed": 5}, "seed 5")):
+        evaluation_json.write_text(json.dumps({**result, **changed}))
+        with pytest.raises(UserError, match=message):
+            add(
+                build_parser().parse_args([*command, *provenance, "--evaluation-json", str(evaluation_json)]),
+                manifest_path=manifest,
+            )
+    committed = manifest.parent / "scripted.zip"
+    assert read_manifest(manifest) == {"scripted": entry}  # the refusals changed nothing
+    assert hashlib.sha256(committed.read_bytes()).hexdigest() == entry["sha256"]

@@ -85,6 +85,41 @@ def test_each_task_gets_one_row_with_its_evaluation() -> None:
     assert rows[-1].startswith("| extra | - | **50.0 %")
 
 
+def test_a_benchmark_script_s_model_shows_its_script_and_command() -> None:
+    """A model without a zoo config ("config": null) is named by its script in the table and its page gives the
+    script's exact command."""
+    script = "benchmarks/rl_from_clone.py"
+    command = f"python {script} --seed 1 --out DIR --steps 2000000"
+    entry = {
+        **_entry(920, real=(921, 1000)),
+        "config": None,
+        "script": script,
+        "command": command,
+        "seed": 1,
+        "method": "reinforcement learning from reward, started from the imitation clone e6_imitation",
+        "file": "e6.zip",
+        "bytes": 1,
+        "env_id": "HFO/Keeper-v1",
+        "env_kwargs": {},
+        "acting": None,
+        "source": "the final model",
+        "evaluation_machine": "a test",
+        "evaluation_command": "python -m sb3_hfo.evaluate e6",
+    }
+    entry["evaluation"] = {
+        **entry["evaluation"],
+        "status_counts": {"GOAL": 920, "OUT_OF_BOUNDS": 80},
+        "seed": 0,
+    }
+    entry["real_hfo"]["source"] = "a real-HFO run"
+    row = next(row for row in table({"e6": entry}).splitlines() if "`e6`" in row)
+    assert (
+        "`e6` (rl_from_clone, seed 1; reinforcement learning from reward, started from the imitation" in row
+    )
+    page = results_page({"e6": entry})
+    assert f"* trained with: `{script}` (a benchmark script, no zoo config), seed 1: `{command}`" in page
+
+
 def test_a_changed_evaluation_changes_the_generated_table() -> None:
     models = read_manifest()
     changed = copy.deepcopy(models)

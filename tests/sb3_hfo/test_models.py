@@ -23,11 +23,13 @@ from sb3_hfo.models import (
     MODELS_DIR,
     POLICY_ENTRY,
     STRIPPED_ENTRY,
+    check_provenance,
     full_model_buffer,
     is_stripped,
     load_model,
     read_manifest,
     strip_model,
+    trained_with,
 )
 from sb3_hfo.skill_ddpg.acting import CriticChoice, format_acting, parse_acting
 
@@ -118,7 +120,7 @@ MANIFEST = read_manifest()
 def test_models_holds_only_the_manifest_and_its_models() -> None:
     files = {path.name for path in MODELS_DIR.iterdir()}
     assert files == {MANIFEST_PATH.name, *(entry["file"] for entry in MANIFEST.values())}
-    assert 1 <= len(MANIFEST) <= 8  # a handful of small files, not a model zoo
+    assert 1 <= len(MANIFEST) <= 10  # a handful of small files, not a model zoo
 
 
 @pytest.mark.parametrize("name", sorted(MANIFEST))
@@ -129,7 +131,8 @@ def test_a_committed_model_is_small_stripped_and_matches_its_manifest_entry(name
     path = MODELS_DIR / entry["file"]
     assert path.stat().st_size == entry["bytes"] <= MAX_MODEL_BYTES
     assert hashlib.sha256(path.read_bytes()).hexdigest() == entry["sha256"]
-    assert is_stripped(path) and (REPO / entry["config"]).is_file()
+    assert is_stripped(path)
+    check_provenance(entry, REPO)  # a zoo config, or the benchmark script and the command that made it
     evaluation = entry["evaluation"]
     assert evaluation["episodes"] == 1000 and evaluation["env_id"] == entry["env_id"]
     assert evaluation["scoring_rate"] == evaluation["goals"] / evaluation["episodes"]
@@ -152,25 +155,61 @@ def test_a_committed_model_is_small_stripped_and_matches_its_manifest_entry(name
         assert tuple(real["scoring_rate_ci95"]) == wilson_interval(real["goals"], real["episodes"])
 
 
+def test_a_benchmark_script_s_model_names_its_script_and_command() -> None:
+    """A model without a zoo config ("config": null) must name an existing script and the command that ran it."""
+    script = "benchmarks/rl_from_clone.py"
+    entry = {"config": None, "script": script, "command": f"python {script} --seed 1 --out DIR"}
+    check_provenance(entry, REPO)
+    assert trained_with(entry) == script
+    assert (
+        trained_with({"config": "zoo_configs/e1_empty_goal_fast.yml"}) == "zoo_configs/e1_empty_goal_fast.yml"
+    )
+    refused = [
+        ({"config": "zoo_configs/nowhere.yml"}, "no such file"),
+        (
+            {"config": None, "script": "benchmarks/nowhere.py", "command": "python benchmarks/nowhere.py"},
+            "needs its script",
+        ),
+        ({"config": None, "script": script}, "needs the command"),
+        ({"config": None, "script": script, "command": "python benchmarks/other.py"}, "needs the command"),
+        ({}, "no such file"),  # neither
+    ]
+    for bad, message in refused:
+        with pytest.raises(ValueError, match=message):
+            check_provenance(bad, REPO)
+
+
 # --- continuing to train a committed model ------------------------------------------------------------------
+
+#: The committed HybridPPO models, each with the env it was trained on (its manifest entry's).
+HYBRID_PPO_MODELS = ("e1", "e6", "e6_from_reward")
 
 
 @pytest.mark.parametrize("n_envs", [1, 3])
-def test_the_hybrid_ppo_e1_continues_training_with_any_number_of_envs(
-    n_envs: int, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+@pytest.mark.parametrize("name", HYBRID_PPO_MODELS)
+def test_a_hybrid_ppo_model_continues_training_with_any_number_of_envs(
+    name: str, n_envs: int, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    """e1 (HybridPPO, trained on 16 games) continues with another number of envs and writes no stray logs."""
+    """HybridPPO's committed models (trained on 16 games) load with ``env=`` and continue training with another
+    number of envs, from their saved weights, and write no stray logs."""
     from stable_baselines3.common.env_util import make_vec_env
 
     from sb3_hfo.hybrid_ppo import HybridPPO
 
     monkeypatch.chdir(tmp_path)
-    env = make_vec_env("HFO/EmptyGoal-v0", n_envs=n_envs, seed=0)
-    model = load_model("e1", env=env, device="cpu", n_steps=16, batch_size=16, n_epochs=1)
+    entry = MANIFEST[name]
+    env = make_vec_env(entry["env_id"], n_envs=n_envs, seed=0, env_kwargs=entry["env_kwargs"])
+    model = load_model(name, env=env, device="cpu", n_steps=16, batch_size=16, n_epochs=1)
     assert isinstance(model, HybridPPO) and model.n_envs == n_envs
+    saved = {key: value.clone() for key, value in load_model(name, device="cpu").policy.state_dict().items()}
+    loaded = model.policy.state_dict()
+    assert all(
+        torch.equal(loaded[key], value) for key, value in saved.items()
+    )  # starts from the saved weights
     before = model.num_timesteps
     model.learn(32 * n_envs, reset_num_timesteps=False)
     assert model.num_timesteps >= before + 32 * n_envs
+    assert any(not torch.equal(model.policy.state_dict()[key], value) for key, value in saved.items())
     assert list(tmp_path.iterdir()) == []  # no TensorBoard folder unless asked
 
 
