@@ -183,11 +183,10 @@ def train(args: argparse.Namespace) -> Path:
 
 
 def evaluate(args: argparse.Namespace) -> dict[str, Any]:
-    """Each chosen evaluation (:data:`EVALUATIONS`) over ``--episodes`` greedy episodes with ``--backend``;
-    written to ``OUT/eval_{backend}.json`` (merged with what is there)."""
+    """Each chosen evaluation (:data:`EVALUATIONS`) over ``--episodes`` greedy episodes with ``--backend``, each
+    written to ``OUT/eval_{backend}_{name}.json`` (so that several can run at once); returns them by name."""
     th.set_num_threads(1)
-    path = args.out / f"eval_{args.backend}.json"
-    results = json.loads(path.read_text()) if path.exists() else {}
+    results = {}
     for name in args.which:
         arm, file, strikers = EVALUATIONS[name]
         model_path = args.out / f"arm_{arm}" / file
@@ -209,7 +208,7 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
             load1=round(load_average(), 2),
         )
         results[name] = result
-        path.write_text(json.dumps(results, indent=1))
+        (args.out / f"eval_{args.backend}_{name}.json").write_text(json.dumps(result, indent=1))
         print(json.dumps({name: result}), flush=True)
     return results
 
