@@ -61,6 +61,9 @@ from sb3_hfo.multi_agent import (  # noqa: E402
 )
 
 REWARD = "shaped_gap_refund"
+#: the offense rewards a run may choose (--reward): the default, or hfo2d's sparse goal reward (1 to every striker on a
+#: goal), a team reward that pays no striker for going to the ball itself
+REWARDS: tuple[str, ...] = (REWARD, "sparse")
 #: learning strikers per game in each arm; the goalie is agent2d's (defense_npcs=1) in both
 ARMS: dict[str, int] = {"1v1": 1, "2v1": 2}
 #: rl_from_clone.py's fine-tuning settings (its s0 run's learning rate)
@@ -139,7 +142,7 @@ def train(args: argparse.Namespace) -> Path:
             f"error: --n-envs ({slots}) must be a multiple of the strikers per game ({strikers})"
         )
     env = make_team_vec_env(
-        slots // strikers, offense_agents=strikers, defense_npcs=1, seed=args.seed, reward=REWARD
+        slots // strikers, offense_agents=strikers, defense_npcs=1, seed=args.seed, reward=args.reward
     )
     env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=args.hp["gamma"])
     if args.start is None:
@@ -154,7 +157,7 @@ def train(args: argparse.Namespace) -> Path:
         "games": slots // strikers,
         "slots": slots,
         "budget": "agent steps (num_timesteps); game cycles = agent steps / strikers",
-        "reward": REWARD,
+        "reward": args.reward,
         "start": str(args.start) if args.start else "untrained (smoke)",
         "hp": args.hp,
         "critic_warmup": args.critic_warmup,
@@ -236,6 +239,7 @@ def main(argv: list[str] | None = None) -> None:
         )
         sub.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
         sub.add_argument("--threads", type=int, default=1, help="torch threads")
+        sub.add_argument("--reward", choices=REWARDS, default=REWARD, help="every striker's reward")
     training.add_argument("--arm", choices=sorted(ARMS), required=True)
     evaluating = commands.add_parser("evaluate", help="evaluate the start, zero-shot and final models")
     evaluating.add_argument("--out", type=Path, required=True, help="the run folder that train wrote")
