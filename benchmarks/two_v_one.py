@@ -199,8 +199,16 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
         model = HybridPPO.load(model_path, device="cpu")
         started = time.time()
         env = team_env(strikers, args.backend)
+        goals = 0
+
+        def tally(played: int, status: str) -> None:  # a running count in the log, for long real-HFO runs
+            nonlocal goals
+            goals += status == "GOAL"
+            if played % 100 == 0:
+                print(json.dumps({name: {"episodes": played, "goals": goals}}), flush=True)
+
         try:
-            result = evaluate_team(model, env, args.episodes, seed=args.seed)
+            result = evaluate_team(model, env, args.episodes, seed=args.seed, on_episode=tally)
         finally:
             env.close()
         result.update(

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import warnings
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import gymnasium as gym
@@ -306,13 +306,19 @@ def widen_policy_inputs(source: Any, target: Any, position: int) -> None:
 
 # --- evaluation of a parameter-shared team --------------------------------------------------------------------------
 def evaluate_team(
-    model: Any, env: Any, episodes: int, seed: int, deterministic: bool = True
+    model: Any,
+    env: Any,
+    episodes: int,
+    seed: int,
+    deterministic: bool = True,
+    on_episode: Callable[[int, str], None] | None = None,
 ) -> dict[str, Any]:
     """Play ``episodes`` episodes of a PettingZoo parallel team env (``hfo2d.parallel_env(...)``, either backend)
     with one policy acting for every agent (all agents' observations in one ``model.predict`` call).
 
     The first reset takes ``seed``, the later ones continue the env's stream (hfo2d: the same episodes again for the
     same seed; the real HFO: its server's own randomness). The episode's end is HFO's, the same for all agents.
+    ``on_episode(episodes played, end status)`` is called after each episode (e.g. to log a long real-HFO run).
 
     :return: ``episodes``, ``goals``, ``rate`` and its 95 % Wilson interval ``ci95`` (:func:`sb3_hfo.evaluation.
         wilson_interval`), ``status`` (end statuses and counts), ``mean_cycles`` (agent steps per episode),
@@ -339,6 +345,8 @@ def evaluate_team(
             status = str(infos[names[0]]["status"])
         statuses[status] += 1
         holders[len(had_ball)] += 1
+        if on_episode is not None:
+            on_episode(sum(statuses.values()), status)
         observations, infos = env.reset()
     goals = statuses.get(GOAL_STATUS, 0)
     low, high = wilson_interval(goals, int(episodes))
