@@ -201,7 +201,7 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
         env = team_env(strikers, args.backend)
         goals = 0
 
-        def tally(played: int, status: str) -> None:  # a running count in the log, for long real-HFO runs
+        def tally(played: int, status: str, name: str = name) -> None:  # a running count for long real runs
             nonlocal goals
             goals += status == "GOAL"
             if played % 100 == 0:

@@ -109,10 +109,17 @@ def test_widening_refuses_other_networks_and_changes_nothing() -> None:
 def test_evaluate_team_counts_every_episode_and_repeats_with_its_seed() -> None:
     model = striker_model(2, seed=0)
     env = hfo2d.parallel_env(offense_agents=2, defense_npcs=1, untouched_time=20)
-    first = evaluate_team(model, env, episodes=6, seed=3)
+    ends: list[tuple[int, str]] = []
+    first = evaluate_team(
+        model, env, episodes=6, seed=3, on_episode=lambda played, status: ends.append((played, status))
+    )
     second = evaluate_team(model, env, episodes=6, seed=3)
     env.close()
     assert first == second
+    assert [played for played, _ in ends] == [1, 2, 3, 4, 5, 6]
+    assert sorted(status for _, status in ends) == sorted(
+        k for k, v in first["status"].items() for _ in range(v)
+    )
     assert sum(first["status"].values()) == 6 == sum(first["ball_holders"].values())
     assert first["rate"] == first["goals"] / 6
     assert tuple(first["ci95"]) == wilson_interval(first["goals"], 6)
