@@ -52,9 +52,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's
 from hybrid_ppo_runs import RunRecorder, load_average  # noqa: E402
 
 import hfo2d  # noqa: E402
+from hfo2d.team import TeamGame  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.multi_agent import (  # noqa: E402
     evaluate_team,
+    evaluate_team_games,
     make_team_vec_env,
     teammate_block_insertion,
     widen_policy_inputs,
@@ -198,6 +200,15 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
             continue
         model = HybridPPO.load(model_path, device="cpu")
         started = time.time()
+        if args.backend == "hfo2d" and args.games > 1:  # many games per predict call: the same statistics
+            games = [TeamGame(strikers, 0, 1) for _ in range(args.games)]
+            result = evaluate_team_games(model, games, args.episodes, seed=args.seed)
+            result.update(games=args.games, model=str(model_path), backend=args.backend, seed=args.seed)
+            result.update(seconds=round(time.time() - started, 1), load1=round(load_average(), 2))
+            results[name] = result
+            (args.out / f"eval_{args.backend}_{name}.json").write_text(json.dumps(result, indent=1))
+            print(json.dumps({name: result}), flush=True)
+            continue
         env = team_env(strikers, args.backend)
         goals = 0
 
@@ -254,6 +265,12 @@ def main(argv: list[str] | None = None) -> None:
     evaluating.add_argument("--backend", choices=("hfo2d", "real"), default="hfo2d")
     evaluating.add_argument("--episodes", type=int, default=1000)
     evaluating.add_argument("--seed", type=int, default=0)
+    evaluating.add_argument(
+        "--games",
+        type=int,
+        default=16,
+        help="hfo2d: games played at once (game g seeded seed + g; 1: one game)",
+    )
     evaluating.add_argument("--which", nargs="+", choices=sorted(EVALUATIONS), default=list(EVALUATIONS))
     args = parser.parse_args(argv)
     if args.command == "evaluate":
@@ -274,7 +291,9 @@ def main(argv: list[str] | None = None) -> None:
             args.arm = arm
             train(args)
         evaluate(
-            argparse.Namespace(out=args.out, backend="hfo2d", episodes=4, seed=0, which=list(EVALUATIONS))
+            argparse.Namespace(
+                out=args.out, backend="hfo2d", episodes=4, seed=0, games=2, which=list(EVALUATIONS)
+            )
         )
         return
     train(args)

@@ -27,6 +27,7 @@ from sb3_hfo.evaluation import wilson_interval
 __all__ = [
     "TeamVecEnv",
     "evaluate_team",
+    "evaluate_team_games",
     "make_team_vec_env",
     "teammate_block_insertion",
     "widen_policy_inputs",
@@ -348,6 +349,75 @@ def evaluate_team(
         if on_episode is not None:
             on_episode(sum(statuses.values()), status)
         observations, infos = env.reset()
+    goals = statuses.get(GOAL_STATUS, 0)
+    low, high = wilson_interval(goals, int(episodes))
+    return {
+        "episodes": int(episodes),
+        "goals": goals,
+        "rate": goals / int(episodes),
+        "ci95": [low, high],
+        "status": dict(statuses),
+        "mean_cycles": cycles / int(episodes),
+        "ball_holders": {str(k): holders[k] for k in sorted(holders)},
+        "agents": names,
+    }
+
+
+def evaluate_team_games(
+    model: Any,
+    games: Sequence[TeamGame],
+    episodes: int,
+    seed: int,
+    deterministic: bool = True,
+) -> dict[str, Any]:
+    """:func:`evaluate_team` on several hfo2d games at once (one ``model.predict`` call for every agent of every
+    game per cycle: many times faster than one game at a time on a busy CPU), with the same result keys.
+
+    Game ``g``'s first episode is seeded with ``seed + g``, its later ones continue its stream. Episodes are handed
+    out as games become free, and every episode started is played to its end and counted, so short episodes are not
+    favoured; a game stops once ``episodes`` have been started. ``games`` are reset here.
+
+    :raises ValueError: ``episodes`` below 1, no games, or games whose agents differ.
+    """
+    if isinstance(episodes, bool) or not isinstance(episodes, (int, np.integer)) or episodes < 1:
+        raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
+    if len(games) == 0:
+        raise ValueError("evaluate_team_games needs at least one game")
+    names = list(games[0].agent_names)
+    if any(list(game.agent_names) != names for game in games):
+        raise ValueError("every game must have the same agents")
+    statuses: Counter[str] = Counter()
+    holders: Counter[int] = Counter()
+    cycles = 0
+    observations: list[dict[str, np.ndarray]] = []
+    had_ball: list[set[str]] = []
+    active = [index < episodes for index in range(len(games))]
+    for index, game in enumerate(games):
+        game_observations, infos = game.reset(seed=seed + index)
+        observations.append(game_observations)
+        had_ball.append({name for name in names if infos[name].get("kickable")})
+    started = sum(active)
+    while any(active):
+        playing = [index for index, on in enumerate(active) if on]
+        batch = np.stack([observations[index][name] for index in playing for name in names])
+        actions, _ = model.predict(batch, deterministic=deterministic)
+        for position, index in enumerate(playing):
+            chosen = actions[position * len(names) : (position + 1) * len(names)]
+            game_observations, _, terminated, truncated, infos = games[index].step(
+                dict(zip(names, chosen, strict=True))
+            )
+            cycles += 1
+            had_ball[index].update(name for name in names if infos[name].get("kickable"))
+            observations[index] = game_observations
+            if terminated or truncated:
+                statuses[str(infos[names[0]]["status"])] += 1
+                holders[len(had_ball[index])] += 1
+                if started < episodes:
+                    started += 1
+                    observations[index], infos = games[index].reset()
+                    had_ball[index] = {name for name in names if infos[name].get("kickable")}
+                else:
+                    active[index] = False
     goals = statuses.get(GOAL_STATUS, 0)
     low, high = wilson_interval(goals, int(episodes))
     return {

@@ -9,10 +9,12 @@ from torch import nn
 
 import hfo2d
 from hfo2d.features import KICKABLE_BUFFER, low_level_feature_list
+from hfo2d.team import TeamGame
 from sb3_hfo.evaluation import wilson_interval
 from sb3_hfo.hybrid_ppo import HybridPPO
 from sb3_hfo.multi_agent import (
     evaluate_team,
+    evaluate_team_games,
     make_team_vec_env,
     teammate_block_insertion,
     widen_policy_inputs,
@@ -143,3 +145,19 @@ def test_evaluate_team_reports_who_had_the_ball() -> None:
     result = evaluate_team(Chaser(), env, episodes=10, seed=0)
     env.close()
     assert sum(int(k) * v for k, v in result["ball_holders"].items()) > 0
+
+
+def test_evaluate_team_games_plays_one_game_as_evaluate_team_and_counts_every_started_episode() -> None:
+    model = striker_model(2, seed=0)
+    env = hfo2d.parallel_env(offense_agents=2, defense_npcs=1, untouched_time=20)
+    single = evaluate_team(model, env, episodes=5, seed=7)
+    env.close()
+    one_game = evaluate_team_games(model, [TeamGame(2, 0, 1, untouched_time=20)], episodes=5, seed=7)
+    assert one_game == single
+    games = [TeamGame(2, 0, 1, untouched_time=20) for _ in range(3)]
+    several = evaluate_team_games(model, games, episodes=7, seed=7)
+    assert sum(several["status"].values()) == 7 == sum(several["ball_holders"].values())
+    assert tuple(several["ci95"]) == wilson_interval(several["goals"], 7)
+    assert evaluate_team_games(model, games, episodes=7, seed=7) == several
+    with pytest.raises(ValueError, match="same agents"):
+        evaluate_team_games(model, [TeamGame(2, 0, 1), TeamGame(1, 0, 1)], episodes=2, seed=0)
