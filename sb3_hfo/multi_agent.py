@@ -10,17 +10,30 @@ it unchanged. This module is the adapter layer: the algorithms never import hfo2
 from __future__ import annotations
 
 import warnings
-from collections.abc import Iterable, Sequence
+from collections import Counter
+from collections.abc import Callable, Iterable, Sequence
 from typing import Any
 
 import gymnasium as gym
 import numpy as np
+import torch as th
 from stable_baselines3.common.vec_env import VecEnv, VecMonitor
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvObs, VecEnvStepReturn
 
+from hfo2d.features import FEATURES_PER_PLAYER, NUM_BASIC_FEATURES
 from hfo2d.team import TeamGame
+from sb3_hfo.evaluation import wilson_interval
 
-__all__ = ["TeamVecEnv", "make_team_vec_env"]
+__all__ = [
+    "TeamVecEnv",
+    "evaluate_team",
+    "evaluate_team_games",
+    "make_team_vec_env",
+    "teammate_block_insertion",
+    "widen_policy_inputs",
+]
+
+GOAL_STATUS = "GOAL"
 
 SIDES: tuple[str, ...] = ("offense", "defense")
 
@@ -221,3 +234,199 @@ def make_team_vec_env(
     if monitor:
         vec_env = VecMonitor(vec_env)
     return vec_env
+
+
+# --- a 1v1 policy as a team's striker ----------------------------------------------------------------------------
+def teammate_block_insertion(teammates_before: int, teammates_after: int) -> tuple[int, int]:
+    """Where HFO's paper-era features of a striker with ``teammates_after`` teammates differ from those with
+    ``teammates_before``: ``(position, count)`` of the teammate blocks to insert (:mod:`hfo2d.features`: the 58
+    basic features, one 8-feature block per teammate, then one per opponent, so the new teammates' blocks go in
+    after the old ones, before the opponents'). With the same opponents, removing those columns from the larger
+    observation gives the smaller one exactly."""
+    for name, value in (("teammates_before", teammates_before), ("teammates_after", teammates_after)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+            raise ValueError(f"{name} must be an integer >= 0, got {value!r}")
+    if teammates_after < teammates_before:
+        raise ValueError(
+            f"teammates_after ({teammates_after}) < teammates_before ({teammates_before}): widening only adds inputs"
+        )
+    position = NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * int(teammates_before)
+    return position, FEATURES_PER_PLAYER * int(teammates_after - teammates_before)
+
+
+def widen_policy_inputs(source: Any, target: Any, position: int) -> None:
+    """Copy ``source``'s weights into ``target``, an actor-critic policy of the same networks whose observation has
+    ``count = target's size - source's`` more features, inserted at ``position``: the first linear layer of the
+    actor trunk and of the critic trunk get zero weights on the new inputs, so ``target`` acts and values every
+    observation exactly as ``source`` acts and values it with those columns removed (a 1v1 striker, before it has
+    learned to read its teammate). Both are :class:`sb3_hfo.hybrid_ppo.policies.HybridActorCriticPolicy`
+    (``actor_trunk`` and ``critic_trunk`` start with their first ``nn.Linear``); the optimizers' state is not
+    copied (their moments belong to the old shapes).
+
+    :raises ValueError: flat observations of other sizes than that, a position outside them, or networks that differ
+        elsewhere (nothing is copied then).
+    """
+    before = int(np.prod(source.observation_space.shape))
+    after = int(np.prod(target.observation_space.shape))
+    if len(source.observation_space.shape) != 1 or len(target.observation_space.shape) != 1:
+        raise ValueError("widen_policy_inputs needs flat (1-D) observations")
+    count = after - before
+    if count < 0:
+        raise ValueError(f"the target's observation ({after}) is smaller than the source's ({before})")
+    if (
+        isinstance(position, bool)
+        or not isinstance(position, (int, np.integer))
+        or not 0 <= position <= before
+    ):
+        raise ValueError(
+            f"position must be an integer in [0, {before}] (the source's inputs), got {position!r}"
+        )
+    first_layers = {f"{trunk}.0.weight" for trunk in ("actor_trunk", "critic_trunk")}
+    source_state, target_state = source.state_dict(), target.state_dict()
+    if source_state.keys() != target_state.keys():
+        raise ValueError(
+            "the policies' networks differ: "
+            f"only in the source {sorted(source_state.keys() - target_state.keys())}, "
+            f"only in the target {sorted(target_state.keys() - source_state.keys())}"
+        )
+    widened = {}
+    for key, value in source_state.items():
+        expected = target_state[key].shape
+        if key in first_layers:
+            if value.shape[1] != before:
+                raise ValueError(f"{key} reads {value.shape[1]} inputs, not the source's {before} features")
+            zeros = th.zeros(value.shape[0], count, dtype=value.dtype)
+            value = th.cat([value[:, :position], zeros, value[:, position:]], dim=1)
+        if value.shape != expected:
+            raise ValueError(
+                f"{key} is {tuple(value.shape)} in the widened source, {tuple(expected)} in the target"
+            )
+        widened[key] = value
+    target.load_state_dict(widened)
+
+
+# --- evaluation of a parameter-shared team --------------------------------------------------------------------------
+def evaluate_team(
+    model: Any,
+    env: Any,
+    episodes: int,
+    seed: int,
+    deterministic: bool = True,
+    on_episode: Callable[[int, str], None] | None = None,
+) -> dict[str, Any]:
+    """Play ``episodes`` episodes of a PettingZoo parallel team env (``hfo2d.parallel_env(...)``, either backend)
+    with one policy acting for every agent (all agents' observations in one ``model.predict`` call).
+
+    The first reset takes ``seed``, the later ones continue the env's stream (hfo2d: the same episodes again for the
+    same seed; the real HFO: its server's own randomness). The episode's end is HFO's, the same for all agents.
+    ``on_episode(episodes played, end status)`` is called after each episode (e.g. to log a long real-HFO run).
+
+    :return: ``episodes``, ``goals``, ``rate`` and its 95 % Wilson interval ``ci95`` (:func:`sb3_hfo.evaluation.
+        wilson_interval`), ``status`` (end statuses and counts), ``mean_cycles`` (agent steps per episode),
+        ``ball_holders`` (how many episodes had 0, 1, 2, ... agents that had the ball kickable at some step:
+        more than one means the ball went from one agent to another) and ``agents``.
+    :raises ValueError: ``episodes`` below 1.
+    """
+    if isinstance(episodes, bool) or not isinstance(episodes, (int, np.integer)) or episodes < 1:
+        raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
+    statuses: Counter[str] = Counter()
+    holders: Counter[int] = Counter()
+    cycles = 0
+    observations, infos = env.reset(seed=seed)
+    names = list(env.possible_agents)
+    for _ in range(int(episodes)):
+        had_ball = {name for name in names if infos.get(name, {}).get("kickable")}
+        status = "IN_GAME"
+        while env.agents:
+            batch = np.stack([observations[name] for name in names])
+            actions, _ = model.predict(batch, deterministic=deterministic)
+            observations, _, _, _, infos = env.step(dict(zip(names, actions, strict=True)))
+            cycles += 1
+            had_ball.update(name for name in names if infos[name].get("kickable"))
+            status = str(infos[names[0]]["status"])
+        statuses[status] += 1
+        holders[len(had_ball)] += 1
+        if on_episode is not None:
+            on_episode(sum(statuses.values()), status)
+        observations, infos = env.reset()
+    goals = statuses.get(GOAL_STATUS, 0)
+    low, high = wilson_interval(goals, int(episodes))
+    return {
+        "episodes": int(episodes),
+        "goals": goals,
+        "rate": goals / int(episodes),
+        "ci95": [low, high],
+        "status": dict(statuses),
+        "mean_cycles": cycles / int(episodes),
+        "ball_holders": {str(k): holders[k] for k in sorted(holders)},
+        "agents": names,
+    }
+
+
+def evaluate_team_games(
+    model: Any,
+    games: Sequence[TeamGame],
+    episodes: int,
+    seed: int,
+    deterministic: bool = True,
+) -> dict[str, Any]:
+    """:func:`evaluate_team` on several hfo2d games at once (one ``model.predict`` call for every agent of every
+    game per cycle: many times faster than one game at a time on a busy CPU), with the same result keys.
+
+    Game ``g``'s first episode is seeded with ``seed + g``, its later ones continue its stream. Episodes are handed
+    out as games become free, and every episode started is played to its end and counted, so short episodes are not
+    favoured; a game stops once ``episodes`` have been started. ``games`` are reset here.
+
+    :raises ValueError: ``episodes`` below 1, no games, or games whose agents differ.
+    """
+    if isinstance(episodes, bool) or not isinstance(episodes, (int, np.integer)) or episodes < 1:
+        raise ValueError(f"episodes must be a positive integer, got {episodes!r}")
+    if len(games) == 0:
+        raise ValueError("evaluate_team_games needs at least one game")
+    names = list(games[0].agent_names)
+    if any(list(game.agent_names) != names for game in games):
+        raise ValueError("every game must have the same agents")
+    statuses: Counter[str] = Counter()
+    holders: Counter[int] = Counter()
+    cycles = 0
+    observations: list[dict[str, np.ndarray]] = []
+    had_ball: list[set[str]] = []
+    active = [index < episodes for index in range(len(games))]
+    for index, game in enumerate(games):
+        game_observations, infos = game.reset(seed=seed + index)
+        observations.append(game_observations)
+        had_ball.append({name for name in names if infos[name].get("kickable")})
+    started = sum(active)
+    while any(active):
+        playing = [index for index, on in enumerate(active) if on]
+        batch = np.stack([observations[index][name] for index in playing for name in names])
+        actions, _ = model.predict(batch, deterministic=deterministic)
+        for position, index in enumerate(playing):
+            chosen = actions[position * len(names) : (position + 1) * len(names)]
+            game_observations, _, terminated, truncated, infos = games[index].step(
+                dict(zip(names, chosen, strict=True))
+            )
+            cycles += 1
+            had_ball[index].update(name for name in names if infos[name].get("kickable"))
+            observations[index] = game_observations
+            if terminated or truncated:
+                statuses[str(infos[names[0]]["status"])] += 1
+                holders[len(had_ball[index])] += 1
+                if started < episodes:
+                    started += 1
+                    observations[index], infos = games[index].reset()
+                    had_ball[index] = {name for name in names if infos[name].get("kickable")}
+                else:
+                    active[index] = False
+    goals = statuses.get(GOAL_STATUS, 0)
+    low, high = wilson_interval(goals, int(episodes))
+    return {
+        "episodes": int(episodes),
+        "goals": goals,
+        "rate": goals / int(episodes),
+        "ci95": [low, high],
+        "status": dict(statuses),
+        "mean_cycles": cycles / int(episodes),
+        "ball_holders": {str(k): holders[k] for k in sorted(holders)},
+        "agents": names,
+    }

@@ -60,7 +60,9 @@ Rewards (this project's choice; HFO itself gives none):
 
 * offense (``reward``): ``"shaped"`` (default), Hausknecht & Stone's shaping as DQNHFO computes it, from each
   agent's own features (:class:`hfo2d.reward.ShapedReward`: its own move-to-ball and first-kickable bonus, the
-  ball's progress to the goal, +5 on a goal, whoever scored); ``"sparse"``: 1 on a goal.
+  ball's progress to the goal, +5 on a goal, whoever scored); ``"shaped_gap"`` and ``"shaped_gap_refund"``
+  (:mod:`hfo2d.reward`: the ball's progress measured to the gap beside the goalie, lost shots refunded), which
+  read the goalie where ``HFO/Keeper-v1`` has it (:meth:`TeamGame._reward_features`); ``"sparse"``: 1 on a goal.
 * defense (``defense_reward``): ``"sparse"`` (default): +1 on the last step when the episode ends in
   CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS or OUT_OF_TIME (truncation included), -1 on a GOAL, else 0;
   ``"shaped"``: the same plus the rise of the agent's ball proximity since its last step (DQNHFO's move-to-ball
@@ -191,7 +193,9 @@ _PARAMETER_BOUNDS: dict[str, tuple[tuple[float, float], ...]] = {
 TEAM_ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
 #: "high_level" is HFO's high-level feature set, offered when hfo2d.features has it (high_level_feature_list).
 TEAM_FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
-TEAM_OFFENSE_REWARDS: tuple[str, ...] = ("shaped", "sparse")
+TEAM_OFFENSE_REWARDS: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "sparse")
+#: Offense rewards that read the goalie's block (hfo2d.reward.gap_target: features 58-65, the 1v1 layout's goalie).
+GOALIE_READING_REWARDS: tuple[str, ...] = ("shaped_gap", "shaped_gap_refund")
 TEAM_DEFENSE_REWARDS: tuple[str, ...] = ("sparse", "shaped")
 #: The statuses that end an episode in the defense's favour (its sparse reward +1).
 DEFENSE_WINS: tuple[str, ...] = (CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME)
@@ -417,6 +421,11 @@ class TeamGame:
             (offense_by_unum[unum], make_striker(striker)) for unum in roster.offense_npcs
         ]
         self._goalie = next((player for player in self.defense_players if player.goalie), None)
+        # a gap reward reads the goalie at features 58-65; a team's layout puts other players there (the nearest
+        # teammate first), so such a reward gets the 1v1 view (_reward_features) unless the layout already is it
+        self._reward_needs_goalie_view = reward in GOALIE_READING_REWARDS and not (
+            len(self.offense_players) == 1 and len(self.defense_players) == 1 and self._goalie is not None
+        )
         self.agents: list[_Agent] = []
         n_offense, n_defense = len(self.offense_players), len(self.defense_players)
         for index, unum in enumerate(roster.offense_agents):
@@ -581,7 +590,7 @@ class TeamGame:
             agent.last_action_succeeded = False  # HFO's agent starts with its last action status false
             paper = self._paper_features(agent)
             if agent.reward is not None:
-                agent.reward.reset(paper)
+                agent.reward.reset(self._reward_features(agent, paper))
             agent.previous_ball_proximity = paper[BALL_PROXIMITY]
             observations[agent.name] = self._observation(agent, paper)
             infos[agent.name] = self._info(agent, paper)
@@ -642,7 +651,7 @@ class TeamGame:
             paper = self._paper_features(agent)
             info = self._info(agent, paper)
             if agent.offense:
-                reward, terms = agent.reward(paper, status, terminated)
+                reward, terms = agent.reward(self._reward_features(agent, paper), status, terminated)
             else:
                 reward, terms = self._defense_reward(agent, paper, status)
             info["reward_terms"] = terms
@@ -700,6 +709,15 @@ class TeamGame:
         if agent.player.tackle_cycles > 0:
             features[SELF_FROZEN] = 1.0
         return features
+
+    def _reward_features(self, agent: _Agent, paper: list[float]) -> list[float]:
+        """What an offense agent's reward reads: its paper features, or for a gap reward in a team other than
+        1 v the goalie, HFO/Keeper-v1's view of the same state: the 58 basic features, then the goalie's block
+        alone (none without a goalie; the reward then aims at the goal centre)."""
+        if not self._reward_needs_goalie_view:
+            return paper
+        opponents = (self._goalie,) if self._goalie is not None else ()
+        return low_level_feature_list(agent.player, self.world.ball, self._kickable_distance, (), opponents)
 
     def _view(self, agent: _Agent) -> tuple[PlayerState, BallState, list[PlayerState], list[PlayerState]]:
         """The agent, the ball, its teammates and its opponents as its client sees them (mirrored for the
@@ -1029,8 +1047,9 @@ class HalfFieldOffenseEnv(gym.Env):
     ## Rewards
 
     A striker (``reward``): ``"shaped"`` (default), Hausknecht & Stone's shaping from its own features (move to
-    the ball, +1 the first time kickable, 3 x the ball's progress to the goal, +5 on a goal), or ``"sparse"``
-    (1 on a goal). A defender (``defense_reward``): ``"sparse"`` (default) +1 when the episode ends in
+    the ball, +1 the first time kickable, 3 x the ball's progress to the goal, +5 on a goal), ``"shaped_gap"`` /
+    ``"shaped_gap_refund"`` (the progress measured to the gap beside the goalie, lost shots refunded:
+    :mod:`hfo2d.reward`), or ``"sparse"`` (1 on a goal). A defender (``defense_reward``): ``"sparse"`` (default) +1 when the episode ends in
     CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS or OUT_OF_TIME, -1 on a GOAL; ``"shaped"`` adds its move-to-ball term.
 
     ## Starting State

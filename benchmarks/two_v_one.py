@@ -1,0 +1,303 @@
+"""Two learning strikers against agent2d's goalie (2v1) against one striker alone (1v1), on the same budget (issue
+34 item 5).
+
+Both arms start from one 1v1 HybridPPO policy (``--start``, e.g. ``benchmarks/rl_from_clone.py``'s ``final.zip``)
+and train it further with the same recipe and the same number of **agent steps** (SB3's ``num_timesteps``: one
+per learning striker per cycle, so both arms collect the same number of transitions and make the same PPO updates;
+the 2v1 arm plays half as many game cycles, which ``curve.jsonl`` records as ``cycles``):
+
+* ``1v1``: 16 games of ``TeamGame(offense_agents=1, defense_npcs=1)`` (agent2d's goalie; the game of
+  ``HFO/Keeper-v1``) as one :class:`sb3_hfo.multi_agent.TeamVecEnv` of 16 slots;
+* ``2v1``: 8 games of two strikers against agent2d's goalie, 16 slots, one policy for both strikers (parameter
+  sharing). The start policy's first layers (actor and critic) are widened for the teammate's 8 features
+  (:func:`sb3_hfo.multi_agent.widen_policy_inputs`, zero weights on them; hfo2d's paper layout puts the teammate's
+  block between the 58 basic features and the goalie's), so at step 0 each striker plays exactly the 1v1 policy
+  (``start.zip``: the zero-shot 2v1 team).
+
+Recipe (both arms): rl_from_clone.py's fine-tuning settings (:data:`HP`), no pull toward a reference, a critic
+warm-up (value loss only) over the first ``--critic-warmup`` steps, since the reward normaliser starts afresh and
+the 2v1 critic meets states it has not valued; rewards scaled by a running std of the discounted return
+(``VecNormalize``). Reward per striker: ``shaped_gap_refund`` (:mod:`hfo2d.reward`, not HFO's), each from its own
+features with the goalie read where ``HFO/Keeper-v1`` has it: its own move-to-ball and first-kickable bonus, 3 x
+the ball's progress to the gap beside the goalie (whoever moves it; a lost ball's progress since the agent last had
+it is refunded), +5 to both on a goal.
+
+Evaluation (``evaluate``): final models, not the best checkpoint; greedy; the start policy in 1v1, the zero-shot
+2v1 team, and each arm's ``final.zip`` in its own team; team goal rate, 95 % Wilson interval, end statuses,
+:func:`sb3_hfo.multi_agent.evaluate_team` on ``hfo2d.parallel_env(...)`` with ``--backend hfo2d`` or ``real``.
+
+    python benchmarks/two_v_one.py train --arm 1v1 --start RUN/final.zip --out ~/runs/twovone/s0 --steps 1000000
+    python benchmarks/two_v_one.py train --arm 2v1 --start RUN/final.zip --out ~/runs/twovone/s0 --steps 1000000
+    python benchmarks/two_v_one.py evaluate --out ~/runs/twovone/s0 --backend hfo2d --episodes 1000
+    HOME=/root HFO_DIR=/root/real_hfo/HFO tools/real_hfo/loopback.sh \\
+        python benchmarks/two_v_one.py evaluate --out ~/runs/twovone/s0 --backend real --episodes 1000
+    python benchmarks/two_v_one.py smoke --out /tmp/smoke   # seconds: what the test runs
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+from pathlib import Path
+from typing import Any
+
+import torch as th
+from stable_baselines3.common.vec_env import VecNormalize
+from torch import nn
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's recorder
+
+from hybrid_ppo_runs import RunRecorder, load_average  # noqa: E402
+
+import hfo2d  # noqa: E402
+from hfo2d.team import TeamGame  # noqa: E402
+from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
+from sb3_hfo.multi_agent import (  # noqa: E402
+    evaluate_team,
+    evaluate_team_games,
+    make_team_vec_env,
+    teammate_block_insertion,
+    widen_policy_inputs,
+)
+
+REWARD = "shaped_gap_refund"
+#: the offense rewards a run may choose (--reward): the default, or hfo2d's sparse goal reward (1 to every striker on a
+#: goal), a team reward that pays no striker for going to the ball itself
+REWARDS: tuple[str, ...] = (REWARD, "sparse")
+#: learning strikers per game in each arm; the goalie is agent2d's (defense_npcs=1) in both
+ARMS: dict[str, int] = {"1v1": 1, "2v1": 2}
+#: rl_from_clone.py's fine-tuning settings (its s0 run's learning rate)
+HP: dict[str, Any] = {
+    "n_steps": 256,
+    "batch_size": 1024,
+    "n_epochs": 10,
+    "learning_rate": 2e-4,
+    "gamma": 0.99,
+    "gae_lambda": 0.95,
+    "clip_range": 0.1,
+    "ent_coef": 0.0,
+    "target_kl": 0.02,
+}
+#: the evaluations: name -> (arm whose folder holds the model, model file, strikers in the evaluated team)
+EVALUATIONS: dict[str, tuple[str, str, int]] = {
+    "start_1v1": ("1v1", "start.zip", 1),
+    "zero_shot_2v1": ("2v1", "start.zip", 2),
+    "final_1v1": ("1v1", "final.zip", 1),
+    "final_2v1": ("2v1", "final.zip", 2),
+}
+
+
+def team_env(strikers: int, backend: str, **kwargs: Any) -> Any:
+    """The evaluated team: ``strikers`` agents against agent2d's goalie, as a PettingZoo parallel env."""
+    return hfo2d.parallel_env(offense_agents=strikers, defense_npcs=1, backend=backend, **kwargs)
+
+
+def fresh_start_model(env: Any, seed: int) -> HybridPPO:
+    """A start policy of rl_from_clone.py's shape (trunk [256, 128, 64], two heads routed by field_half), untrained:
+    what ``smoke`` widens and trains when no ``--start`` is given."""
+    policy_kwargs = {
+        "net_arch": {"pi": [256, 128, 64], "vf": [256, 128]},
+        "activation_fn": nn.LeakyReLU,
+        "skills": 2,
+        "router": "field_half",
+        "domain": "hfo",
+        "squash_mean": True,
+    }
+    return HybridPPO("MlpPolicy", env, seed=seed, policy_kwargs=policy_kwargs, **HP)
+
+
+def build_arm_model(start: HybridPPO, env: Any, strikers: int, args: argparse.Namespace) -> HybridPPO:
+    """A HybridPPO on ``env`` with ``start``'s networks, widened for ``strikers - 1`` teammates (zero weights)."""
+    start_features = start.observation_space.shape[0]
+    position, count = teammate_block_insertion(0, strikers - 1)
+    if env.observation_space.shape[0] != start_features + count:
+        raise ValueError(
+            f"the start policy reads {start_features} features; a {strikers}-striker team gives "
+            f"{env.observation_space.shape[0]}, not {start_features} + {count}: is it a 1v1 policy against the goalie?"
+        )
+    model = HybridPPO(
+        "MlpPolicy",
+        env,
+        seed=args.seed,
+        policy_kwargs=start.policy_kwargs,
+        tensorboard_log=None if args.smoke else str(args.out / f"arm_{args.arm}" / "tb"),
+        critic_warmup_steps=args.critic_warmup,
+        **args.hp,
+    )
+    widen_policy_inputs(start.policy, model.policy, position)
+    return model
+
+
+def train(args: argparse.Namespace) -> Path:
+    """One arm: widen, save ``start.zip``, train ``--steps`` agent steps, save ``final.zip``; returns its folder."""
+    strikers = ARMS[args.arm]
+    folder = args.out / f"arm_{args.arm}"
+    if (folder / "curve.jsonl").exists():
+        raise SystemExit(f"error: {folder} already holds a run (curve.jsonl); choose another --out")
+    folder.mkdir(parents=True, exist_ok=True)
+    th.set_num_threads(args.threads)
+    slots = args.n_envs
+    if slots % strikers:
+        raise SystemExit(
+            f"error: --n-envs ({slots}) must be a multiple of the strikers per game ({strikers})"
+        )
+    env = make_team_vec_env(
+        slots // strikers, offense_agents=strikers, defense_npcs=1, seed=args.seed, reward=args.reward
+    )
+    env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=args.hp["gamma"])
+    if args.start is None:
+        start = fresh_start_model(make_team_vec_env(1, offense_agents=1, defense_npcs=1), args.seed)
+    else:
+        start = HybridPPO.load(args.start, device="cpu")
+    model = build_arm_model(start, env, strikers, args)
+    model.save(folder / "start.zip")
+    record = {
+        "arm": args.arm,
+        "strikers": strikers,
+        "games": slots // strikers,
+        "slots": slots,
+        "budget": "agent steps (num_timesteps); game cycles = agent steps / strikers",
+        "reward": args.reward,
+        "start": str(args.start) if args.start else "untrained (smoke)",
+        "hp": args.hp,
+        "critic_warmup": args.critic_warmup,
+        "steps": args.steps,
+        "seed": args.seed,
+        "command": " ".join([Path(sys.argv[0]).name, *sys.argv[1:]]),
+        "load1_at_start": load_average(),
+        "torch_threads": args.threads,
+    }
+    (folder / "run.json").write_text(json.dumps(record, indent=1))
+
+    def curve_evaluation(policy_model: HybridPPO) -> dict[str, Any]:  # the arm's own team, hfo2d
+        env_ = team_env(strikers, "hfo2d")
+        try:
+            result = evaluate_team(policy_model, env_, args.eval_episodes, seed=10_000 + args.seed)
+        finally:
+            env_.close()
+        result["cycles"] = int(policy_model.num_timesteps) // strikers
+        return result
+
+    recorder = RunRecorder(folder, args.minutes, args.eval_every, curve_evaluation)
+    model.learn(args.steps, callback=recorder, progress_bar=False)
+    recorder.row(final=True)
+    env.close()
+    return folder
+
+
+def evaluate(args: argparse.Namespace) -> dict[str, Any]:
+    """Each chosen evaluation (:data:`EVALUATIONS`) over ``--episodes`` greedy episodes with ``--backend``, each
+    written to ``OUT/eval_{backend}_{name}.json`` (so that several can run at once); returns them by name."""
+    th.set_num_threads(1)
+    results = {}
+    for name in args.which:
+        arm, file, strikers = EVALUATIONS[name]
+        model_path = args.out / f"arm_{arm}" / file
+        if not model_path.exists():
+            print(f"skipping {name}: no {model_path}", flush=True)
+            continue
+        model = HybridPPO.load(model_path, device="cpu")
+        started = time.time()
+        if args.backend == "hfo2d" and args.games > 1:  # many games per predict call: the same statistics
+            games = [TeamGame(strikers, 0, 1) for _ in range(args.games)]
+            result = evaluate_team_games(model, games, args.episodes, seed=args.seed)
+            result.update(games=args.games, model=str(model_path), backend=args.backend, seed=args.seed)
+            result.update(seconds=round(time.time() - started, 1), load1=round(load_average(), 2))
+            results[name] = result
+            (args.out / f"eval_{args.backend}_{name}.json").write_text(json.dumps(result, indent=1))
+            print(json.dumps({name: result}), flush=True)
+            continue
+        env = team_env(strikers, args.backend)
+        goals = 0
+
+        def tally(played: int, status: str, name: str = name) -> None:  # a running count for long real runs
+            nonlocal goals
+            goals += status == "GOAL"
+            if played % 100 == 0:
+                print(json.dumps({name: {"episodes": played, "goals": goals}}), flush=True)
+
+        try:
+            result = evaluate_team(model, env, args.episodes, seed=args.seed, on_episode=tally)
+        finally:
+            env.close()
+        result.update(
+            model=str(model_path),
+            backend=args.backend,
+            seed=args.seed,
+            seconds=round(time.time() - started, 1),
+            load1=round(load_average(), 2),
+        )
+        results[name] = result
+        (args.out / f"eval_{args.backend}_{name}.json").write_text(json.dumps(result, indent=1))
+        print(json.dumps({name: result}), flush=True)
+    return results
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    commands = parser.add_subparsers(dest="command", required=True)
+    training = commands.add_parser("train", help="train one arm")
+    smoke = commands.add_parser("smoke", help="seconds: both arms and their evaluation at tiny budgets")
+    for sub in (training, smoke):
+        sub.add_argument("--out", type=Path, required=True, help="the run folder (one sub-folder per arm)")
+        sub.add_argument("--seed", type=int, default=0)
+        sub.add_argument(
+            "--start", type=Path, default=None, help="the 1v1 HybridPPO policy both arms start from"
+        )
+        sub.add_argument("--steps", type=int, default=1_000_000, help="agent steps per arm")
+        sub.add_argument(
+            "--minutes", type=float, default=120.0, help="wall-clock budget of an arm's training"
+        )
+        sub.add_argument("--n-envs", type=int, default=16, help="slots (learning strikers) per rollout step")
+        sub.add_argument("--eval-every", type=int, default=250_000)
+        sub.add_argument("--eval-episodes", type=int, default=100)
+        sub.add_argument(
+            "--critic-warmup", type=int, default=100_000, help="agent steps of value-only updates"
+        )
+        sub.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
+        sub.add_argument("--threads", type=int, default=1, help="torch threads")
+        sub.add_argument("--reward", choices=REWARDS, default=REWARD, help="every striker's reward")
+    training.add_argument("--arm", choices=sorted(ARMS), required=True)
+    evaluating = commands.add_parser("evaluate", help="evaluate the start, zero-shot and final models")
+    evaluating.add_argument("--out", type=Path, required=True, help="the run folder that train wrote")
+    evaluating.add_argument("--backend", choices=("hfo2d", "real"), default="hfo2d")
+    evaluating.add_argument("--episodes", type=int, default=1000)
+    evaluating.add_argument("--seed", type=int, default=0)
+    evaluating.add_argument(
+        "--games",
+        type=int,
+        default=16,
+        help="hfo2d: games played at once (game g seeded seed + g; 1: one game)",
+    )
+    evaluating.add_argument("--which", nargs="+", choices=sorted(EVALUATIONS), default=list(EVALUATIONS))
+    args = parser.parse_args(argv)
+    if args.command == "evaluate":
+        evaluate(args)
+        return
+    args.hp = {**HP, **json.loads(args.hp)}
+    args.smoke = args.command == "smoke"
+    if args.smoke:
+        args.steps, args.eval_every, args.eval_episodes, args.n_envs, args.critic_warmup = (
+            2048,
+            1024,
+            4,
+            4,
+            1024,
+        )
+        args.hp["batch_size"] = 256
+        for arm in ARMS:
+            args.arm = arm
+            train(args)
+        evaluate(
+            argparse.Namespace(
+                out=args.out, backend="hfo2d", episodes=4, seed=0, games=2, which=list(EVALUATIONS)
+            )
+        )
+        return
+    train(args)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,71 @@
+"""hfo2d.team: the gap rewards of a team's strikers read the goalie where HFO/Keeper-v1 has it, not the teammate."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hfo2d.features import FEATURES_PER_PLAYER, NUM_BASIC_FEATURES
+from hfo2d.reward import make_reward
+from hfo2d.team import TEAM_OFFENSE_REWARDS, TeamGame
+
+TEAMMATE_BLOCK = np.s_[NUM_BASIC_FEATURES : NUM_BASIC_FEATURES + FEATURES_PER_PLAYER]
+
+
+def chase_actions(observations: dict[str, np.ndarray], kick: bool) -> dict[str, np.ndarray]:
+    """Dash at the ball, and kick it toward the goal centre once kickable (so the ball moves and the gap term
+    pays and refunds)."""
+    actions = {}
+    for name, obs in observations.items():
+        action = np.zeros(8, dtype=np.float32)
+        if kick and obs[12] > 0:  # kickable
+            action[2], action[6] = 1.0, 0.6  # KICK, power 60
+            action[7] = (np.degrees(np.arctan2(obs[13], obs[14])) + 180.0) / 360.0  # at the goal centre
+        else:
+            action[0], action[3] = 1.0, 1.0  # DASH at full power
+            action[4] = (np.degrees(np.arctan2(obs[51], obs[52])) + 180.0) / 360.0  # at the ball
+        actions[name] = action
+    return actions
+
+
+@pytest.mark.parametrize("reward", ["shaped_gap", "shaped_gap_refund"])
+def test_a_striker_with_a_teammate_is_paid_as_against_the_goalie_alone(reward: str) -> None:
+    assert reward in TEAM_OFFENSE_REWARDS
+    game = TeamGame(2, 0, 1, reward=reward, seed=0)
+    observations, _ = game.reset(seed=11)
+    # the reward as HFO/Keeper-v1 computes it: on the features without the teammate's block
+    keeper_v1 = {name: make_reward(reward) for name in game.agent_names}
+    naive = {name: make_reward(reward) for name in game.agent_names}  # reading the teammate as the goalie
+    for name, obs in observations.items():
+        keeper_v1[name].reset(np.delete(obs, TEAMMATE_BLOCK))
+        naive[name].reset(obs)
+    paid, naive_paid, ends = [], [], 0
+    for step in range(400):
+        observations, rewards, terminated, truncated, _ = game.step(
+            chase_actions(observations, kick=step % 3 == 0)
+        )
+        status = game.status
+        for name, obs in observations.items():
+            paid.append(
+                (rewards[name], keeper_v1[name](np.delete(obs, TEAMMATE_BLOCK), status, terminated)[0])
+            )
+            naive_paid.append(naive[name](obs, status, terminated)[0])
+        if terminated or truncated:
+            ends += 1
+            observations, _ = game.reset()
+            for name, obs in observations.items():
+                keeper_v1[name].reset(np.delete(obs, TEAMMATE_BLOCK))
+                naive[name].reset(obs)
+    assert ends >= 1
+    game_rewards = np.array([pair[0] for pair in paid])
+    np.testing.assert_allclose(game_rewards, [pair[1] for pair in paid], rtol=0, atol=1e-6)
+    # the check can tell: reading the teammate's block as the goalie's pays differently
+    assert np.abs(game_rewards - np.array(naive_paid)).max() > 1e-3
+
+
+def test_one_striker_against_the_goalie_reads_its_own_features() -> None:
+    game = TeamGame(1, 0, 1, reward="shaped_gap_refund", seed=0)
+    assert not game._reward_needs_goalie_view
+    assert TeamGame(2, 0, 1, reward="shaped_gap_refund")._reward_needs_goalie_view
+    assert TeamGame(1, 0, 2, reward="shaped_gap")._reward_needs_goalie_view
+    assert not TeamGame(2, 0, 1, reward="shaped")._reward_needs_goalie_view  # reads the basic features only
