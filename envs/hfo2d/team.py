@@ -60,7 +60,9 @@ Rewards (this project's choice; HFO itself gives none):
 
 * offense (``reward``): ``"shaped"`` (default), Hausknecht & Stone's shaping as DQNHFO computes it, from each
   agent's own features (:class:`hfo2d.reward.ShapedReward`: its own move-to-ball and first-kickable bonus, the
-  ball's progress to the goal, +5 on a goal, whoever scored); ``"sparse"``: 1 on a goal.
+  ball's progress to the goal, +5 on a goal, whoever scored); ``"sparse"``: 1 on a goal; ``"shaped_gap"`` and
+  ``"shaped_gap_refund"`` (this package's, :mod:`hfo2d.reward`, as in ``HFO/Keeper-v1``): they read the goalie from
+  the first opponent block of the features, so they mean what they say in games whose only defender is the goalie.
 * defense (``defense_reward``): ``"sparse"`` (default): +1 on the last step when the episode ends in
   CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS or OUT_OF_TIME (truncation included), -1 on a GOAL, else 0;
   ``"shaped"``: the same plus the rise of the agent's ball proximity since its last step (DQNHFO's move-to-ball
@@ -191,7 +193,7 @@ _PARAMETER_BOUNDS: dict[str, tuple[tuple[float, float], ...]] = {
 TEAM_ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
 #: "high_level" is HFO's high-level feature set, offered when hfo2d.features has it (high_level_feature_list).
 TEAM_FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
-TEAM_OFFENSE_REWARDS: tuple[str, ...] = ("shaped", "sparse")
+TEAM_OFFENSE_REWARDS: tuple[str, ...] = ("shaped", "sparse", "shaped_gap", "shaped_gap_refund")
 TEAM_DEFENSE_REWARDS: tuple[str, ...] = ("sparse", "shaped")
 #: The statuses that end an episode in the defense's favour (its sparse reward +1).
 DEFENSE_WINS: tuple[str, ...] = (CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME)
