@@ -266,6 +266,96 @@ def report(args: argparse.Namespace, out: Path) -> dict[str, Any]:
     return result
 
 
+def real_matches(
+    episodes: int, seed: int, offense: Any = None, defense: Any = None, **team: Any
+) -> MatchResult:
+    """``episodes`` episodes of one real HFO game (``hfo2d.parallel_env(..., backend="real")``, under
+    tools/real_hfo/loopback.sh), ``offense`` playing its offense agent and ``defense`` its defense agent (an SB3
+    model, greedily, or a per-observation scripted striker with ``reset``); the end statuses in order. An episode
+    that the server loses (SERVER_DOWN) is counted under that status, not dropped."""
+    import hfo2d
+
+    env = hfo2d.parallel_env(backend="real", seed=seed, **team)
+    players = {"offense_0": offense, "defense_0": defense}
+    statuses: list[str] = []
+    try:
+        for _ in range(episodes):
+            observations, _ = env.reset()
+            for player in players.values():
+                if hasattr(player, "reset"):
+                    player.reset()
+            while env.agents:
+                actions = {}
+                for name in env.agents:
+                    player = players[name]
+                    if hasattr(player, "predict"):
+                        actions[name] = player.predict(observations[name][None], deterministic=True)[0][0]
+                    else:
+                        actions[name] = player(observations[name])
+                observations, _, _, _, infos = env.step(actions)
+            statuses.append(next(iter(infos.values()))["status"])
+    finally:
+        env.close()
+    return MatchResult(tuple(statuses))
+
+
+def real_report(args: argparse.Namespace, out: Path) -> dict[str, Any]:
+    """The final learned goalie against e6, the starting striker and the scripted soft_dribble in real HFO, and the
+    final learned striker against agent2d's goalie there (RealKeeper-v0's game: one agent, agent2d's goalie)."""
+    from hfo2d.strikers import make_striker
+
+    last = max(int(path.name[5:]) for path in out.glob("round*") if path.name[5:].isdigit())
+    goalie = HybridPPO.load(out / f"round{last}" / "goalie.zip", device="cpu")
+    opponents = {
+        "e6": lambda: load_striker("e6"),
+        "start": lambda: load_striker(args.striker),
+        "soft_dribble": lambda: make_striker("soft_dribble"),
+        "learned_striker": lambda: load_striker(str(out / f"round{last}" / "striker.zip")),
+    }
+    rows = []
+    for which in args.real:
+        started = time.time()
+        if which == "learned_striker_vs_agent2d":
+            result = real_matches(
+                args.episodes,
+                args.eval_seed,
+                offense=opponents["learned_striker"](),
+                offense_agents=1,
+                defense_npcs=1,
+            )
+            label = f"real HFO: learned striker (round {last}) vs agent2d goalie"
+        else:
+            result = real_matches(
+                args.episodes,
+                args.eval_seed,
+                offense=opponents[which](),
+                defense=goalie,
+                offense_agents=1,
+                defense_agents=1,
+            )
+            label = f"real HFO: {which} vs learned goalie (round {last})"
+        row = result_row(label, result)
+        row["seconds"] = round(time.time() - started, 1)
+        row["load1_at_end"] = os.getloadavg()[0]
+        print(
+            label,
+            f"{row['goal_rate']:.1%}",
+            row["goal_rate_ci95"],
+            row["statuses"],
+            row["seconds"],
+            flush=True,
+        )
+        rows.append(row)
+        name = "real_" + "_".join(args.real) + ".json"
+        (out / name).write_text(
+            json.dumps({"episodes": args.episodes, "seed": args.eval_seed, "rows": rows}, indent=1)
+        )
+    return {"rows": rows}
+
+
+REAL_CHOICES = ("e6", "start", "soft_dribble", "learned_striker", "learned_striker_vs_agent2d")
+
+
 def main(argv: list[str] | None = None) -> dict[str, Any]:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--out", required=True, help="folder for the models and records (outside the repo)")
@@ -285,10 +375,19 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument("--report-only", action="store_true", help="only the report of the run in --out")
     parser.add_argument("--smoke", action="store_true", help="a tiny run (seconds): the test's")
+    parser.add_argument(
+        "--real",
+        nargs="+",
+        choices=REAL_CHOICES,
+        help="only real-HFO matches of the run in --out (under tools/real_hfo/loopback.sh, HFO_DIR set): the "
+        "learned goalie against these strikers, or learned_striker_vs_agent2d",
+    )
     args = parser.parse_args(argv)
     th.set_num_threads(args.threads)
     out = Path(os.path.expanduser(args.out))
     out.mkdir(parents=True, exist_ok=True)
+    if args.real:
+        return real_report(args, out)
     goalie_hp, striker_hp = dict(GOALIE_HP), dict(STRIKER_HP)
     if args.smoke:
         args.rounds, args.n_games, args.eval_games = 1, 2, 2
