@@ -115,6 +115,9 @@ def test_a_model_is_played_greedily_and_swapped_between_rounds() -> None:
     striker = HybridPPO("MlpPolicy", striker_env, n_steps=8, batch_size=8, seed=0)
     env = make_team_vec_env(2, offense_agents=1, defense_agents=1, side="defense", opponent=striker, seed=0)
     goalie = HybridPPO("MlpPolicy", env, n_steps=16, batch_size=32, n_epochs=1, seed=0)
+    # HybridPPO reads the goalie's layout from the env: CATCH has no parameter
+    assert goalie.policy.adapter.names == ("DASH", "TURN", "TACKLE", "KICK", "CATCH")
+    assert goalie.policy.adapter.parameter_mask.sum(axis=1).tolist() == [2, 1, 1, 2, 0]
     before = [p.detach().clone() for p in goalie.policy.parameters()]
     frozen = [p.detach().clone() for p in striker.policy.parameters()]
     goalie.learn(64)
