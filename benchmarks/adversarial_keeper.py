@@ -300,8 +300,8 @@ def real_matches(
 
 
 def real_report(args: argparse.Namespace, out: Path) -> dict[str, Any]:
-    """The final learned goalie against e6, the starting striker and the scripted soft_dribble in real HFO, and the
-    final learned striker against agent2d's goalie there (RealKeeper-v0's game: one agent, agent2d's goalie)."""
+    """The final learned goalie against e6, the starting striker, the final learned striker or a scripted striker
+    in real HFO, or the final learned striker against agent2d's goalie there (RealKeeper-v0's game)."""
     from hfo2d.strikers import make_striker
 
     last = max(int(path.name[5:]) for path in out.glob("round*") if path.name[5:].isdigit())
@@ -309,8 +309,8 @@ def real_report(args: argparse.Namespace, out: Path) -> dict[str, Any]:
     opponents = {
         "e6": lambda: load_striker("e6"),
         "start": lambda: load_striker(args.striker),
-        "soft_dribble": lambda: make_striker("soft_dribble"),
         "learned_striker": lambda: load_striker(str(out / f"round{last}" / "striker.zip")),
+        **{name: (lambda name=name: make_striker(name)) for name in STRIKERS},
     }
     rows = []
     for which in args.real:
@@ -353,7 +353,7 @@ def real_report(args: argparse.Namespace, out: Path) -> dict[str, Any]:
     return {"rows": rows}
 
 
-REAL_CHOICES = ("e6", "start", "soft_dribble", "learned_striker", "learned_striker_vs_agent2d")
+REAL_CHOICES = ("e6", "start", "learned_striker", "learned_striker_vs_agent2d", *STRIKERS)
 
 
 def main(argv: list[str] | None = None) -> dict[str, Any]:
