@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import warnings
 from collections import Counter
-from collections.abc import Callable, Iterable, Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
@@ -30,9 +30,6 @@ from hfo2d.team import TeamGame
 __all__ = ["FrozenOpponent", "MatchResult", "TeamVecEnv", "as_opponent", "make_team_vec_env", "play_matches"]
 
 SIDES: tuple[str, ...] = ("offense", "defense")
-
-#: A frozen opponent as a function: a batch of observations ``(n, obs_dim)`` -> a batch of ``n`` env actions.
-OpponentFunction = Callable[[np.ndarray], Any]
 
 
 @runtime_checkable
@@ -124,8 +121,8 @@ class TeamVecEnv(VecEnv):
     all the other side's agents (``opponent_slots``: (game index, agent name), games in order) with one call per
     step on their stacked observations. Games may mix: some against the opponent, others against NPCs (e.g. a
     striker learning against a frozen learned goalie in half its games and agent2d's goalie in the rest), as long
-    as one game has agents for the opponent and all of them share spaces. Their rewards are not returned; their
-    ``infos`` are the learner's own game's (status included). :meth:`set_opponent` swaps the opponent between
+    as one game has agents for the opponent and all of them share spaces. The opponent's rewards and infos are
+    dropped (each slot's info carries its game's status). :meth:`set_opponent` swaps the opponent between
     ``learn`` calls.
 
     SB3's conventions, as ``DummyVecEnv`` keeps them: float32 rewards; ``dones = terminated | truncated``; when a
