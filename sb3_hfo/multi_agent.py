@@ -5,6 +5,11 @@ each of two 2v1 games (:class:`hfo2d.team.TeamGame`). One policy acts for every 
 parameters (the usual "parameter sharing" of cooperative multi-agent RL); each slot is one agent's own experience
 (its observation, its reward, its episode), so any SB3 algorithm (``HybridPPO``, ``SkillDDPG``, PPO, ...) trains on
 it unchanged. This module is the adapter layer: the algorithms never import hfo2d.
+
+Self-play and adversarial training: ``make_team_vec_env(8, offense_agents=1, defense_agents=1, side="defense",
+opponent=striker_model)`` lets the goalie learn while a frozen policy plays the strikers. The ``opponent`` (an SB3
+model, played greedily through ``predict``, or a function of a batch of observations) acts for every agent of the
+other side of every game in one call per step, so a batch of games costs one forward pass of the frozen network.
 """
 
 from __future__ import annotations
@@ -12,7 +17,8 @@ from __future__ import annotations
 import warnings
 from collections import Counter
 from collections.abc import Callable, Iterable, Sequence
-from typing import Any
+from dataclasses import dataclass
+from typing import Any, Protocol, runtime_checkable
 
 import gymnasium as gym
 import numpy as np
@@ -25,10 +31,14 @@ from hfo2d.team import TeamGame
 from sb3_hfo.evaluation import wilson_interval
 
 __all__ = [
+    "FrozenOpponent",
+    "MatchResult",
     "TeamVecEnv",
+    "as_opponent",
     "evaluate_team",
     "evaluate_team_games",
     "make_team_vec_env",
+    "play_matches",
     "teammate_block_insertion",
     "widen_policy_inputs",
 ]
@@ -38,12 +48,98 @@ GOAL_STATUS = "GOAL"
 SIDES: tuple[str, ...] = ("offense", "defense")
 
 
+@runtime_checkable
+class _Predictor(Protocol):
+    """What SB3's models offer (``predict``); the opponent is played through it."""
+
+    def predict(self, observation: np.ndarray, *args: Any, **kwargs: Any) -> tuple[Any, Any]: ...
+
+
+class FrozenOpponent:
+    """A fixed policy that plays one side of the team games of a :class:`TeamVecEnv` while the other side learns.
+
+    Args:
+        policy: an SB3 model (anything with ``predict(observations, deterministic=...)``: its weights are not
+            changed here) or a function from a batch of observations ``(n, obs_dim)`` to a batch of ``n`` actions.
+        deterministic: play a model greedily (default: the opponent is then a fixed function of its
+            observation, so seeded games repeat); False samples, from the model's own generator.
+        name: for messages and ``repr`` (default: the model's class or the function's name).
+    """
+
+    def __init__(self, policy: Any, deterministic: bool = True, name: str | None = None) -> None:
+        if isinstance(policy, FrozenOpponent):
+            raise ValueError("policy is already a FrozenOpponent: pass it as it is")
+        if isinstance(policy, _Predictor):
+            self.observation_space: gym.Space | None = getattr(policy, "observation_space", None)
+            self.action_space: gym.Space | None = getattr(policy, "action_space", None)
+        elif callable(policy):
+            self.observation_space = self.action_space = None
+        else:
+            raise ValueError(
+                f"an opponent must be an SB3 model (with predict) or a function of a batch of observations, got "
+                f"{type(policy).__name__}"
+            )
+        if not isinstance(deterministic, (bool, np.bool_)):
+            raise ValueError(f"deterministic must be True or False, got {deterministic!r}")
+        self.policy = policy
+        self.deterministic = bool(deterministic)
+        self.name = name or getattr(policy, "__name__", type(policy).__name__)
+
+    def check_spaces(self, observation_space: gym.Space, action_space: gym.Space, where: str) -> None:
+        """ValueError when a model's spaces differ from those of the agents it is to play (``where`` names them)."""
+        for kind, own, wanted in (
+            ("observation", self.observation_space, observation_space),
+            ("action", self.action_space, action_space),
+        ):
+            if own is None:
+                continue
+            if getattr(own, "shape", None) != getattr(wanted, "shape", None) or type(own) is not type(wanted):
+                raise ValueError(
+                    f"the opponent {self.name} was made for the {kind} space {own}, but that of {where} is {wanted} "
+                    "(a striker model plays the offense, a goalie model the defense, with the same team sizes)"
+                )
+
+    def __call__(self, observations: np.ndarray) -> np.ndarray:
+        """The actions of a batch of observations, as an array with one row per observation."""
+        if isinstance(self.policy, _Predictor):
+            actions, _ = self.policy.predict(observations, deterministic=self.deterministic)
+        else:
+            actions = self.policy(observations)
+        if isinstance(actions, np.ndarray):
+            rows = actions.shape[0] if actions.ndim > 0 else 0
+        else:
+            actions = list(actions)
+            rows = len(actions)
+        if rows != len(observations):
+            raise ValueError(
+                f"the opponent {self.name} returned {rows} actions for {len(observations)} observations"
+            )
+        return actions
+
+    def __repr__(self) -> str:
+        return f"FrozenOpponent({self.name}, deterministic={self.deterministic})"
+
+
+def as_opponent(policy: Any, deterministic: bool = True) -> FrozenOpponent:
+    """``policy`` as a :class:`FrozenOpponent` (returned as it is when it already is one)."""
+    if isinstance(policy, FrozenOpponent):
+        return policy
+    return FrozenOpponent(policy, deterministic=deterministic)
+
+
 class TeamVecEnv(VecEnv):
     """SB3's ``VecEnv`` over the learning agents of one side of several team games (the adapter owns the games).
 
     Slot ``k`` is agent ``slots[k] = (game index, agent name)``: the games in order, each game's agents of
-    ``side`` in their order ("offense_0", "offense_1", ...). Every agent of every game must be on ``side`` (an agent
-    of the other side would get no action) and all slots must share one observation and one action space.
+    ``side`` in their order ("offense_0", "offense_1", ...). All slots must share one observation and one action
+    space. Without an ``opponent`` every agent of every game must be on ``side`` (an agent of the other side would
+    get no action); with one (:class:`FrozenOpponent`, or anything :func:`as_opponent` takes), the opponent plays
+    all the other side's agents (``opponent_slots``: (game index, agent name), games in order) with one call per
+    step on their stacked observations. Games may mix: some against the opponent, others against NPCs (e.g. a
+    striker learning against a frozen learned goalie in half its games and agent2d's goalie in the rest), as long
+    as one game has agents for the opponent and all of them share spaces. The opponent's rewards and infos are
+    dropped (each slot's info carries its game's status). :meth:`set_opponent` swaps the opponent between
+    ``learn`` calls.
 
     SB3's conventions, as ``DummyVecEnv`` keeps them: float32 rewards; ``dones = terminated | truncated``; when a
     game's episode ends, all its slots are done at once, the game is reset, their observations are the new
@@ -54,44 +150,89 @@ class TeamVecEnv(VecEnv):
     """
 
     def __init__(
-        self, games: Sequence[TeamGame], side: str = "offense", render_mode: str | None = None
+        self,
+        games: Sequence[TeamGame],
+        side: str = "offense",
+        render_mode: str | None = None,
+        opponent: Any = None,
     ) -> None:
         if side not in SIDES:
             raise ValueError(f"unknown side {side!r}; choose one of {SIDES}")
         if len(games) == 0:
             raise ValueError("TeamVecEnv needs at least one game")
+        frozen = None if opponent is None else as_opponent(opponent)
         slots: list[tuple[int, str]] = []
+        opponent_slots: list[tuple[int, str]] = []
         for index, game in enumerate(games):
             if not isinstance(game, TeamGame):
                 raise ValueError(f"TeamVecEnv takes hfo2d.team.TeamGame games, got {type(game).__name__}")
+            own = [name for name in game.agent_names if name.startswith(side)]
             others = [name for name in game.agent_names if not name.startswith(side)]
-            if others:
+            if others and frozen is None:
                 raise ValueError(
                     f"game {index} has learning agents {others} outside side {side!r}: their actions would be "
-                    "missing; make them NPCs, or train them in another VecEnv"
+                    "missing; make them NPCs, give an opponent to play them, or train them in another VecEnv"
                 )
-            if not game.agent_names:
+            if not own:
                 raise ValueError(f"game {index} has no {side} agent")
-            slots.extend((index, name) for name in game.agent_names)
-        first = games[0].agent(games[0].agent_names[0])
-        for index, name in slots:
-            agent = games[index].agent(name)
-            if agent.observation_space != first.observation_space or agent.action_space != first.action_space:
-                raise ValueError(
-                    f"every slot must share one observation and one action space: game {index}'s {name} has "
-                    f"{agent.observation_space} / {agent.action_space}, the first slot {first.observation_space} / "
-                    f"{first.action_space} (parameter sharing needs the same team sizes and formats)"
-                )
+            slots.extend((index, name) for name in own)
+            opponent_slots.extend((index, name) for name in others)
+        if frozen is not None and not opponent_slots:
+            raise ValueError(
+                f"no game has an agent outside side {side!r} for the opponent {frozen.name} to play: add agents of "
+                "the other side (e.g. offense_agents=1, defense_agents=1)"
+            )
+        first = games[0].agent(slots[0][1])
+        for group, what in ((slots, "slot"), (opponent_slots, "opponent agent")):
+            if not group:
+                continue
+            reference = games[group[0][0]].agent(group[0][1])
+            for index, name in group:
+                agent = games[index].agent(name)
+                if (
+                    agent.observation_space != reference.observation_space
+                    or agent.action_space != reference.action_space
+                ):
+                    raise ValueError(
+                        f"every {what} must share one observation and one action space: game {index}'s {name} "
+                        f"has {agent.observation_space} / {agent.action_space}, the first "
+                        f"{reference.observation_space} / {reference.action_space} (parameter sharing needs the "
+                        "same team sizes and formats)"
+                    )
         self.games = list(games)
         self.side = side
         self.slots = slots
+        self.opponent_slots = opponent_slots
         self._render_mode = render_mode
         self._first_slot = {
-            game: slots.index((game, games[game].agent_names[0])) for game in range(len(games))
+            game: min(k for k, (g, _) in enumerate(slots) if g == game) for game in range(len(games))
         }
         self._actions: np.ndarray | None = None
         super().__init__(len(slots), first.observation_space, first.action_space)
         self._observations = np.zeros((self.num_envs, *first.observation_space.shape), dtype=np.float32)
+        self.opponent: FrozenOpponent | None = None
+        self._opponent_observations = np.zeros((0, 0), dtype=np.float32)
+        if opponent_slots:
+            other = games[opponent_slots[0][0]].agent(opponent_slots[0][1])
+            self.opponent_observation_space = other.observation_space
+            self.opponent_action_space = other.action_space
+            self._opponent_observations = np.zeros(
+                (len(opponent_slots), *other.observation_space.shape), dtype=np.float32
+            )
+            self.set_opponent(frozen)
+
+    def set_opponent(self, opponent: Any) -> None:
+        """Play the other side with ``opponent`` from the next step on (anything :func:`as_opponent` takes);
+        ValueError, changing nothing, when its spaces do not fit those agents or this VecEnv has none."""
+        if not self.opponent_slots:
+            raise ValueError("this TeamVecEnv has no agents of the other side for an opponent to play")
+        frozen = as_opponent(opponent)
+        frozen.check_spaces(
+            self.opponent_observation_space,
+            self.opponent_action_space,
+            f"the {'defense' if self.side == 'offense' else 'offense'} agents",
+        )
+        self.opponent = frozen
 
     # --- stepping ------------------------------------------------------------------------------------------------
     def reset(self) -> VecEnvObs:
@@ -116,6 +257,9 @@ class TeamVecEnv(VecEnv):
             if index == game_index:
                 self._observations[slot] = observations[name]
                 into[slot] = infos[name]
+        for row, (index, name) in enumerate(self.opponent_slots):
+            if index == game_index:
+                self._opponent_observations[row] = observations[name]
 
     def step_async(self, actions: np.ndarray) -> None:
         self._actions = actions
@@ -131,6 +275,11 @@ class TeamVecEnv(VecEnv):
         per_game: list[dict[str, Any]] = [{} for _ in self.games]
         for slot, (index, name) in enumerate(self.slots):
             per_game[index][name] = actions[slot]
+        if self.opponent is not None:
+            # one call for the whole batch: a frozen network costs one forward pass per step, not one per game
+            opponent_actions = self.opponent(self._opponent_observations.copy())
+            for row, (index, name) in enumerate(self.opponent_slots):
+                per_game[index][name] = opponent_actions[row]
         for game_index, game in enumerate(self.games):
             observations, game_rewards, terminated, truncated, game_infos = game.step(per_game[game_index])
             for slot, (index, name) in enumerate(self.slots):
@@ -142,6 +291,9 @@ class TeamVecEnv(VecEnv):
                 info["TimeLimit.truncated"] = truncated and not terminated
                 infos[slot] = info
                 self._observations[slot] = observations[name]
+            for row, (index, name) in enumerate(self.opponent_slots):
+                if index == game_index:
+                    self._opponent_observations[row] = observations[name]
             if terminated or truncated:
                 for slot, (index, _) in enumerate(self.slots):
                     if index == game_index:
@@ -194,7 +346,8 @@ class TeamVecEnv(VecEnv):
         return [False] * len(self._chosen(indices))
 
     def __repr__(self) -> str:
-        return f"TeamVecEnv({len(self.games)} games, side={self.side!r}, {self.num_envs} slots)"
+        against = f", against {self.opponent!r}" if self.opponent is not None else ""
+        return f"TeamVecEnv({len(self.games)} games, side={self.side!r}, {self.num_envs} slots{against})"
 
 
 def make_team_vec_env(
@@ -205,6 +358,7 @@ def make_team_vec_env(
     seed: int | None = None,
     monitor: bool = True,
     side: str | None = None,
+    opponent: Any = None,
     **game_kwargs: Any,
 ) -> VecEnv:
     """``n_games`` HFO team games of bin/HFO's team sizes, their learning agents as one SB3 VecEnv
@@ -216,7 +370,10 @@ def make_team_vec_env(
             side (e.g. 2 strikers against agent2d's goalie, or 1 goalie agent against ``scripted_strikers``).
         seed: game ``g``'s first episode is seeded with ``seed`` plus its first slot's index (None: unseeded).
         monitor: wrap in SB3's ``VecMonitor`` (per-slot episode returns and lengths).
-        side: "offense" or "defense"; None: the side of the learning agents.
+        side: "offense" or "defense"; None: the side of the learning agents (with an ``opponent``: the side it
+            does not play, which must then be named).
+        opponent: a frozen policy for the other side's agents (:class:`FrozenOpponent`: an SB3 model played
+            greedily, or a function of a batch of observations); None: every agent learns on ``side``.
         **game_kwargs: :class:`hfo2d.team.TeamGame`'s other arguments (``reward``, ``feature_set``, ...;
             ``render_mode`` goes to the VecEnv).
     """
@@ -227,8 +384,13 @@ def make_team_vec_env(
         TeamGame(offense_agents, defense_agents, defense_npcs, **game_kwargs) for _ in range(int(n_games))
     ]
     if side is None:
+        if opponent is not None:
+            raise ValueError(
+                "with an opponent, name the learning side: side='offense' (the opponent plays the defense agents) "
+                "or side='defense'"
+            )
         side = "offense" if offense_agents > 0 else "defense"
-    vec_env: VecEnv = TeamVecEnv(games, side=side, render_mode=render_mode)
+    vec_env: VecEnv = TeamVecEnv(games, side=side, render_mode=render_mode, opponent=opponent)
     if seed is not None:
         vec_env.seed(seed)
     if monitor:
@@ -430,3 +592,93 @@ def evaluate_team_games(
         "ball_holders": {str(k): holders[k] for k in sorted(holders)},
         "agents": names,
     }
+
+
+@dataclass(frozen=True)
+class MatchResult:
+    """The end status of every episode of :func:`play_matches`, game by game (game 0's episodes first)."""
+
+    statuses: tuple[str, ...]
+
+    @property
+    def episodes(self) -> int:
+        return len(self.statuses)
+
+    @property
+    def goals(self) -> int:
+        return sum(status == "GOAL" for status in self.statuses)
+
+    @property
+    def goal_rate(self) -> float:
+        """The offense's score: goals per episode (lower is better for the defense)."""
+        return self.goals / self.episodes if self.statuses else 0.0
+
+    def counts(self) -> dict[str, int]:
+        """How many episodes ended in each status."""
+        return dict(sorted(Counter(self.statuses).items()))
+
+
+def play_matches(
+    n_games: int,
+    episodes: int,
+    *,
+    offense: Any = None,
+    defense: Any = None,
+    seed: int = 0,
+    **game_kwargs: Any,
+) -> MatchResult:
+    """Play ``episodes`` episodes of HFO team games, ``n_games`` at a time, with fixed policies on both sides.
+
+    The games are :class:`hfo2d.team.TeamGame` of ``game_kwargs`` (``offense_agents``, ``defense_agents``,
+    ``defense_npcs``, ``scripted_strikers``, ``striker``, ...). ``offense`` plays every offense agent and ``defense``
+    every defense agent (each anything :func:`as_opponent` takes: an SB3 model is played greedily), one batched
+    call per side and step; NPCs and scripted strikers play themselves. A side with agents needs a policy and a
+    side without none (ValueError). Game ``g`` plays episodes ``g``, ``g + n_games``, ... of the ``episodes``
+    (``episodes // n_games`` or one more: fixed in advance, so short episodes are not favoured), its first reset
+    seeded with ``seed + g`` and the later ones carrying over as in real HFO; the same call repeats exactly when
+    the policies are deterministic.
+    """
+    for name, value, low in (("n_games", n_games, 1), ("episodes", episodes, 1)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+            raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    n_games = min(int(n_games), int(episodes))
+    games = [TeamGame(**game_kwargs) for _ in range(n_games)]
+    policies: dict[str, FrozenOpponent] = {}
+    for side, policy in (("offense", offense), ("defense", defense)):
+        names = [name for name in games[0].agent_names if name.startswith(side)]
+        if names and policy is None:
+            raise ValueError(f"the games have {side} agents {names}: give a policy for them ({side}=...)")
+        if policy is not None and not names:
+            raise ValueError(f"{side}= was given, but the games have no {side} agent for it to play")
+        if policy is not None:
+            frozen = as_opponent(policy)
+            agent = games[0].agent(names[0])
+            frozen.check_spaces(agent.observation_space, agent.action_space, f"the {side} agents")
+            policies[side] = frozen
+    quota = [episodes // n_games + (game < episodes % n_games) for game in range(n_games)]
+    statuses: list[list[str]] = [[] for _ in range(n_games)]
+    observations = [game.reset(seed=seed + index)[0] for index, game in enumerate(games)]
+    active = list(range(n_games))
+    while active:
+        actions: list[dict[str, Any]] = [{} for _ in range(n_games)]
+        for side, frozen in policies.items():
+            batch = [
+                (index, name) for index in active for name in observations[index] if name.startswith(side)
+            ]
+            chosen = frozen(np.stack([observations[index][name] for index, name in batch]))
+            for row, (index, name) in enumerate(batch):
+                actions[index][name] = chosen[row]
+        still_active = []
+        for index in active:
+            game = games[index]
+            observations[index], _, terminated, truncated, _ = game.step(actions[index])
+            if terminated or truncated:
+                statuses[index].append(game.status)
+                if len(statuses[index]) == quota[index]:
+                    continue
+                observations[index] = game.reset()[0]
+            still_active.append(index)
+        active = still_active
+    for game in games:
+        game.close()
+    return MatchResult(tuple(status for per_game in statuses for status in per_game))
