@@ -468,6 +468,25 @@ def widen_policy_inputs(source: Any, target: Any, position: int) -> None:
 
 
 # --- evaluation of a parameter-shared team --------------------------------------------------------------------------
+def _team_summary(
+    statuses: Counter[str], holders: Counter[int], cycles: int, episodes: int, names: list[str]
+) -> dict[str, Any]:
+    """The result of :func:`evaluate_team` / :func:`evaluate_team_games`: goal rate with its Wilson interval, end
+    statuses, mean cycles per episode and how many agents held the ball in an episode."""
+    goals = statuses.get(GOAL_STATUS, 0)
+    low, high = wilson_interval(goals, episodes)
+    return {
+        "episodes": episodes,
+        "goals": goals,
+        "rate": goals / episodes,
+        "ci95": [low, high],
+        "status": dict(statuses),
+        "mean_cycles": cycles / episodes,
+        "ball_holders": {str(k): holders[k] for k in sorted(holders)},
+        "agents": names,
+    }
+
+
 def evaluate_team(
     model: Any,
     env: Any,
@@ -511,18 +530,7 @@ def evaluate_team(
         if on_episode is not None:
             on_episode(sum(statuses.values()), status)
         observations, infos = env.reset()
-    goals = statuses.get(GOAL_STATUS, 0)
-    low, high = wilson_interval(goals, int(episodes))
-    return {
-        "episodes": int(episodes),
-        "goals": goals,
-        "rate": goals / int(episodes),
-        "ci95": [low, high],
-        "status": dict(statuses),
-        "mean_cycles": cycles / int(episodes),
-        "ball_holders": {str(k): holders[k] for k in sorted(holders)},
-        "agents": names,
-    }
+    return _team_summary(statuses, holders, cycles, int(episodes), names)
 
 
 def evaluate_team_games(
@@ -580,18 +588,7 @@ def evaluate_team_games(
                     had_ball[index] = {name for name in names if infos[name].get("kickable")}
                 else:
                     active[index] = False
-    goals = statuses.get(GOAL_STATUS, 0)
-    low, high = wilson_interval(goals, int(episodes))
-    return {
-        "episodes": int(episodes),
-        "goals": goals,
-        "rate": goals / int(episodes),
-        "ci95": [low, high],
-        "status": dict(statuses),
-        "mean_cycles": cycles / int(episodes),
-        "ball_holders": {str(k): holders[k] for k in sorted(holders)},
-        "agents": names,
-    }
+    return _team_summary(statuses, holders, cycles, int(episodes), names)
 
 
 @dataclass(frozen=True)
