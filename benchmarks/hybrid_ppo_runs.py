@@ -62,7 +62,7 @@ from sb3_hfo.callbacks import (
     KeeperSkillCurriculumCallback,
 )
 from sb3_hfo.common.schedules import parse_schedule
-from sb3_hfo.evaluation import wilson_interval
+from sb3_hfo.evaluation import goal_rate_summary
 from sb3_hfo.hybrid_ppo import HybridPPO
 from sb3_hfo.vec_env import make_hfo_vec_env
 
@@ -150,15 +150,7 @@ def greedy_evaluation(
             else:
                 active[game] = False
     env.close()
-    goals = statuses.get("GOAL", 0)
-    low, high = wilson_interval(goals, episodes)
-    return {
-        "episodes": episodes,
-        "goals": goals,
-        "rate": goals / episodes,
-        "ci95": [low, high],
-        "status": dict(statuses),
-    }
+    return goal_rate_summary(statuses, episodes)
 
 
 class RunRecorder(BaseCallback):

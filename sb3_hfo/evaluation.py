@@ -37,7 +37,7 @@ from __future__ import annotations
 
 import math
 from collections import Counter
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -170,6 +170,19 @@ class EvaluationResult:
     acting: str = ""
     mean_shot_distance: float | None = None
     shots_by_distance: dict[str, dict[str, int]] = field(default_factory=dict)
+
+
+def goal_rate_summary(statuses: Mapping[str, int], episodes: int) -> dict[str, Any]:
+    """Goals, goal rate and its Wilson 95 % interval, and the end-status counts of ``episodes`` episodes."""
+    goals = int(statuses.get(GOAL_STATUS, 0))
+    low, high = wilson_interval(goals, episodes)
+    return {
+        "episodes": episodes,
+        "goals": goals,
+        "rate": goals / episodes,
+        "ci95": [low, high],
+        "status": dict(statuses),
+    }
 
 
 def shot_distance_labels() -> list[str]:

@@ -28,7 +28,7 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvO
 
 from hfo2d.features import FEATURES_PER_PLAYER, NUM_BASIC_FEATURES
 from hfo2d.team import TeamGame
-from sb3_hfo.evaluation import wilson_interval
+from sb3_hfo.evaluation import goal_rate_summary
 
 __all__ = [
     "FrozenOpponent",
@@ -43,7 +43,6 @@ __all__ = [
     "widen_policy_inputs",
 ]
 
-GOAL_STATUS = "GOAL"
 
 SIDES: tuple[str, ...] = ("offense", "defense")
 
@@ -473,14 +472,8 @@ def _team_summary(
 ) -> dict[str, Any]:
     """The result of :func:`evaluate_team` / :func:`evaluate_team_games`: goal rate with its Wilson interval, end
     statuses, mean cycles per episode and how many agents held the ball in an episode."""
-    goals = statuses.get(GOAL_STATUS, 0)
-    low, high = wilson_interval(goals, episodes)
     return {
-        "episodes": episodes,
-        "goals": goals,
-        "rate": goals / episodes,
-        "ci95": [low, high],
-        "status": dict(statuses),
+        **goal_rate_summary(statuses, episodes),
         "mean_cycles": cycles / episodes,
         "ball_holders": {str(k): holders[k] for k in sorted(holders)},
         "agents": names,

@@ -68,9 +68,8 @@ from hfo2d.agent2d.formation import normal_formation
 from hfo2d.agent2d.formation_data import GOALIE_CATCH_OUR
 from hfo2d.agent2d.goalie import (
     _PACK_FOUR,
-    KICKABLE_OPP_ERROR_MAX,
-    KICKABLE_OPP_ERROR_RATE,
     fullstate_value,
+    opponent_may_kick,
 )
 from hfo2d.agent2d.intercept import build_intercept_table, full_self_cache, predict_player_reach
 from hfo2d.agent2d.tackle import basic_tackle
@@ -371,9 +370,7 @@ class Agent2dDefender:
             if o[5] <= 0:
                 opp_ball = math.hypot(o[0] - bx, o[1] - by)
                 opp_self = math.hypot(o[0] - px, o[1] - py)
-                kick_opp = opp_ball < KICKABLE_AREA + min(
-                    KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
-                ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
+                kick_opp = opponent_may_kick(opp_ball, opp_self, d_b)
                 break
         nearest = opponents[0] if opponents else None
         self_kick = d_b <= SELF_KICKABLE_DIST

@@ -40,6 +40,16 @@ from hfo2d.protocol import AGENT2D_FIRST_BODY_DEGS
 # kickable_area + min(0.25, 0.02 * ball distance from self) + min(0.25, 0.02 * its distance from self).
 KICKABLE_OPP_ERROR_MAX = 0.25
 KICKABLE_OPP_ERROR_RATE = 0.02
+
+
+def opponent_may_kick(opp_ball: float, opp_self: float, ball_from_self: float) -> bool:
+    """librcsc's kickable-opponent test above: the opponent ``opp_ball`` from the ball and ``opp_self`` from this
+    player, the ball ``ball_from_self`` from this player (KICKABLE_AREA as bound to the server parameters)."""
+    return opp_ball < KICKABLE_AREA + min(
+        KICKABLE_OPP_ERROR_MAX, ball_from_self * KICKABLE_OPP_ERROR_RATE
+    ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
+
+
 # librcsc world_model.cpp updateLastKicker: a player within 2 * ball_speed_max of the ball may have kicked it.
 LAST_KICKER_DIST = 6.0
 BALL_VEL_CHANGE_SPEED = 0.1
@@ -500,9 +510,7 @@ class Agent2dGoalie:
                     oy = -fs(opp_raw[1])
                     opp_ball = math.hypot(ox - bx, oy - by)
                     opp_self = math.hypot(ox - px, oy - py)
-                    kick_opp = opp_ball < KICKABLE_AREA + min(
-                        KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
-                    ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
+                    kick_opp = opponent_may_kick(opp_ball, opp_self, d_b)
         if self._catch_pending:
             # the referee's goalie_catch_ball message: GoalieCatch mode until the next episode. The ball velocity
             # stays the fullstate's: librcsc ball_object.cpp BallObject::update zeroes it only in the set plays
@@ -590,9 +598,7 @@ class Agent2dGoalie:
             if opponents[k].tackle_cycles <= 0:
                 opp_ball = math.hypot(o[0] - bx, o[1] - by)
                 opp_self = math.hypot(o[0] - px, o[1] - py)
-                kick_opp = opp_ball < KICKABLE_AREA + min(
-                    KICKABLE_OPP_ERROR_MAX, d_b * KICKABLE_OPP_ERROR_RATE
-                ) + min(KICKABLE_OPP_ERROR_MAX, opp_self * KICKABLE_OPP_ERROR_RATE)
+                kick_opp = opponent_may_kick(opp_ball, opp_self, d_b)
                 break
         others = tuple(
             (
