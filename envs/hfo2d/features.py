@@ -697,6 +697,32 @@ def paper_from_hfo(features: Sequence[float], num_teammates: int = 0, num_oppone
     return out
 
 
+#: The goalie's uniform number (rcssserver: the goalie is unum 1; HFO's trainer gives it to the first defender).
+GOALIE_UNUM = 1
+
+
+def keeper_view_from_hfo(
+    features: Sequence[float], num_teammates: int = 0, num_opponents: int = 0
+) -> list[float]:
+    """HFO/Keeper-v1's view of an offense agent's state in a team game, from HFO master's vector.
+
+    The paper-era 58 basic features (:func:`paper_from_hfo`), then the 8-feature block of the opponent whose
+    uniform-number entry is the goalie's (``GOALIE_UNUM / 100``), wherever HFO listed it; just the 58 when no
+    opponent slot holds the goalie. This is what the rewards that read the goalie at features 58-65
+    (:data:`hfo2d.reward.GOALIE_READING_REWARDS`) need, since a team layout puts the teammates' blocks first.
+
+    Raises:
+        ValueError: as :func:`paper_from_hfo`.
+    """
+    paper = paper_from_hfo(features, num_teammates, num_opponents)
+    unum_start = len(paper) + num_teammates  # master's uniform numbers follow the 8-feature blocks, teammates first
+    for slot in range(num_opponents):
+        if round(float(features[unum_start + slot]) * 100.0) == GOALIE_UNUM:
+            start = NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (num_teammates + slot)
+            return paper[:NUM_BASIC_FEATURES] + paper[start : start + FEATURES_PER_PLAYER]
+    return paper[:NUM_BASIC_FEATURES]
+
+
 def landmark_position(
     features: Sequence[float], sin_index: int, cos_index: int, proximity_index: int
 ) -> tuple[float, float]:

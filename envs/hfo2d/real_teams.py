@@ -30,7 +30,9 @@ Spaces (each agent's own, one object per agent):
   (direction) and, for the goalie, CATCH (:func:`defense_action_space`). Powers map to [0, 100], directions to
   [-180, 180] degrees, as in :class:`hfo2d.hfo_env.HFOEnv`; each is sent as HFO's low-level ``act``.
 
-Rewards: an offense agent gets hfo2d's ``reward`` (:mod:`hfo2d.reward`) from its own paper-era features (with
+Rewards: an offense agent gets hfo2d's ``reward`` (:mod:`hfo2d.reward`) from its own paper-era features (the
+gap rewards, which read the goalie's block, from HFO/Keeper-v1's view of them: :func:`hfo2d.features.
+keeper_view_from_hfo`, as hfo2d's TeamGame does; with
 ``feature_set="high_level"`` only ``"sparse"`` is possible, since the shaped rewards read low-level features); a
 defender gets +1 when the episode ends with the ball captured, out of bounds or out of time, -1 on a goal, 0 else.
 
@@ -58,6 +60,7 @@ from hfo2d.features import (
     hfo_num_features,
     high_level_bounds,
     high_level_num_features,
+    keeper_view_from_hfo,
     num_features,
     paper_from_hfo,
 )
@@ -102,7 +105,7 @@ from hfo2d.real import (
     _Session,
     _SessionEnv,
 )
-from hfo2d.reward import REWARD_NAMES, make_reward
+from hfo2d.reward import GOALIE_READING_REWARDS, REWARD_NAMES, make_reward
 
 try:  # PettingZoo is optional: without it the class keeps the same API, duck-typed
     from pettingzoo import ParallelEnv as _ParallelBase
@@ -392,6 +395,11 @@ class RealTeamParallelEnv(_SessionEnv, _ParallelBase):  # type: ignore[misc,vali
             for role in roles
         }
         self._rewards = {role.name: make_reward(reward) for role in roles if role.offense}
+        # a gap reward reads the goalie at features 58-65, where a team's layout has the teammates' blocks: such a
+        # reward gets HFO/Keeper-v1's view of the state (keeper_view_from_hfo), as hfo2d's TeamGame gives it
+        self._reward_needs_goalie_view = reward in GOALIE_READING_REWARDS and not (
+            num_offense == 1 and num_defense == 1
+        )
 
         self._raw: dict[str, list[float]] = {}
         self._obs: dict[str, list[float]] = {}
@@ -512,7 +520,7 @@ class RealTeamParallelEnv(_SessionEnv, _ParallelBase):  # type: ignore[misc,vali
         self._set_current(self._next_episode(seed))
         self.agents = list(self.possible_agents)
         for name, reward_fn in self._rewards.items():
-            reward_fn.reset(self._paper.get(name))
+            reward_fn.reset(self._reward_features(name))
         return self._observations(), {name: self._info(name) for name in self.agents}
 
     def _finish_episode(self) -> None:
@@ -584,7 +592,7 @@ class RealTeamParallelEnv(_SessionEnv, _ParallelBase):  # type: ignore[misc,vali
             info["action"] = decoded[name][0]
             info["stale_observation"] = status != IN_GAME
             if role.offense:
-                features = self._paper.get(name, ())
+                features = self._reward_features(name)
                 reward, terms = self._rewards[name](features, status, terminated or truncated)
                 info["reward_terms"] = terms
             else:
@@ -652,6 +660,15 @@ class RealTeamParallelEnv(_SessionEnv, _ParallelBase):  # type: ignore[misc,vali
             if self.feature_set != "high_level":
                 self._paper[role.name] = paper_from_hfo(raw, *self._slots[role.name])
             self._on_ball = (SIDE_LETTERS.get(side, "U"), int(unum))
+
+    def _reward_features(self, name: str) -> list[float]:
+        """What offense agent ``name``'s reward reads: its paper features, or HFO/Keeper-v1's view of them for a
+        reward that reads the goalie's block (empty before the first state)."""
+        if name not in self._paper:
+            return []
+        if not self._reward_needs_goalie_view:
+            return self._paper[name]
+        return keeper_view_from_hfo(self._raw[name], *self._slots[name])
 
     def _observations(self, agents: Sequence[str] | None = None) -> dict[str, np.ndarray]:
         names = self.agents if agents is None else agents

@@ -70,6 +70,10 @@ from hfo2d.features import (
 )
 
 REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "sparse")
+#: The rewards that read the goalie's block (:func:`gap_target`: features 58-65, where HFO/Keeper-v1's layout has the
+#: goalie). A team's layout puts the nearest teammate there, so a team env gives these rewards the 1v1 view of the
+#: same state (the 58 basic features, then the goalie's block alone).
+GOALIE_READING_REWARDS: tuple[str, ...] = ("shaped_gap", "shaped_gap_refund")
 STATUS_IN_GAME = "IN_GAME"
 STATUS_GOAL = "GOAL"
 

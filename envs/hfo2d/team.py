@@ -126,7 +126,7 @@ from hfo2d.protocol import (
     POWER_MIN,
 )
 from hfo2d.referee import Referee
-from hfo2d.reward import make_reward
+from hfo2d.reward import GOALIE_READING_REWARDS, make_reward
 from hfo2d.strikers import STRIKERS, Striker, make_striker
 
 __all__ = [
@@ -194,8 +194,6 @@ TEAM_ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
 #: "high_level" is HFO's high-level feature set, offered when hfo2d.features has it (high_level_feature_list).
 TEAM_FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
 TEAM_OFFENSE_REWARDS: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "sparse")
-#: Offense rewards that read the goalie's block (hfo2d.reward.gap_target: features 58-65, the 1v1 layout's goalie).
-GOALIE_READING_REWARDS: tuple[str, ...] = ("shaped_gap", "shaped_gap_refund")
 TEAM_DEFENSE_REWARDS: tuple[str, ...] = ("sparse", "shaped")
 #: The statuses that end an episode in the defense's favour (its sparse reward +1).
 DEFENSE_WINS: tuple[str, ...] = (CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME)
