@@ -715,7 +715,9 @@ def keeper_view_from_hfo(
         ValueError: as :func:`paper_from_hfo`.
     """
     paper = paper_from_hfo(features, num_teammates, num_opponents)
-    unum_start = len(paper) + num_teammates  # master's uniform numbers follow the 8-feature blocks, teammates first
+    unum_start = (
+        len(paper) + num_teammates
+    )  # master's uniform numbers follow the 8-feature blocks, teammates first
     for slot in range(num_opponents):
         if round(float(features[unum_start + slot]) * 100.0) == GOALIE_UNUM:
             start = NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (num_teammates + slot)

@@ -348,6 +348,42 @@ def test_real_two_agents_against_the_goalie(real_hfo_build: Path) -> None:
     assert not own_namespace or _session_processes(real_hfo_build) == []
 
 
+def test_real_gap_reward_reads_the_goalie_by_its_uniform_number(real_hfo_build: Path) -> None:
+    """In real HFO's 2v2 the goalie (agent2d's, unum 1) is listed among the opponents with uniform-number entry
+    0.01, not always first; a striker's gap reward reads that block (features.keeper_view_from_hfo)."""
+    env = RealTeamParallelEnv(
+        2,
+        0,
+        2,
+        hfo_dir=real_hfo_build,
+        seed=5,
+        feature_set="hfo",
+        reward="shaped_gap_refund",
+        frames_per_trial=60,
+        untouched_time=20,
+    )
+    basic = num_features(1, 2)  # where master's uniform numbers start
+    obs, _ = env.reset()
+    seen_slots = set()
+    for _ in range(60):
+        for name, vector in obs.items():
+            opponent_unums = [round(value * 100) for value in vector[basic + 1 : basic + 3]]
+            assert 1 in opponent_unums
+            slot = opponent_unums.index(1)
+            seen_slots.add(slot)
+            view = env._reward_features(name)
+            paper = env._paper[name]
+            start = 58 + 8 * (1 + slot)
+            assert view == paper[:58] + paper[start : start + 8]
+        obs, _, _, _, _ = env.step({agent: env.action_space(agent).sample() for agent in env.agents})
+        if not env.agents:
+            obs, _ = env.reset()
+    env.close()
+    assert (
+        1 in seen_slots
+    )  # HFO lists opponents by distance: the goalie is often second (477 of 600 states, seed 5)
+
+
 CRASHING_SCRIPT = """
 import os, signal
 from hfo2d.real_teams import RealTeamParallelEnv

@@ -86,7 +86,9 @@ def test_the_real_backends_keeper_view_matches_the_team_games(offense: int, npcs
             got = keeper_view_from_hfo(obs.tolist(), offense - 1, npcs)
             assert len(got) == NUM_BASIC_FEATURES + FEATURES_PER_PLAYER
             np.testing.assert_allclose(got, expected, rtol=0, atol=2e-6)  # the observation's float32 rounding
-            first_opponent_unum = obs[NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (offense - 1 + npcs) + offense - 1]
+            first_opponent_unum = obs[
+                NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (offense - 1 + npcs) + offense - 1
+            ]
             goalie_not_first += npcs > 1 and round(first_opponent_unum * 100) != 1
             checked += 1
         observations, _, terminated, truncated, _ = game.step(chase_actions(observations, kick=step % 3 == 0))
