@@ -866,8 +866,9 @@ def _closest_distance(x: float, y: float, opponents: Sequence[PlayerState]) -> f
     return min((math.hypot(other.x - x, other.y - y) for other in opponents), default=3.4028234663852886e38)
 
 
-def _librcsc_degrees(angle: float) -> float:
-    """An angle folded into [-180, 180] as librcsc's AngleDeg::normalize_angle does (180 stays 180)."""
+def norm_deg(angle: float) -> float:
+    """An angle folded into [-180, 180] as librcsc's AngleDeg::normalize_angle does (180 stays 180); agent2d's port
+    (hfo2d.agent2d.common) uses it too."""
     if angle < -360.0 or angle > 360.0:
         angle = math.fmod(angle, 360.0)
     if angle < -180.0:
@@ -885,7 +886,7 @@ def mirrored_state(state: PlayerState | BallState) -> PlayerState | BallState:
 
     changes: dict[str, float] = {"x": -state.x, "y": -state.y, "vx": -state.vx, "vy": -state.vy}
     if hasattr(state, "body_deg"):
-        changes["body_deg"] = _librcsc_degrees(state.body_deg + 180.0)
+        changes["body_deg"] = norm_deg(state.body_deg + 180.0)
     return replace(state, **changes)  # type: ignore[arg-type,return-value]
 
 
@@ -942,7 +943,7 @@ def high_level_feature_list(
     y_low, y_high = -PITCH_HALF_WIDTH - HIGH_LEVEL_Y_TOLERANCE, PITCH_HALF_WIDTH + HIGH_LEVEL_Y_TOLERANCE
     max_r = HFO_MASTER_MAX_DIST
     x, y = player.x, player.y
-    body = math.radians(_librcsc_degrees(player.body_deg))  # librcsc's AngleDeg, in [-180, 180]
+    body = math.radians(norm_deg(player.body_deg))  # librcsc's AngleDeg, in [-180, 180]
     goal_x = PITCH_HALF_LENGTH if playing_offense else -PITCH_HALF_LENGTH
     goal_dx, goal_dy = goal_x - x, -y
     features = [

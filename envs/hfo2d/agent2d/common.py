@@ -16,6 +16,8 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+# librcsc AngleDeg::normalize_angle, re-exported for the agent2d modules; features.py is the leaf both share
+from hfo2d.features import norm_deg as norm_deg
 from hfo2d.physics import ServerParams
 
 # --- constants (GF) -------------------------------------------------------------------------------------------
@@ -109,17 +111,6 @@ def _bind(sp: ServerParams) -> None:
 # intercept entry modes (librcsc InterceptInfo)
 NORMAL = 0
 EXHAUST = 1
-
-
-def norm_deg(a: float) -> float:
-    """An angle wrapped into [-180, 180] (librcsc AngleDeg::normalize_angle)."""
-    if a < -360.0 or a > 360.0:
-        a = math.fmod(a, 360.0)
-    if a < -180.0:
-        a += 360.0
-    if a > 180.0:
-        a -= 360.0
-    return a
 
 
 def angle_of(x: float, y: float) -> float:
