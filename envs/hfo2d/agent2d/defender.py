@@ -72,7 +72,7 @@ from hfo2d.agent2d.goalie import (
     fullstate_value,
     opponent_may_kick,
 )
-from hfo2d.agent2d.intercept import build_intercept_table, full_self_cache, predict_player_reach
+from hfo2d.agent2d.intercept import build_intercept_table, fastest_reach, full_self_cache
 from hfo2d.agent2d.tackle import basic_tackle
 from hfo2d.physics import PlayerState, ServerParams, World
 
@@ -525,20 +525,11 @@ class Agent2dDefender:
         # the fast table: self_min and the fastest entry are exact, the full self cache (which only Body_Intercept
         # reads) is built when the intercept branch is taken (_basic_move)
         base = build_intercept_table(view, full=False)
-        cache = base.ball_cache
-        if view.kick_opp:
-            opp_min = 0
-        else:
-            opp_min = 1000
-            for o in view.opponents:
-                opp_min = min(opp_min, predict_player_reach(view, cache, o, teammate=False))
-        if view.mate_kick:
-            mate_min = 0
-        else:
-            mate_min = 1000
-            for t in view.teammates:
-                mate_min = min(mate_min, predict_player_reach(view, cache, t, teammate=True))
-        return TeamInterceptTable(cache, base.self_cache, base.self_min, opp_min, False, mate_min, base)
+        ball = base.ball_part()
+        # the fastest of each side (fastest_reach: predict_player_reach for each, the hopeless ones skipped)
+        opp_min = 0 if view.kick_opp else fastest_reach(view, ball, view.opponents, False)
+        mate_min = 0 if view.mate_kick else fastest_reach(view, ball, view.teammates, True)
+        return TeamInterceptTable(ball[0], base.self_cache, base.self_min, opp_min, False, mate_min, base)
 
     @staticmethod
     def _forced_kickable(view: DefenderView, table: TeamInterceptTable) -> None:
