@@ -400,15 +400,20 @@ class Agent2dDefender:
         for p in world.players:
             if p is me:
                 continue
+            if p.goalie and p.side == side:
+                # our goalie: only its position and freeze are read (no reach is predicted for it)
+                gx = -fs(p.x)
+                gy = -fs(p.y)
+                our_xs.append(gx)
+                mates.append((hypot(gx - bx, gy - by), int(p.tackle_cycles)))
+                goalie_pos = (gx, gy)
+                continue
             other = _fs_player(p)
             ball_dist = hypot(other[0] - bx, other[1] - by)
             if p.side == side:
                 our_xs.append(other[0])
                 mates.append((ball_dist, other[5]))
-                if p.goalie:
-                    goalie_pos = (other[0], other[1])
-                else:
-                    ranked_teammates.append((ball_dist, other))
+                ranked_teammates.append((ball_dist, other))
             else:
                 ranked_opponents.append((ball_dist, hypot(other[0] - px, other[1] - py), other))
         # stable sorts by the ball distance alone: equal distances keep the server order
