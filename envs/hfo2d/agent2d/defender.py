@@ -69,6 +69,7 @@ from hfo2d.agent2d.formation import normal_formation
 from hfo2d.agent2d.formation_data import GOALIE_CATCH_OUR
 from hfo2d.agent2d.goalie import (
     _PACK_FOUR,
+    _VIEW_FIELDS,
     fullstate_value,
     opponent_may_kick,
 )
@@ -160,35 +161,7 @@ class TeamInterceptTable(InterceptTable):
 
 
 # Agent2dDefender._view builds its DefenderView positionally, in this field order
-_DEFENDER_VIEW_FIELDS = (
-    "cycle",
-    "px",
-    "py",
-    "vx",
-    "vy",
-    "body",
-    "stamina",
-    "effort",
-    "recovery",
-    "bx",
-    "by",
-    "wx",
-    "wy",
-    "true_wx",
-    "true_wy",
-    "has_opp",
-    "ox",
-    "oy",
-    "ux",
-    "uy",
-    "obody",
-    "opp_tackle_count",
-    "kick_opp",
-    "self_kickable",
-    "lk_not_ours",
-    "play_on",
-    "ball_rand",
-    "player_rand",
+_DEFENDER_VIEW_FIELDS = _VIEW_FIELDS + (  # GoalieView's fields (hfo2d.agent2d.goalie), then its own
     "unum",
     "opponents",
     "teammates",
@@ -531,7 +504,7 @@ class Agent2dDefender:
         # reads) is built when the intercept branch is taken (_basic_move)
         base = build_intercept_table(view, full=False)
         ball = base.ball_part()
-        # the fastest of each side (fastest_reach: predict_player_reach for each, the hopeless ones skipped)
+        # the fastest of each side (fastest_reach: predict_player_reach for each, on the ball part's frame)
         opp_min = 0 if view.kick_opp else fastest_reach(view, ball, view.opponents, False)
         mate_min = 0 if view.mate_kick else fastest_reach(view, ball, view.teammates, True)
         return TeamInterceptTable(ball[0], base.self_cache, base.self_min, opp_min, False, mate_min, base)
