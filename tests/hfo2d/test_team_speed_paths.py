@@ -4,6 +4,7 @@ tests pin each shortcut on its own, on states where it matters."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import pickle
 
@@ -13,8 +14,13 @@ from hfo2d.agent2d import formation_data
 from hfo2d.agent2d.common import norm_deg
 from hfo2d.agent2d.defender import Agent2dDefender
 from hfo2d.agent2d.formation import Formation, normal_formation
-from hfo2d.agent2d.goalie import fullstate_value
-from hfo2d.agent2d.intercept import build_intercept_table, full_self_cache
+from hfo2d.agent2d.goalie import fullstate_value, opponent_may_kick
+from hfo2d.agent2d.intercept import (
+    build_intercept_table,
+    fastest_reach,
+    full_self_cache,
+    predict_player_reach,
+)
 from hfo2d.physics import ServerParams, World
 from hfo2d.protocol import DEFENSE_SIDE, OFFENSE_SIDE
 from hfo2d.team import TeamGame
@@ -153,3 +159,46 @@ def test_team_observations_are_writable_arrays_of_their_own() -> None:
     assert observations["offense_0"].flags.writeable
     assert not np.shares_memory(observations["offense_0"], observations["offense_1"])
     assert kept.any()
+
+
+def test_fastest_reach_is_the_smallest_predict_player_reach() -> None:
+    """intercept.fastest_reach reuses the ball part's frame for every player: the same reach cycles as
+    predict_player_reach, which computes the frame again for each (moving and resting balls alike)."""
+    rng = np.random.default_rng(7)
+    views = []
+    for view in _defender_views(300, seed=5):
+        views.append(view)
+        # the same players with the ball moving in any direction (these games' ball mostly rests)
+        wx, wy = rng.uniform(-2.0, 2.0, size=2)
+        views.append(
+            dataclasses.replace(view, wx=float(wx), wy=float(wy), true_wx=float(wx), true_wy=float(wy))
+        )
+    reached = 0
+    for view in views:
+        table = build_intercept_table(view, full=False)
+        ball = table.ball_part()
+        for players, teammate in ((view.opponents, False), (view.teammates, True), (view.opponents, True)):
+            reaches = [predict_player_reach(view, ball[0], p, teammate=teammate) for p in players]
+            assert fastest_reach(view, ball, players, teammate) == min([1000, *reaches])
+            assert fastest_reach(view, ball, players, teammate, best=3) == min([3, *reaches])
+            reached += min([1000, *reaches]) < 1000
+    assert reached > 500  # most predictions find a cycle
+
+
+def test_the_defenders_view_ranks_the_players_as_the_reference() -> None:
+    """Agent2dDefender._view computes each player's distances once for its sorts and tests: the same order
+    (stable by distance from the ball), kickable flag and nearest-opponent distance as computing them anew."""
+    views = _defender_views(300, seed=6)
+    assert len(views) == 300
+    for view in views:
+        ball_dist = [math.hypot(o[0] - view.bx, o[1] - view.by) for o in view.opponents]
+        assert ball_dist == sorted(ball_dist)
+        assert view.opp_self_dist == min(math.hypot(o[0] - view.px, o[1] - view.py) for o in view.opponents)
+        first = next(o for o in view.opponents if o[5] <= 0)
+        expected = opponent_may_kick(
+            math.hypot(first[0] - view.bx, first[1] - view.by),
+            math.hypot(first[0] - view.px, first[1] - view.py),
+            math.hypot(view.bx - view.px, view.by - view.py),
+        )
+        assert view.kick_opp == expected
+        assert (view.ox, view.oy) == view.opponents[0][:2]

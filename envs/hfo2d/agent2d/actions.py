@@ -110,7 +110,7 @@ def _first_term(dist: float, n: int) -> float:
 
 def _self_at(view: GoalieView, n: int) -> tuple[float, float]:
     """librcsc inertia_n_step_point for the goalie."""
-    f = (1.0 - PLAYER_DECAY**n) / (1.0 - PLAYER_DECAY)
+    f = _SELF_AT_SUMS[n] if 0 <= n < _SELF_AT_SUMS_LEN else (1.0 - PLAYER_DECAY**n) / (1.0 - PLAYER_DECAY)
     return view.px + view.vx * f, view.py + view.vy * f
 
 
@@ -141,7 +141,7 @@ def _bind(sp: ServerParams) -> None:
     global PLAYER_SPEED_MAX, REAL_SPEED_MAX, STAMINA_INC_MAX, STAMINA_MAX, DASH_POWER_RATE, MIN_DASH_POWER
     global MAX_DASH_POWER, MAX_MOMENT, DASH_ANGLE_STEP, PLAYER_SPEED_MAX2, RECOVER_DEC_THR_VALUE
     global SAFETY_STAMINA_THR, RECOVER_MIN, RECOVER_DEC, PLAYER_SIZE, _POST_COLLISION_DIST, _POST_CHECK_DIST2
-    global _SPEED_MAX_09, _ALL_DASH_DIR_RATES
+    global _SPEED_MAX_09, _ALL_DASH_DIR_RATES, _SELF_AT_SUMS, _SELF_AT_SUMS_LEN
     # the ones hfo2d.agent2d.common derives
     BALL_DECAY = _common.BALL_DECAY
     CATCHABLE_AREA = _common.CATCHABLE_AREA
@@ -172,6 +172,10 @@ def _bind(sp: ServerParams) -> None:
     )  # (quirk) compared with a *squared* distance
     _SPEED_MAX_09 = REAL_SPEED_MAX * 0.9  # librcsc body_intercept2009.cpp getBestIntercept
     _ALL_DASH_DIR_RATES = tuple((d, dash_dir_rate(d)) for d in _ALL_DASH_DIRS)
+    # _self_at's sums 1 + decay + ... + decay**(n-1) for n < 101 (Body_GoToPoint's 100 cycles and the intercept's
+    # reach cycles), each by _self_at's own expression
+    _SELF_AT_SUMS = tuple((1.0 - PLAYER_DECAY**n) / (1.0 - PLAYER_DECAY) for n in range(101))
+    _SELF_AT_SUMS_LEN = len(_SELF_AT_SUMS)
 
 
 register_binder(_bind)

@@ -40,7 +40,8 @@ kickable buffer, the forced kickable rule, the foul probability), ``rcsc/player/
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
+from operator import itemgetter
 
 import numpy as np
 
@@ -68,10 +69,11 @@ from hfo2d.agent2d.formation import normal_formation
 from hfo2d.agent2d.formation_data import GOALIE_CATCH_OUR
 from hfo2d.agent2d.goalie import (
     _PACK_FOUR,
+    _VIEW_FIELDS,
     fullstate_value,
     opponent_may_kick,
 )
-from hfo2d.agent2d.intercept import build_intercept_table, full_self_cache, predict_player_reach
+from hfo2d.agent2d.intercept import build_intercept_table, fastest_reach, full_self_cache
 from hfo2d.agent2d.tackle import basic_tackle
 from hfo2d.physics import PlayerState, ServerParams, World
 
@@ -156,6 +158,27 @@ class TeamInterceptTable(InterceptTable):
     #: the lazy table (build_intercept_table(view, full=False)) the fields were read from: its ball cache serves
     #: the full self cache when Body_Intercept needs it (intercept.full_self_cache)
     source: InterceptTable | None = None
+
+
+# Agent2dDefender._view builds its DefenderView positionally, in this field order
+_DEFENDER_VIEW_FIELDS = _VIEW_FIELDS + (  # GoalieView's fields (hfo2d.agent2d.goalie), then its own
+    "unum",
+    "opponents",
+    "teammates",
+    "goalie_pos",
+    "mate_kick",
+    "mate_ball_dist",
+    "opp_self_dist",
+    "defense_line_x",
+    "offside_line_x",
+)
+if tuple(f.name for f in fields(DefenderView)) != _DEFENDER_VIEW_FIELDS:
+    raise ImportError(
+        "DefenderView's fields changed: update defender._DEFENDER_VIEW_FIELDS and Agent2dDefender._view"
+    )
+
+
+_first = itemgetter(0)  # a sort key (in C)
 
 
 def _fs_player(p: PlayerState) -> OtherPlayer:
@@ -335,29 +358,42 @@ class Agent2dDefender:
             stamina, effort, recovery = fs(me.stamina), fs(me.effort), fs(me.recovery)
             self._body_key = key
             self._body_numbers = (body, stamina, effort, recovery)
-        d_b = math.hypot(bx - px, by - py)
-        opponents: list[OtherPlayer] = []
-        teammates: list[OtherPlayer] = []
+        hypot = math.hypot
+        d_b = hypot(bx - px, by - py)
+        # (distance from the ball, distance from self, numbers) of every opponent; (distance from the ball,
+        # numbers) of every other field player of ours; each distance is computed once and reused by the sorts and
+        # the tests below (the same expressions they used)
+        ranked_opponents: list[tuple[float, float, OtherPlayer]] = []
+        ranked_teammates: list[tuple[float, OtherPlayer]] = []
         goalie_pos: tuple[float, float] | None = None
         # (ball distance, tackle freeze) of every teammate, the goalie included
         mates: list[tuple[float, int]] = []
         our_xs = [px]
+        side = me.side
         for p in world.players:
             if p is me:
                 continue
+            if p.goalie and p.side == side:
+                # our goalie: only its position and freeze are read (no reach is predicted for it)
+                gx = -fs(p.x)
+                gy = -fs(p.y)
+                our_xs.append(gx)
+                mates.append((hypot(gx - bx, gy - by), int(p.tackle_cycles)))
+                goalie_pos = (gx, gy)
+                continue
             other = _fs_player(p)
-            if p.side == me.side:
+            ball_dist = hypot(other[0] - bx, other[1] - by)
+            if p.side == side:
                 our_xs.append(other[0])
-                mates.append((math.hypot(other[0] - bx, other[1] - by), other[5]))
-                if p.goalie:
-                    goalie_pos = (other[0], other[1])
-                else:
-                    teammates.append(other)
+                mates.append((ball_dist, other[5]))
+                ranked_teammates.append((ball_dist, other))
             else:
-                opponents.append(other)
-        opponents.sort(key=lambda o: math.hypot(o[0] - bx, o[1] - by))
-        teammates.sort(key=lambda o: math.hypot(o[0] - bx, o[1] - by))
-        mates.sort(key=lambda m: m[0])
+                ranked_opponents.append((ball_dist, hypot(other[0] - px, other[1] - py), other))
+        # stable sorts by the ball distance alone: equal distances keep the server order
+        ranked_opponents.sort(key=_first)
+        ranked_teammates.sort(key=_first)
+        mates.sort(key=_first)
+        opponents = [o for _, _, o in ranked_opponents]
         # check_player_kickable: the first player of a side by distance to the ball that is not tackling is tested
         # (a teammate within kickable_area, an opponent within kickable_area plus the observation margins)
         mate_kick = False
@@ -366,10 +402,8 @@ class Agent2dDefender:
                 mate_kick = dist < KICKABLE_AREA
                 break
         kick_opp = False
-        for o in opponents:
+        for opp_ball, opp_self, o in ranked_opponents:
             if o[5] <= 0:
-                opp_ball = math.hypot(o[0] - bx, o[1] - by)
-                opp_self = math.hypot(o[0] - px, o[1] - py)
                 kick_opp = opponent_may_kick(opp_ball, opp_self, d_b)
                 break
         nearest = opponents[0] if opponents else None
@@ -377,50 +411,54 @@ class Agent2dDefender:
         true_wx, true_wy = wx, wy
         if kick_opp and not self_kick:
             wx = wy = 0.0  # BallObject::setOpponentControlEffect
-        opp_self_dist = min((math.hypot(o[0] - px, o[1] - py) for o in opponents), default=math.inf)
+        opp_self_dist = math.inf
+        for _, opp_self, _ in ranked_opponents:
+            if opp_self < opp_self_dist:
+                opp_self_dist = opp_self
         self._defense_line_x = self._update_defense_line(our_xs, goalie_pos is not None, bx)
         offside = self._offside_line(opponents, bx + wx)
         noise = world.noise
         params = world.params
         o = nearest if nearest is not None else (0.0, 0.0, 0.0, 0.0, 0.0, 0)
+        # positional, in _DEFENDER_VIEW_FIELDS order (a keyword call of 37 fields costs about 1.5 us more)
         return DefenderView(
-            cycle=world.cycle,
-            px=px,
-            py=py,
-            vx=vx,
-            vy=vy,
-            body=body,
-            stamina=stamina,
-            effort=effort,
-            recovery=recovery,
-            bx=bx,
-            by=by,
-            wx=wx,
-            wy=wy,
-            true_wx=true_wx,
-            true_wy=true_wy,
-            has_opp=nearest is not None,
-            ox=o[0],
-            oy=o[1],
-            ux=o[2],
-            uy=o[3],
-            obody=o[4],
-            opp_tackle_count=o[5],
-            kick_opp=kick_opp,
-            self_kickable=self_kick,
-            lk_not_ours=False,
-            play_on=self._play_on,
-            ball_rand=params.ball_rand if noise else 0.0,
-            player_rand=params.player_rand if noise else 0.0,
-            unum=self.unum,
-            opponents=tuple(opponents),
-            teammates=tuple(teammates),
-            goalie_pos=goalie_pos,
-            mate_kick=mate_kick,
-            mate_ball_dist=mates[0][0] if mates else math.inf,
-            opp_self_dist=opp_self_dist,
-            defense_line_x=self._defense_line_x,
-            offside_line_x=offside,
+            world.cycle,
+            px,
+            py,
+            vx,
+            vy,
+            body,
+            stamina,
+            effort,
+            recovery,
+            bx,
+            by,
+            wx,
+            wy,
+            true_wx,
+            true_wy,
+            nearest is not None,
+            o[0],
+            o[1],
+            o[2],
+            o[3],
+            o[4],
+            o[5],
+            kick_opp,
+            self_kick,
+            False,
+            self._play_on,
+            params.ball_rand if noise else 0.0,
+            params.player_rand if noise else 0.0,
+            self.unum,
+            tuple(opponents),
+            tuple(t for _, t in ranked_teammates),
+            goalie_pos,
+            mate_kick,
+            mates[0][0] if mates else math.inf,
+            opp_self_dist,
+            self._defense_line_x,
+            offside,
         )
 
     def _update_defense_line(self, our_xs: list[float], goalie_known: bool, ball_x: float) -> float:
@@ -465,20 +503,11 @@ class Agent2dDefender:
         # the fast table: self_min and the fastest entry are exact, the full self cache (which only Body_Intercept
         # reads) is built when the intercept branch is taken (_basic_move)
         base = build_intercept_table(view, full=False)
-        cache = base.ball_cache
-        if view.kick_opp:
-            opp_min = 0
-        else:
-            opp_min = 1000
-            for o in view.opponents:
-                opp_min = min(opp_min, predict_player_reach(view, cache, o, teammate=False))
-        if view.mate_kick:
-            mate_min = 0
-        else:
-            mate_min = 1000
-            for t in view.teammates:
-                mate_min = min(mate_min, predict_player_reach(view, cache, t, teammate=True))
-        return TeamInterceptTable(cache, base.self_cache, base.self_min, opp_min, False, mate_min, base)
+        ball = base.ball_part()
+        # the fastest of each side (fastest_reach: predict_player_reach for each, on the ball part's frame)
+        opp_min = 0 if view.kick_opp else fastest_reach(view, ball, view.opponents, False)
+        mate_min = 0 if view.mate_kick else fastest_reach(view, ball, view.teammates, True)
+        return TeamInterceptTable(ball[0], base.self_cache, base.self_min, opp_min, False, mate_min, base)
 
     @staticmethod
     def _forced_kickable(view: DefenderView, table: TeamInterceptTable) -> None:

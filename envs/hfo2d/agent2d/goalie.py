@@ -16,6 +16,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import struct
+from operator import itemgetter
 
 import numpy as np
 
@@ -120,6 +121,8 @@ def fullstate_value(x: float) -> float:
         _FULLSTATE_MEMO[x] = y
     return y
 
+
+_first = itemgetter(0)  # a sort key (in C)
 
 # The bytes of four doubles: Agent2dGoalie._view's key for a group of numbers that repeats from cycle to cycle
 # (bitwise, so that -0.0 and 0.0 differ)
@@ -586,34 +589,32 @@ class Agent2dGoalie:
         nearest-opponent distances, and the distance of the opponent nearest to the goalie
         (getOpponentNearestToSelf)."""
         fs = fullstate_value
-        # positions first (every opponent's is needed); the rest only for the opponents after the first
-        positions = [(-fs(o.x), -fs(o.y)) for o in opponents]
+        hypot = math.hypot
+        # (distance from the ball, distance from the goalie, x, y, player): the positions first (every opponent's
+        # is needed), each distance computed once for the sort and the tests below
+        ranked = []
+        for o in opponents:
+            x = -fs(o.x)
+            y = -fs(o.y)
+            ranked.append((hypot(x - bx, y - by), hypot(x - px, y - py), x, y, o))
         # stable: equal distances keep the server order, as librcsc's sort of its opponent list does
-        order = sorted(
-            range(len(opponents)), key=lambda k: math.hypot(positions[k][0] - bx, positions[k][1] - by)
-        )
+        ranked.sort(key=_first)
         kick_opp = False
-        for k in order:
-            o = positions[k]
-            if opponents[k].tackle_cycles <= 0:
-                opp_ball = math.hypot(o[0] - bx, o[1] - by)
-                opp_self = math.hypot(o[0] - px, o[1] - py)
+        for opp_ball, opp_self, _, _, o in ranked:
+            if o.tackle_cycles <= 0:
                 kick_opp = opponent_may_kick(opp_ball, opp_self, d_b)
                 break
+        # the rest of the numbers only for the opponents after the first
         others = tuple(
-            (
-                positions[k][0],
-                positions[k][1],
-                -fs(opponents[k].vx),
-                -fs(opponents[k].vy),
-                norm_deg(fs(opponents[k].body_deg) + 180.0),
-                opponents[k].tackle_cycles,
-            )
-            for k in order[1:]
+            (x, y, -fs(o.vx), -fs(o.vy), norm_deg(fs(o.body_deg) + 180.0), o.tackle_cycles)
+            for _, _, x, y, o in ranked[1:]
         )
-        opp_self_dist = min(math.hypot(x - px, y - py) for x, y in positions)
-        first = order[0]
-        return opponents[first], positions[first], kick_opp, others, opp_self_dist
+        opp_self_dist = math.inf
+        for _, opp_self, _, _, _ in ranked:
+            if opp_self < opp_self_dist:
+                opp_self_dist = opp_self
+        _, _, x, y, first = ranked[0]
+        return first, (x, y), kick_opp, others, opp_self_dist
 
     def _update_last_kicker(self, view: GoalieView, has_attacker: bool) -> None:
         """WorldModel::updateLastKicker, reduced to HFO 1v1: ours after the goalie's own tackle (or kick), theirs

@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import math
 from bisect import bisect_left
+from collections.abc import Iterable
 
 from hfo2d.physics import ServerParams
 
@@ -435,8 +436,9 @@ def _opp_part(view: GoalieView, ball: tuple) -> int:
     )
     # InterceptTable::update takes the fastest of all opponents: a team game's goalie view lists the others
     # (hfo2d.agent2d.goalie; unset with one attacker)
-    for other in getattr(view, "other_opponents", ()):
-        reach = min(reach, predict_player_reach(view, cache, other, teammate=False))
+    others = getattr(view, "other_opponents", None)
+    if others:
+        reach = fastest_reach(view, ball, others, False, reach)
     return reach
 
 
@@ -451,6 +453,10 @@ class _LazyTable(InterceptTable):
         if ball is None:
             ball = self._ball = _ball_part(self._view)
         return ball
+
+    def ball_part(self) -> tuple:
+        """The ball part (cache, resting, sin, cos of -angle(W)) that :func:`fastest_reach` reads."""
+        return self._ball_now()
 
     def _self_now(self) -> tuple[list[InterceptEntry], int]:
         part = self._self
@@ -1594,6 +1600,30 @@ def predict_player_reach(
     self_dist = 0.0 if teammate else _sqrt((x - view.px) * (x - view.px) + (y - view.py) * (y - view.py))
     reach = _predict_player(x, y, vx, vy, body, frozen, wx == 0.0 and wy == 0.0, self_dist, cache, rel_y)
     return min(1000, reach)
+
+
+def fastest_reach(
+    view: GoalieView,
+    ball: tuple,
+    players: Iterable[tuple[float, float, float, float, float, int]],
+    teammate: bool,
+    best: int = 1000,
+) -> int:
+    """``min(best, predict_player_reach(view, cache, p, teammate) for p in players)`` on a ball part of ``view``
+    (:func:`_ball_part`'s (cache, resting, sin, cos)): the ball's frame is the ball part's, not computed again
+    for every player (the same numbers: both come from the view's W by the same operations)."""
+    cache, _, sin_a, cos_a = ball
+    bx = view.bx
+    by = view.by
+    resting = view.wx == 0.0 and view.wy == 0.0
+    for player in players:
+        x, y, vx, vy, body, frozen = player
+        rel_y = (x - bx) * sin_a + (y - by) * cos_a
+        self_dist = 0.0 if teammate else _sqrt((x - view.px) * (x - view.px) + (y - view.py) * (y - view.py))
+        reach = _predict_player(x, y, vx, vy, body, frozen, resting, self_dist, cache, rel_y)
+        if reach < best:
+            best = reach
+    return best
 
 
 def _predict_player(
