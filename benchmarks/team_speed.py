@@ -16,7 +16,10 @@ With ``--real`` it also steps the real HFO (``hfo2d.parallel_env(..., backend="r
 trainer, agent2d's NPCs, one process per learning agent; needs ``$HFO_DIR`` and ``hfo2d.real_teams``) in the
 configurations with agent2d's NPCs only (2v1 and 2v2: 2 offense agents against ``defense_npcs`` 1 or 2), for
 ``--real-steps`` cycles after its start-up, and prints hfo2d / real per configuration (hfo2d's 2v2 matches it only
-when hfo2d has the field defenders' port). The real servers must run in the repository's loopback runner::
+when hfo2d has the field defenders' port), by wall clock and per CPU second: the real HFO spreads a game over
+several processes (server, trainer, NPCs, agent workers) and so over the machine's cores, while hfo2d plays it in
+one process, so the second ratio compares the work each spends on a cycle (all the session's processes' CPU, read
+from /proc). The real servers must run in the repository's loopback runner::
 
     HFO_DIR=/path/to/HFO tools/real_hfo/loopback.sh nice -n 5 python benchmarks/team_speed.py --real
 """
@@ -44,7 +47,8 @@ def _defender_port_present() -> bool:
 
 
 def time_game(game: TeamGame, steps: int, seed: int) -> float:
-    """Cycles per second of ``game`` under random flat actions."""
+    """Cycles per second of ``game`` under random flat actions (one process: on a quiet machine its CPU seconds
+    are its wall-clock seconds)."""
     rng = np.random.default_rng(seed)
     actions = {agent.name: rng.random((steps, agent.layout.size), dtype=np.float32) for agent in game.agents}
     game.reset(seed=seed)
@@ -68,20 +72,53 @@ def time_keeper_v1(steps: int, seed: int) -> float:
     return steps / (time.perf_counter() - start)
 
 
-def time_real(sizes: dict[str, int], steps: int, seed: int) -> float:
-    """Cycles per second of the real HFO in these team sizes under random flat actions (start-up excluded)."""
+def descendant_cpu_seconds(root: int | None = None) -> float:
+    """CPU seconds (user + system) used so far by the live descendants of process ``root`` (this one by default),
+    read from /proc: the real HFO's server, trainer, NPCs and agent workers. 0.0 where /proc is missing."""
+    root = os.getpid() if root is None else root
+    ticks = os.sysconf("SC_CLK_TCK")
+    parents: dict[int, int] = {}
+    cpu: dict[int, float] = {}
+    for entry in os.listdir("/proc") if os.path.isdir("/proc") else ():
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat") as handle:
+                fields = handle.read().rsplit(")", 1)[1].split()
+        except OSError:  # the process ended meanwhile
+            continue
+        # after the command's ")": state, ppid, ... utime (field 14 of stat(5)) and stime (15) at offsets 11, 12
+        parents[int(entry)] = int(fields[1])
+        cpu[int(entry)] = (int(fields[11]) + int(fields[12])) / ticks
+    total = 0.0
+    for pid in cpu:
+        ancestor = parents.get(pid)
+        while ancestor is not None and ancestor not in (root, 0, 1):
+            ancestor = parents.get(ancestor)
+        if ancestor == root and pid != root:
+            total += cpu[pid]
+    return total
+
+
+def time_real(sizes: dict[str, int], steps: int, seed: int) -> tuple[float, float]:
+    """(cycles per wall-clock second, cycles per CPU second) of the real HFO in these team sizes under random flat
+    actions, start-up excluded. The CPU seconds are every process of the session (rcssserver, HFO's trainer,
+    agent2d's NPCs, one worker per learning agent; their CPU read from /proc just before they are closed) plus
+    this process's own: the real HFO spreads a game over several processes and cores, hfo2d plays it in one."""
     env = hfo2d.parallel_env(backend="real", seed=seed, **sizes)
     try:
         rng = np.random.default_rng(seed)
         env.reset(seed=seed)
-        start = time.perf_counter()
+        start, own_start, others_start = time.perf_counter(), time.process_time(), descendant_cpu_seconds()
         for _ in range(steps):
             if not env.agents:
                 env.reset()
             env.step(
                 {agent: rng.random(env.action_space(agent).shape, dtype=np.float32) for agent in env.agents}
             )
-        return steps / (time.perf_counter() - start)
+        wall = time.perf_counter() - start
+        cpu = time.process_time() - own_start + descendant_cpu_seconds() - others_start
+        return steps / wall, (steps / cpu if cpu > 0.0 else float("nan"))
     finally:
         env.close()
 
@@ -138,12 +175,16 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         hfo2d_rates = {row["config"].split(" ")[0]: row["steps_per_s"] for row in rows}
         for label, defense_npcs in (("2v1", 1), ("2v2", 2)):
             sizes = {"offense_agents": 2, "defense_agents": 0, "defense_npcs": defense_npcs}
-            rate = time_real(sizes, args.real_steps, args.seed)
+            rate, rate_per_cpu_s = time_real(sizes, args.real_steps, args.seed)
             real_rows.append(
                 {
                     "config": f"{label} real HFO (2 offense agents, {defense_npcs} agent2d defense NPCs)",
                     "steps_per_s": rate,
                     "hfo2d_over_real": hfo2d_rates[label] / rate,
+                    # the real HFO's cycles per CPU second of all its processes; hfo2d's one process per CPU second
+                    # is its wall-clock rate (a quiet machine), so this ratio compares the work per cycle
+                    "steps_per_cpu_s": rate_per_cpu_s,
+                    "hfo2d_over_real_per_cpu_s": hfo2d_rates[label] / rate_per_cpu_s,
                 }
             )
     result = {
@@ -169,7 +210,10 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
             f"{row['vs_keeper_v1']:12.2f}"
         )
     for row in real_rows:
-        print(f"{row['config']:70s} {row['steps_per_s']:10,.0f}   hfo2d / real {row['hfo2d_over_real']:.1f}")
+        print(
+            f"{row['config']:70s} {row['steps_per_s']:10,.0f}   hfo2d / real {row['hfo2d_over_real']:.1f}   "
+            f"per CPU second: real {row['steps_per_cpu_s']:,.0f}, hfo2d / real {row['hfo2d_over_real_per_cpu_s']:.1f}"
+        )
     print(f"load average (1 min) before {load_before:.2f}, after {result['machine']['load_1min_after']:.2f}")
     if args.out:
         with open(args.out, "w") as handle:

@@ -178,3 +178,27 @@ def test_core_scaling_times_one_process_and_several_side_by_side() -> None:
     assert all(row["steps_per_s"] > 0 for rows in results.values() for row in rows)
     refused = subprocess.run([*command, "--processes", "0"], capture_output=True, text=True, timeout=60)
     assert refused.returncode == 2 and "--processes >= 1" in refused.stderr
+
+
+def test_team_speed_counts_the_cpu_of_descendant_processes() -> None:
+    """team_speed.py compares the real HFO's CPU per cycle, spread over its processes, with hfo2d's: the /proc
+    reader must find a grandchild's CPU time (bin/HFO starts rcssserver and the NPCs below itself)."""
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        import team_speed
+    finally:
+        sys.path.remove(str(REPO / "benchmarks"))
+    spin = "import time; end = time.process_time() + 0.4\nwhile time.process_time() < end: pass\nprint('done', flush=True)\ninput()"
+    grandparent = (
+        f"import subprocess, sys; child = subprocess.Popen([sys.executable, '-c', {spin!r}]); child.wait()"
+    )
+    process = subprocess.Popen(
+        [sys.executable, "-c", grandparent], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True
+    )
+    try:
+        assert process.stdout is not None and process.stdout.readline().strip() == "done"
+        assert team_speed.descendant_cpu_seconds() >= 0.3  # the grandchild, still alive, spun 0.4 s
+        assert team_speed.descendant_cpu_seconds(process.pid) >= 0.3
+        assert team_speed.descendant_cpu_seconds(1 << 30) == 0.0  # no such process: nothing below it
+    finally:
+        process.communicate("\n", timeout=30)
