@@ -43,6 +43,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import torch as th
 from stable_baselines3.common.vec_env import VecNormalize
 from torch import nn
@@ -52,8 +53,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's
 from hybrid_ppo_runs import RunRecorder, load_average  # noqa: E402
 
 import hfo2d  # noqa: E402
+from hfo2d.features import BALL_ANGLE_COS, BALL_ANGLE_SIN, BALL_PROXIMITY, MAX_HFO_DIST  # noqa: E402
 from hfo2d.team import TeamGame  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
+from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
 from sb3_hfo.multi_agent import (  # noqa: E402
     evaluate_team,
     evaluate_team_games,
@@ -88,6 +91,134 @@ EVALUATIONS: dict[str, tuple[str, str, int]] = {
     "final_1v1": ("1v1", "final.zip", 1),
     "final_2v1": ("2v1", "final.zip", 2),
 }
+
+
+#: what the striker that is not nearest the ball does in the scripted role split (``roles``): "noop" dashes with power
+#: 0 (stands); "clear" runs straight away from the ball while nearer than CLEAR_DISTANCE, then stands
+IDLE_BEHAVIOURS: tuple[str, ...] = ("noop", "clear")
+CLEAR_DISTANCE = 10.0  # m; the "clear" idle striker's distance from the ball
+#: the flat action's DASH with power 0 (HFO_FLAT_ACTION_LAYOUT: 3 preferences, then DASH power and direction, TURN
+#: direction, KICK power and direction, all in [0, 1]; direction 0.5 is 0 degrees)
+NOOP_ACTION = np.array([1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.5], dtype=np.float32)
+
+
+class RoleSplitTeam:
+    """A scripted 2v1 team built from a 1v1 policy: in each game the striker nearer the ball (higher ball proximity,
+    feature 53; a tie goes to the first) plays ``policy`` on its features without the teammate's block, i.e.
+    exactly as alone against the goalie; the other one does ``idle`` (:data:`IDLE_BEHAVIOURS`). No passing.
+
+    It acts like a model for :func:`sb3_hfo.multi_agent.evaluate_team_games`, whose batches hold each game's two
+    strikers next to each other."""
+
+    def __init__(self, policy: Any, idle: str) -> None:
+        if idle not in IDLE_BEHAVIOURS:
+            raise ValueError(f"unknown idle behaviour {idle!r}; choose one of {IDLE_BEHAVIOURS}")
+        self.policy = policy
+        self.idle = idle
+        position, count = teammate_block_insertion(0, 1)
+        self.teammate_block = np.arange(position, position + count)
+
+    def idle_action(self, observation: np.ndarray) -> np.ndarray:
+        """The idle striker's flat action from its own features."""
+        action = NOOP_ACTION.copy()
+        if self.idle == "clear":
+            distance = (1.0 - float(observation[BALL_PROXIMITY])) * MAX_HFO_DIST / 2.0
+            if distance < CLEAR_DISTANCE:
+                ball_deg = np.degrees(np.arctan2(observation[BALL_ANGLE_SIN], observation[BALL_ANGLE_COS]))
+                away_deg = (
+                    ball_deg + 360.0
+                ) % 360.0 - 180.0  # the ball's bearing turned round, in [-180, 180)
+                action[3], action[4] = 1.0, (away_deg + 180.0) / 360.0
+        return action
+
+    def nearer(self, observations: np.ndarray) -> np.ndarray:
+        """For a batch of (games x 2) observations, whether each striker is its game's ball player."""
+        proximity = observations[:, BALL_PROXIMITY].reshape(-1, 2)
+        first = proximity[:, 0] >= proximity[:, 1]
+        return np.stack([first, ~first], axis=1).reshape(-1)
+
+    def predict(
+        self, observations: np.ndarray, deterministic: bool = True, **_: Any
+    ) -> tuple[np.ndarray, None]:
+        observations = np.asarray(observations, dtype=np.float32)
+        if observations.ndim != 2 or observations.shape[0] % 2:
+            raise ValueError(
+                f"RoleSplitTeam needs (games x 2, features) observations, got {observations.shape}"
+            )
+        playing = self.nearer(observations)
+        actions = np.stack([self.idle_action(observation) for observation in observations])
+        alone = np.delete(observations[playing], self.teammate_block, axis=1)
+        actions[playing], _ = self.policy.predict(alone, deterministic=deterministic)
+        return actions, None
+
+
+def play_pairs(predictor: Any, episodes: int, seed: int, games: int) -> np.ndarray:
+    """The observations of ``episodes`` greedy 2v1 hfo2d episodes of ``predictor`` (``games`` at once; game ``g``
+    seeded ``seed + g``), each cycle's two strikers in adjacent rows (what :class:`RoleSplitTeam` labels)."""
+    tables = [TeamGame(2, 0, 1) for _ in range(games)]
+    names = list(tables[0].agent_names)
+    observations = [table.reset(seed=seed + index)[0] for index, table in enumerate(tables)]
+    active = [index < episodes for index in range(games)]
+    started, rows = sum(active), []
+    while any(active):
+        playing = [index for index, on in enumerate(active) if on]
+        batch = np.stack([observations[index][name] for index in playing for name in names])
+        rows.append(batch)
+        actions, _ = predictor.predict(batch, deterministic=True)
+        for position, index in enumerate(playing):
+            chosen = dict(zip(names, actions[2 * position : 2 * position + 2], strict=True))
+            observations[index], _, terminated, truncated, _ = tables[index].step(chosen)
+            if terminated or truncated:
+                if started < episodes:
+                    started += 1
+                    observations[index], _ = tables[index].reset()
+                else:
+                    active[index] = False
+    return np.concatenate(rows)
+
+
+def teach_role_rule(start: HybridPPO, model: HybridPPO, args: argparse.Namespace) -> dict[str, Any]:
+    """``--start-rule IDLE``: before RL, distil :class:`RoleSplitTeam` (``start`` as the ball player, IDLE for the
+    other striker) into the widened ``model``'s actor (:func:`sb3_hfo.hybrid_ppo.distill.distill`, the actor only;
+    the critic is left to the warm-up): the teacher's own states, then one DAgger round on the student's states,
+    both labelled by the teacher. Returns what ``teach.json`` records."""
+    teacher = RoleSplitTeam(start, args.start_rule)
+    adapter = model.policy.adapter
+    started = time.time()
+    observations = play_pairs(teacher, args.teach_episodes, 30_000 + args.seed, args.games)
+    record: dict[str, Any] = {
+        "idle": args.start_rule,
+        "episodes_per_round": args.teach_episodes,
+        "rounds": [],
+    }
+    for round_index in range(2):
+        if round_index == 1:  # DAgger: where the student goes, labelled by the teacher
+            student = play_pairs(model, args.teach_episodes, 31_000 + args.seed, args.games)
+            observations = np.concatenate([observations, student])
+        labels = adapter.from_env(teacher.predict(observations)[0])
+        history = distill(
+            model.policy,
+            observations,
+            labels[:, 0].astype(np.int64),
+            labels[:, 1:],
+            epochs=args.teach_epochs,
+            batch_size=512,
+            learning_rate=args.teach_lr,
+            parameter_weight=100.0,  # rl_from_clone.py's default
+            seed=args.seed + round_index,
+        )
+        record["rounds"].append({"states": len(observations), "last_epoch": history[-1]})
+        print(json.dumps({"teach_round": round_index, **record["rounds"][-1]}), flush=True)
+    record["seconds"] = round(time.time() - started, 1)
+    games = [TeamGame(2, 0, 1) for _ in range(args.games)]
+    record["greedy_eval"] = evaluate_team_games(
+        model, games, args.teach_eval_episodes, seed=40_000 + args.seed
+    )
+    record["teacher_eval"] = evaluate_team_games(
+        teacher, games, args.teach_eval_episodes, seed=40_000 + args.seed
+    )
+    print(json.dumps({"taught": record["greedy_eval"], "teacher": record["teacher_eval"]}), flush=True)
+    return record
 
 
 def team_env(strikers: int, backend: str, **kwargs: Any) -> Any:
@@ -153,6 +284,10 @@ def train(args: argparse.Namespace) -> Path:
     else:
         start = HybridPPO.load(args.start, device="cpu")
     model = build_arm_model(start, env, strikers, args)
+    if args.start_rule is not None:
+        if strikers != 2:
+            raise SystemExit("error: --start-rule teaches the 2v1 role split; the 1v1 arm has no teammate")
+        (folder / "teach.json").write_text(json.dumps(teach_role_rule(start, model, args), indent=1))
     model.save(folder / "start.zip")
     record = {
         "arm": args.arm,
@@ -162,6 +297,7 @@ def train(args: argparse.Namespace) -> Path:
         "budget": "agent steps (num_timesteps); game cycles = agent steps / strikers",
         "reward": args.reward,
         "start": str(args.start) if args.start else "untrained (smoke)",
+        "start_rule": args.start_rule,
         "hp": args.hp,
         "critic_warmup": args.critic_warmup,
         "steps": args.steps,
@@ -200,6 +336,13 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
             print(f"skipping {name}: no {model_path}", flush=True)
             continue
         model = HybridPPO.load(model_path, device="cpu")
+        run_record = args.out / f"arm_{arm}" / "run.json"
+        if (
+            name == "zero_shot_2v1"
+            and run_record.exists()
+            and json.loads(run_record.read_text()).get("start_rule")
+        ):
+            name = "taught_start_2v1"  # the 2v1 start of a --start-rule run is the taught one, not zero-shot
         started = time.time()
         if args.backend == "hfo2d" and args.games > 1:  # many games per predict call: the same statistics
             games = [TeamGame(strikers, 0, 1) for _ in range(args.games)]
@@ -236,6 +379,39 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
     return results
 
 
+def roles(args: argparse.Namespace) -> dict[str, Any]:
+    """The ceiling of a no-passing role split: ``--start`` as :class:`RoleSplitTeam` with each idle behaviour, and
+    the zero-shot team (both strikers play it), over ``--episodes`` greedy hfo2d 2v1 episodes each
+    (``--games`` at once); written to ``OUT/roles.json``."""
+    th.set_num_threads(1)
+    policy = HybridPPO.load(args.start, device="cpu")
+    teams: dict[str, Any] = {f"nearer plays, other {idle}": RoleSplitTeam(policy, idle) for idle in args.idle}
+    if args.zero_shot:
+        teams["both play (zero-shot)"] = RoleSplitTeamBoth(policy)
+    results: dict[str, Any] = {}
+    for name, team in teams.items():
+        started = time.time()
+        games = [TeamGame(2, 0, 1) for _ in range(args.games)]
+        result = evaluate_team_games(team, games, args.episodes, seed=args.seed)
+        result.update(seconds=round(time.time() - started, 1), load1=round(load_average(), 2))
+        results[name] = result
+        print(json.dumps({name: result}), flush=True)
+    record = {"start": str(args.start), "episodes": args.episodes, "seed": args.seed, "games": args.games}
+    args.out.mkdir(parents=True, exist_ok=True)
+    (args.out / "roles.json").write_text(json.dumps({**record, "results": results}, indent=1))
+    return results
+
+
+class RoleSplitTeamBoth(RoleSplitTeam):
+    """The zero-shot team as a :class:`RoleSplitTeam`: both strikers play the 1v1 policy on their 1v1 features."""
+
+    def __init__(self, policy: Any) -> None:
+        super().__init__(policy, "noop")
+
+    def nearer(self, observations: np.ndarray) -> np.ndarray:
+        return np.ones(observations.shape[0], dtype=bool)
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     commands = parser.add_subparsers(dest="command", required=True)
@@ -260,6 +436,18 @@ def main(argv: list[str] | None = None) -> None:
         sub.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
         sub.add_argument("--threads", type=int, default=1, help="torch threads")
         sub.add_argument("--reward", choices=REWARDS, default=REWARD, help="every striker's reward")
+        sub.add_argument(
+            "--start-rule",
+            choices=IDLE_BEHAVIOURS,
+            default=None,
+            help="2v1: before RL, distil the scripted role split (the nearer striker plays the start policy, the "
+            "other this idle behaviour) into the widened policy: a taught start",
+        )
+        sub.add_argument("--teach-episodes", type=int, default=400, help="episodes per distillation round")
+        sub.add_argument("--teach-epochs", type=int, default=10)
+        sub.add_argument("--teach-lr", type=float, default=1e-4)
+        sub.add_argument("--teach-eval-episodes", type=int, default=300)
+        sub.add_argument("--games", type=int, default=16, help="hfo2d games at once while teaching")
     training.add_argument("--arm", choices=sorted(ARMS), required=True)
     evaluating = commands.add_parser("evaluate", help="evaluate the start, zero-shot and final models")
     evaluating.add_argument("--out", type=Path, required=True, help="the run folder that train wrote")
@@ -273,7 +461,18 @@ def main(argv: list[str] | None = None) -> None:
         help="hfo2d: games played at once (game g seeded seed + g; 1: one game)",
     )
     evaluating.add_argument("--which", nargs="+", choices=sorted(EVALUATIONS), default=list(EVALUATIONS))
+    role_split = commands.add_parser("roles", help="the scripted role split's 2v1 goal rate (no training)")
+    role_split.add_argument("--start", type=Path, required=True, help="the 1v1 HybridPPO policy")
+    role_split.add_argument("--out", type=Path, required=True, help="folder for roles.json")
+    role_split.add_argument("--episodes", type=int, default=500)
+    role_split.add_argument("--seed", type=int, default=0)
+    role_split.add_argument("--games", type=int, default=16, help="hfo2d games played at once")
+    role_split.add_argument("--idle", nargs="+", choices=IDLE_BEHAVIOURS, default=list(IDLE_BEHAVIOURS))
+    role_split.add_argument("--no-zero-shot", dest="zero_shot", action="store_false")
     args = parser.parse_args(argv)
+    if args.command == "roles":
+        roles(args)
+        return
     if args.command == "evaluate":
         evaluate(args)
         return
@@ -288,8 +487,11 @@ def main(argv: list[str] | None = None) -> None:
             1024,
         )
         args.hp["batch_size"] = 256
+        args.teach_episodes, args.teach_epochs, args.teach_eval_episodes, args.games = 4, 1, 4, 2
+        start_rule = args.start_rule
         for arm in ARMS:
             args.arm = arm
+            args.start_rule = start_rule if ARMS[arm] == 2 else None  # the taught start is the 2v1 arm's
             train(args)
         evaluate(
             argparse.Namespace(
