@@ -266,6 +266,8 @@ def train(args: argparse.Namespace) -> Path:
     """One arm: widen, save ``start.zip``, train ``--steps`` agent steps, save ``final.zip``; returns its folder."""
     strikers = ARMS[args.arm]
     folder = args.out / f"arm_{args.arm}"
+    if args.start_rule is not None and strikers != 2:
+        raise SystemExit("error: --start-rule teaches the 2v1 role split; the 1v1 arm has no teammate")
     if (folder / "curve.jsonl").exists():
         raise SystemExit(f"error: {folder} already holds a run (curve.jsonl); choose another --out")
     folder.mkdir(parents=True, exist_ok=True)
@@ -285,8 +287,6 @@ def train(args: argparse.Namespace) -> Path:
         start = HybridPPO.load(args.start, device="cpu")
     model = build_arm_model(start, env, strikers, args)
     if args.start_rule is not None:
-        if strikers != 2:
-            raise SystemExit("error: --start-rule teaches the 2v1 role split; the 1v1 arm has no teammate")
         (folder / "teach.json").write_text(json.dumps(teach_role_rule(start, model, args), indent=1))
     model.save(folder / "start.zip")
     record = {
