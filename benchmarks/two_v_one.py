@@ -105,16 +105,21 @@ NOOP_ACTION = np.array([1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.5], dtype=np.float3
 class RoleSplitTeam:
     """A scripted 2v1 team built from a 1v1 policy: in each game the striker nearer the ball (higher ball proximity,
     feature 53; a tie goes to the first) plays ``policy`` on its features without the teammate's block, i.e.
-    exactly as alone against the goalie; the other one does ``idle`` (:data:`IDLE_BEHAVIOURS`). No passing.
+    exactly as alone against the goalie; the other one does ``idle`` (:data:`IDLE_BEHAVIOURS`). No passing. With
+    ``margin`` (m) > 0 both play while their distances to the ball differ by less than it, so that a learner that
+    misjudges who is nearer errs toward both going to the ball (the zero-shot team) rather than both idling.
 
     It acts like a model for :func:`sb3_hfo.multi_agent.evaluate_team_games`, whose batches hold each game's two
     strikers next to each other."""
 
-    def __init__(self, policy: Any, idle: str) -> None:
+    def __init__(self, policy: Any, idle: str, margin: float = 0.0) -> None:
         if idle not in IDLE_BEHAVIOURS:
             raise ValueError(f"unknown idle behaviour {idle!r}; choose one of {IDLE_BEHAVIOURS}")
+        if not margin >= 0.0:
+            raise ValueError(f"margin must be >= 0 metres, got {margin!r}")
         self.policy = policy
         self.idle = idle
+        self.margin = float(margin)
         position, count = teammate_block_insertion(0, 1)
         self.teammate_block = np.arange(position, position + count)
 
@@ -135,7 +140,11 @@ class RoleSplitTeam:
         """For a batch of (games x 2) observations, whether each striker is its game's ball player."""
         proximity = observations[:, BALL_PROXIMITY].reshape(-1, 2)
         first = proximity[:, 0] >= proximity[:, 1]
-        return np.stack([first, ~first], axis=1).reshape(-1)
+        nearer = np.stack([first, ~first], axis=1)
+        # proximity is 1 - 2 d / MAX_HFO_DIST: a distance gap below the margin makes both ball players
+        close = np.abs(proximity[:, 0] - proximity[:, 1]) * MAX_HFO_DIST / 2.0 < self.margin
+        nearer[close] = True
+        return nearer.reshape(-1)
 
     def predict(
         self, observations: np.ndarray, deterministic: bool = True, **_: Any
@@ -180,20 +189,24 @@ def play_pairs(predictor: Any, episodes: int, seed: int, games: int) -> np.ndarr
 def teach_role_rule(start: HybridPPO, model: HybridPPO, args: argparse.Namespace) -> dict[str, Any]:
     """``--start-rule IDLE``: before RL, distil :class:`RoleSplitTeam` (``start`` as the ball player, IDLE for the
     other striker) into the widened ``model``'s actor (:func:`sb3_hfo.hybrid_ppo.distill.distill`, the actor only;
-    the critic is left to the warm-up): the teacher's own states, then one DAgger round on the student's states,
-    both labelled by the teacher. Returns what ``teach.json`` records."""
-    teacher = RoleSplitTeam(start, args.start_rule)
+    the critic is left to the warm-up): the teacher's own states, then DAgger rounds on the student's states,
+    both labelled by the teacher (``--teach-dagger`` rounds). Returns what ``teach.json`` records."""
+    teacher = RoleSplitTeam(start, args.start_rule, args.teach_margin)
     adapter = model.policy.adapter
     started = time.time()
     observations = play_pairs(teacher, args.teach_episodes, 30_000 + args.seed, args.games)
     record: dict[str, Any] = {
         "idle": args.start_rule,
+        "margin": args.teach_margin,
         "episodes_per_round": args.teach_episodes,
+        "lr": args.teach_lr,
+        "epochs": args.teach_epochs,
         "rounds": [],
     }
-    for round_index in range(2):
-        if round_index == 1:  # DAgger: where the student goes, labelled by the teacher
-            student = play_pairs(model, args.teach_episodes, 31_000 + args.seed, args.games)
+    for round_index in range(1 + args.teach_dagger):
+        if round_index > 0:  # DAgger: where the student goes, labelled by the teacher
+            seed = 30_000 + 1_000 * round_index + args.seed
+            student = play_pairs(model, args.teach_episodes, seed, args.games)
             observations = np.concatenate([observations, student])
         labels = adapter.from_env(teacher.predict(observations)[0])
         history = distill(
@@ -241,13 +254,20 @@ def fresh_start_model(env: Any, seed: int) -> HybridPPO:
 
 
 def build_arm_model(start: HybridPPO, env: Any, strikers: int, args: argparse.Namespace) -> HybridPPO:
-    """A HybridPPO on ``env`` with ``start``'s networks, widened for ``strikers - 1`` teammates (zero weights)."""
+    """A HybridPPO on ``env`` with ``start``'s networks, widened for ``strikers - 1`` teammates (zero weights); a
+    ``start`` that already reads this team's features (an arm's ``final.zip``, to continue it) is copied as it is,
+    with a fresh optimizer, reward normaliser and critic warm-up."""
     start_features = start.observation_space.shape[0]
     position, count = teammate_block_insertion(0, strikers - 1)
-    if env.observation_space.shape[0] != start_features + count:
+    if (
+        env.observation_space.shape[0] == start_features
+    ):  # already this team's policy (a run continued): a copy
+        position = 0
+    elif env.observation_space.shape[0] != start_features + count:
         raise ValueError(
             f"the start policy reads {start_features} features; a {strikers}-striker team gives "
-            f"{env.observation_space.shape[0]}, not {start_features} + {count}: is it a 1v1 policy against the goalie?"
+            f"{env.observation_space.shape[0]}, not {start_features} + {count}: is it a 1v1 policy against the goalie "
+            "(or this arm's own model, to continue it)?"
         )
     model = HybridPPO(
         "MlpPolicy",
@@ -385,7 +405,10 @@ def roles(args: argparse.Namespace) -> dict[str, Any]:
     (``--games`` at once); written to ``OUT/roles.json``."""
     th.set_num_threads(1)
     policy = HybridPPO.load(args.start, device="cpu")
-    teams: dict[str, Any] = {f"nearer plays, other {idle}": RoleSplitTeam(policy, idle) for idle in args.idle}
+    suffix = f", both within {args.margin:g} m" if args.margin else ""
+    teams: dict[str, Any] = {
+        f"nearer plays, other {idle}{suffix}": RoleSplitTeam(policy, idle, args.margin) for idle in args.idle
+    }
     if args.zero_shot:
         teams["both play (zero-shot)"] = RoleSplitTeamBoth(policy)
     results: dict[str, Any] = {}
@@ -397,8 +420,10 @@ def roles(args: argparse.Namespace) -> dict[str, Any]:
         results[name] = result
         print(json.dumps({name: result}), flush=True)
     record = {"start": str(args.start), "episodes": args.episodes, "seed": args.seed, "games": args.games}
+    record["margin"] = args.margin
     args.out.mkdir(parents=True, exist_ok=True)
-    (args.out / "roles.json").write_text(json.dumps({**record, "results": results}, indent=1))
+    file = f"roles_margin{args.margin:g}.json" if args.margin else "roles.json"
+    (args.out / file).write_text(json.dumps({**record, "results": results}, indent=1))
     return results
 
 
@@ -445,6 +470,10 @@ def main(argv: list[str] | None = None) -> None:
         )
         sub.add_argument("--teach-episodes", type=int, default=400, help="episodes per distillation round")
         sub.add_argument("--teach-epochs", type=int, default=10)
+        sub.add_argument("--teach-margin", type=float, default=0.0, help="m: the taught rule's margin")
+        sub.add_argument(
+            "--teach-dagger", type=int, default=1, help="DAgger rounds after the teacher's states"
+        )
         sub.add_argument("--teach-lr", type=float, default=1e-4)
         sub.add_argument("--teach-eval-episodes", type=int, default=300)
         sub.add_argument("--games", type=int, default=16, help="hfo2d games at once while teaching")
@@ -469,6 +498,9 @@ def main(argv: list[str] | None = None) -> None:
     role_split.add_argument("--games", type=int, default=16, help="hfo2d games played at once")
     role_split.add_argument("--idle", nargs="+", choices=IDLE_BEHAVIOURS, default=list(IDLE_BEHAVIOURS))
     role_split.add_argument("--no-zero-shot", dest="zero_shot", action="store_false")
+    role_split.add_argument(
+        "--margin", type=float, default=0.0, help="m: both play within it (RoleSplitTeam)"
+    )
     args = parser.parse_args(argv)
     if args.command == "roles":
         roles(args)
