@@ -400,8 +400,8 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def roles(args: argparse.Namespace) -> dict[str, Any]:
-    """The ceiling of a no-passing role split: ``--start`` as :class:`RoleSplitTeam` with each idle behaviour, and
-    the zero-shot team (both strikers play it), over ``--episodes`` greedy hfo2d 2v1 episodes each
+    """The ceiling of a no-passing role split: ``--start`` as :class:`RoleSplitTeam` with each idle behaviour, the
+    zero-shot team (both strikers play it) and the policy alone in 1v1 (the last two unless ``--no-zero-shot``), over ``--episodes`` greedy hfo2d 2v1 episodes each
     (``--games`` at once); written to ``OUT/roles.json``."""
     th.set_num_threads(1)
     policy = HybridPPO.load(args.start, device="cpu")
@@ -411,10 +411,12 @@ def roles(args: argparse.Namespace) -> dict[str, Any]:
     }
     if args.zero_shot:
         teams["both play (zero-shot)"] = RoleSplitTeamBoth(policy)
+    if args.zero_shot:
+        teams["alone (1v1)"] = policy
     results: dict[str, Any] = {}
     for name, team in teams.items():
         started = time.time()
-        games = [TeamGame(2, 0, 1) for _ in range(args.games)]
+        games = [TeamGame(1 if team is policy else 2, 0, 1) for _ in range(args.games)]
         result = evaluate_team_games(team, games, args.episodes, seed=args.seed)
         result.update(seconds=round(time.time() - started, 1), load1=round(load_average(), 2))
         results[name] = result
