@@ -32,6 +32,16 @@ Evaluation (``evaluate``): final models, not the best checkpoint; greedy; the st
     HOME=/root HFO_DIR=/root/real_hfo/HFO tools/real_hfo/loopback.sh \\
         python benchmarks/two_v_one.py evaluate --out ~/runs/twovone/s0 --backend real --episodes 1000
     python benchmarks/two_v_one.py smoke --out /tmp/smoke   # seconds: what the test runs
+
+Second pass (benchmarks/README.md): ``roles`` measures the ceiling of a scripted no-passing role split
+(:class:`RoleSplitTeam`: the striker nearer the ball plays the 1v1 policy, the other idles); ``--reward
+shaped_gap_refund_nearest`` pays the ball-pull terms to the striker nearest the ball alone (hfo2d.team); ``--start-rule
+noop|clear`` distils that role split into the widened policy before RL (a taught start, ``teach.json``); a ``--start``
+that already reads the arm's features (its ``final.zip``) continues the arm.
+
+    python benchmarks/two_v_one.py roles --start RUN/final.zip --out ~/runs/twovone2/roles --episodes 500
+    python benchmarks/two_v_one.py train --arm 2v1 --start RUN/final.zip --out OUT --reward shaped_gap_refund_nearest \
+        --start-rule noop --teach-lr 3e-4 --teach-epochs 20 --teach-dagger 2
 """
 
 from __future__ import annotations

@@ -1089,7 +1089,8 @@ class HalfFieldOffenseEnv(gym.Env):
     A striker (``reward``): ``"shaped"`` (default), Hausknecht & Stone's shaping from its own features (move to
     the ball, +1 the first time kickable, 3 x the ball's progress to the goal, +5 on a goal), ``"shaped_gap"`` /
     ``"shaped_gap_refund"`` (the progress measured to the gap beside the goalie, lost shots refunded:
-    :mod:`hfo2d.reward`), or ``"sparse"`` (1 on a goal). A defender (``defense_reward``): ``"sparse"`` (default) +1 when the episode ends in
+    :mod:`hfo2d.reward`), ``"shaped_gap_refund_nearest"`` (the same, with the move-to-ball and kick terms paid
+    only to the striker nearest the ball), or ``"sparse"`` (1 on a goal). A defender (``defense_reward``): ``"sparse"`` (default) +1 when the episode ends in
     CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS or OUT_OF_TIME, -1 on a GOAL; ``"shaped"`` adds its move-to-ball term.
 
     ## Starting State
