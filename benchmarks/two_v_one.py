@@ -32,6 +32,16 @@ Evaluation (``evaluate``): final models, not the best checkpoint; greedy; the st
     HOME=/root HFO_DIR=/root/real_hfo/HFO tools/real_hfo/loopback.sh \\
         python benchmarks/two_v_one.py evaluate --out ~/runs/twovone/s0 --backend real --episodes 1000
     python benchmarks/two_v_one.py smoke --out /tmp/smoke   # seconds: what the test runs
+
+Second pass (benchmarks/README.md): ``roles`` measures the ceiling of a scripted no-passing role split
+(:class:`RoleSplitTeam`: the striker nearer the ball plays the 1v1 policy, the other idles); ``--reward
+shaped_gap_refund_nearest`` pays the ball-pull terms to the striker nearest the ball alone (hfo2d.team); ``--start-rule
+noop|clear`` distils that role split into the widened policy before RL (a taught start, ``teach.json``); a ``--start``
+that already reads the arm's features (its ``final.zip``) continues the arm.
+
+    python benchmarks/two_v_one.py roles --start RUN/final.zip --out ~/runs/twovone2/roles --episodes 500
+    python benchmarks/two_v_one.py train --arm 2v1 --start RUN/final.zip --out OUT --reward shaped_gap_refund_nearest \
+        --start-rule noop --teach-lr 3e-4 --teach-epochs 20 --teach-dagger 2
 """
 
 from __future__ import annotations
@@ -43,6 +53,7 @@ import time
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import torch as th
 from stable_baselines3.common.vec_env import VecNormalize
 from torch import nn
@@ -52,8 +63,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's
 from hybrid_ppo_runs import RunRecorder, load_average  # noqa: E402
 
 import hfo2d  # noqa: E402
+from hfo2d.features import BALL_ANGLE_COS, BALL_ANGLE_SIN, BALL_PROXIMITY, MAX_HFO_DIST  # noqa: E402
 from hfo2d.team import TeamGame  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
+from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
 from sb3_hfo.multi_agent import (  # noqa: E402
     evaluate_team,
     evaluate_team_games,
@@ -63,9 +76,10 @@ from sb3_hfo.multi_agent import (  # noqa: E402
 )
 
 REWARD = "shaped_gap_refund"
-#: the offense rewards a run may choose (--reward): the default, or hfo2d's sparse goal reward (1 to every striker on a
-#: goal), a team reward that pays no striker for going to the ball itself
-REWARDS: tuple[str, ...] = (REWARD, "sparse")
+#: the offense rewards a run may choose (--reward): the default; hfo2d's sparse goal reward (1 to every striker on a
+#: goal), a team reward that pays no striker for going to the ball itself; or the role-aware team reward
+#: (hfo2d.team.NEAREST_PULL_REWARDS: the ball-pull terms to the striker nearest the ball alone; in 1v1 the default)
+REWARDS: tuple[str, ...] = (REWARD, "sparse", "shaped_gap_refund_nearest")
 #: learning strikers per game in each arm; the goalie is agent2d's (defense_npcs=1) in both
 ARMS: dict[str, int] = {"1v1": 1, "2v1": 2}
 #: rl_from_clone.py's fine-tuning settings (its s0 run's learning rate)
@@ -89,6 +103,147 @@ EVALUATIONS: dict[str, tuple[str, str, int]] = {
 }
 
 
+#: what the striker that is not nearest the ball does in the scripted role split (``roles``): "noop" dashes with power
+#: 0 (stands); "clear" runs straight away from the ball while nearer than CLEAR_DISTANCE, then stands
+IDLE_BEHAVIOURS: tuple[str, ...] = ("noop", "clear")
+CLEAR_DISTANCE = 10.0  # m; the "clear" idle striker's distance from the ball
+#: the flat action's DASH with power 0 (HFO_FLAT_ACTION_LAYOUT: 3 preferences, then DASH power and direction, TURN
+#: direction, KICK power and direction, all in [0, 1]; direction 0.5 is 0 degrees)
+NOOP_ACTION = np.array([1.0, 0.0, 0.0, 0.0, 0.5, 0.5, 0.0, 0.5], dtype=np.float32)
+
+
+class RoleSplitTeam:
+    """A scripted 2v1 team built from a 1v1 policy: in each game the striker nearer the ball (higher ball proximity,
+    feature 53; a tie goes to the first) plays ``policy`` on its features without the teammate's block, i.e.
+    exactly as alone against the goalie; the other one does ``idle`` (:data:`IDLE_BEHAVIOURS`). No passing. With
+    ``margin`` (m) > 0 both play while their distances to the ball differ by less than it, so that a learner that
+    misjudges who is nearer errs toward both going to the ball (the zero-shot team) rather than both idling.
+
+    It acts like a model for :func:`sb3_hfo.multi_agent.evaluate_team_games`, whose batches hold each game's two
+    strikers next to each other."""
+
+    def __init__(self, policy: Any, idle: str, margin: float = 0.0) -> None:
+        if idle not in IDLE_BEHAVIOURS:
+            raise ValueError(f"unknown idle behaviour {idle!r}; choose one of {IDLE_BEHAVIOURS}")
+        if not margin >= 0.0:
+            raise ValueError(f"margin must be >= 0 metres, got {margin!r}")
+        self.policy = policy
+        self.idle = idle
+        self.margin = float(margin)
+        position, count = teammate_block_insertion(0, 1)
+        self.teammate_block = np.arange(position, position + count)
+
+    def idle_action(self, observation: np.ndarray) -> np.ndarray:
+        """The idle striker's flat action from its own features."""
+        action = NOOP_ACTION.copy()
+        if self.idle == "clear":
+            distance = (1.0 - float(observation[BALL_PROXIMITY])) * MAX_HFO_DIST / 2.0
+            if distance < CLEAR_DISTANCE:
+                ball_deg = np.degrees(np.arctan2(observation[BALL_ANGLE_SIN], observation[BALL_ANGLE_COS]))
+                away_deg = (
+                    ball_deg + 360.0
+                ) % 360.0 - 180.0  # the ball's bearing turned round, in [-180, 180)
+                action[3], action[4] = 1.0, (away_deg + 180.0) / 360.0
+        return action
+
+    def nearer(self, observations: np.ndarray) -> np.ndarray:
+        """For a batch of (games x 2) observations, whether each striker is its game's ball player."""
+        proximity = observations[:, BALL_PROXIMITY].reshape(-1, 2)
+        first = proximity[:, 0] >= proximity[:, 1]
+        nearer = np.stack([first, ~first], axis=1)
+        # proximity is 1 - 2 d / MAX_HFO_DIST: a distance gap below the margin makes both ball players
+        close = np.abs(proximity[:, 0] - proximity[:, 1]) * MAX_HFO_DIST / 2.0 < self.margin
+        nearer[close] = True
+        return nearer.reshape(-1)
+
+    def predict(
+        self, observations: np.ndarray, deterministic: bool = True, **_: Any
+    ) -> tuple[np.ndarray, None]:
+        observations = np.asarray(observations, dtype=np.float32)
+        if observations.ndim != 2 or observations.shape[0] % 2:
+            raise ValueError(
+                f"RoleSplitTeam needs (games x 2, features) observations, got {observations.shape}"
+            )
+        playing = self.nearer(observations)
+        actions = np.stack([self.idle_action(observation) for observation in observations])
+        alone = np.delete(observations[playing], self.teammate_block, axis=1)
+        actions[playing], _ = self.policy.predict(alone, deterministic=deterministic)
+        return actions, None
+
+
+def play_pairs(predictor: Any, episodes: int, seed: int, games: int) -> np.ndarray:
+    """The observations of ``episodes`` greedy 2v1 hfo2d episodes of ``predictor`` (``games`` at once; game ``g``
+    seeded ``seed + g``), each cycle's two strikers in adjacent rows (what :class:`RoleSplitTeam` labels)."""
+    tables = [TeamGame(2, 0, 1) for _ in range(games)]
+    names = list(tables[0].agent_names)
+    observations = [table.reset(seed=seed + index)[0] for index, table in enumerate(tables)]
+    active = [index < episodes for index in range(games)]
+    started, rows = sum(active), []
+    while any(active):
+        playing = [index for index, on in enumerate(active) if on]
+        batch = np.stack([observations[index][name] for index in playing for name in names])
+        rows.append(batch)
+        actions, _ = predictor.predict(batch, deterministic=True)
+        for position, index in enumerate(playing):
+            chosen = dict(zip(names, actions[2 * position : 2 * position + 2], strict=True))
+            observations[index], _, terminated, truncated, _ = tables[index].step(chosen)
+            if terminated or truncated:
+                if started < episodes:
+                    started += 1
+                    observations[index], _ = tables[index].reset()
+                else:
+                    active[index] = False
+    return np.concatenate(rows)
+
+
+def teach_role_rule(start: HybridPPO, model: HybridPPO, args: argparse.Namespace) -> dict[str, Any]:
+    """``--start-rule IDLE``: before RL, distil :class:`RoleSplitTeam` (``start`` as the ball player, IDLE for the
+    other striker) into the widened ``model``'s actor (:func:`sb3_hfo.hybrid_ppo.distill.distill`, the actor only;
+    the critic is left to the warm-up): the teacher's own states, then DAgger rounds on the student's states,
+    both labelled by the teacher (``--teach-dagger`` rounds). Returns what ``teach.json`` records."""
+    teacher = RoleSplitTeam(start, args.start_rule, args.teach_margin)
+    adapter = model.policy.adapter
+    started = time.time()
+    observations = play_pairs(teacher, args.teach_episodes, 30_000 + args.seed, args.games)
+    record: dict[str, Any] = {
+        "idle": args.start_rule,
+        "margin": args.teach_margin,
+        "episodes_per_round": args.teach_episodes,
+        "lr": args.teach_lr,
+        "epochs": args.teach_epochs,
+        "rounds": [],
+    }
+    for round_index in range(1 + args.teach_dagger):
+        if round_index > 0:  # DAgger: where the student goes, labelled by the teacher
+            seed = 30_000 + 1_000 * round_index + args.seed
+            student = play_pairs(model, args.teach_episodes, seed, args.games)
+            observations = np.concatenate([observations, student])
+        labels = adapter.from_env(teacher.predict(observations)[0])
+        history = distill(
+            model.policy,
+            observations,
+            labels[:, 0].astype(np.int64),
+            labels[:, 1:],
+            epochs=args.teach_epochs,
+            batch_size=512,
+            learning_rate=args.teach_lr,
+            parameter_weight=100.0,  # rl_from_clone.py's default
+            seed=args.seed + round_index,
+        )
+        record["rounds"].append({"states": len(observations), "last_epoch": history[-1]})
+        print(json.dumps({"teach_round": round_index, **record["rounds"][-1]}), flush=True)
+    record["seconds"] = round(time.time() - started, 1)
+    games = [TeamGame(2, 0, 1) for _ in range(args.games)]
+    record["greedy_eval"] = evaluate_team_games(
+        model, games, args.teach_eval_episodes, seed=40_000 + args.seed
+    )
+    record["teacher_eval"] = evaluate_team_games(
+        teacher, games, args.teach_eval_episodes, seed=40_000 + args.seed
+    )
+    print(json.dumps({"taught": record["greedy_eval"], "teacher": record["teacher_eval"]}), flush=True)
+    return record
+
+
 def team_env(strikers: int, backend: str, **kwargs: Any) -> Any:
     """The evaluated team: ``strikers`` agents against agent2d's goalie, as a PettingZoo parallel env."""
     return hfo2d.parallel_env(offense_agents=strikers, defense_npcs=1, backend=backend, **kwargs)
@@ -109,13 +264,20 @@ def fresh_start_model(env: Any, seed: int) -> HybridPPO:
 
 
 def build_arm_model(start: HybridPPO, env: Any, strikers: int, args: argparse.Namespace) -> HybridPPO:
-    """A HybridPPO on ``env`` with ``start``'s networks, widened for ``strikers - 1`` teammates (zero weights)."""
+    """A HybridPPO on ``env`` with ``start``'s networks, widened for ``strikers - 1`` teammates (zero weights); a
+    ``start`` that already reads this team's features (an arm's ``final.zip``, to continue it) is copied as it is,
+    with a fresh optimizer, reward normaliser and critic warm-up."""
     start_features = start.observation_space.shape[0]
     position, count = teammate_block_insertion(0, strikers - 1)
-    if env.observation_space.shape[0] != start_features + count:
+    if (
+        env.observation_space.shape[0] == start_features
+    ):  # already this team's policy (a run continued): a copy
+        position = 0
+    elif env.observation_space.shape[0] != start_features + count:
         raise ValueError(
             f"the start policy reads {start_features} features; a {strikers}-striker team gives "
-            f"{env.observation_space.shape[0]}, not {start_features} + {count}: is it a 1v1 policy against the goalie?"
+            f"{env.observation_space.shape[0]}, not {start_features} + {count}: is it a 1v1 policy against the goalie "
+            "(or this arm's own model, to continue it)?"
         )
     model = HybridPPO(
         "MlpPolicy",
@@ -134,6 +296,8 @@ def train(args: argparse.Namespace) -> Path:
     """One arm: widen, save ``start.zip``, train ``--steps`` agent steps, save ``final.zip``; returns its folder."""
     strikers = ARMS[args.arm]
     folder = args.out / f"arm_{args.arm}"
+    if args.start_rule is not None and strikers != 2:
+        raise SystemExit("error: --start-rule teaches the 2v1 role split; the 1v1 arm has no teammate")
     if (folder / "curve.jsonl").exists():
         raise SystemExit(f"error: {folder} already holds a run (curve.jsonl); choose another --out")
     folder.mkdir(parents=True, exist_ok=True)
@@ -152,6 +316,8 @@ def train(args: argparse.Namespace) -> Path:
     else:
         start = HybridPPO.load(args.start, device="cpu")
     model = build_arm_model(start, env, strikers, args)
+    if args.start_rule is not None:
+        (folder / "teach.json").write_text(json.dumps(teach_role_rule(start, model, args), indent=1))
     model.save(folder / "start.zip")
     record = {
         "arm": args.arm,
@@ -161,6 +327,7 @@ def train(args: argparse.Namespace) -> Path:
         "budget": "agent steps (num_timesteps); game cycles = agent steps / strikers",
         "reward": args.reward,
         "start": str(args.start) if args.start else "untrained (smoke)",
+        "start_rule": args.start_rule,
         "hp": args.hp,
         "critic_warmup": args.critic_warmup,
         "steps": args.steps,
@@ -199,6 +366,13 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
             print(f"skipping {name}: no {model_path}", flush=True)
             continue
         model = HybridPPO.load(model_path, device="cpu")
+        run_record = args.out / f"arm_{arm}" / "run.json"
+        if (
+            name == "zero_shot_2v1"
+            and run_record.exists()
+            and json.loads(run_record.read_text()).get("start_rule")
+        ):
+            name = "taught_start_2v1"  # the 2v1 start of a --start-rule run is the taught one, not zero-shot
         started = time.time()
         if args.backend == "hfo2d" and args.games > 1:  # many games per predict call: the same statistics
             games = [TeamGame(strikers, 0, 1) for _ in range(args.games)]
@@ -235,6 +409,46 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
     return results
 
 
+def roles(args: argparse.Namespace) -> dict[str, Any]:
+    """The ceiling of a no-passing role split: ``--start`` as :class:`RoleSplitTeam` with each idle behaviour, the
+    zero-shot team (both strikers play it) and the policy alone in 1v1 (the last two unless ``--no-zero-shot``), over ``--episodes`` greedy hfo2d 2v1 episodes each
+    (``--games`` at once); written to ``OUT/roles.json``."""
+    th.set_num_threads(1)
+    policy = HybridPPO.load(args.start, device="cpu")
+    suffix = f", both within {args.margin:g} m" if args.margin else ""
+    teams: dict[str, Any] = {
+        f"nearer plays, other {idle}{suffix}": RoleSplitTeam(policy, idle, args.margin) for idle in args.idle
+    }
+    if args.zero_shot:
+        teams["both play (zero-shot)"] = RoleSplitTeamBoth(policy)
+    if args.zero_shot:
+        teams["alone (1v1)"] = policy
+    results: dict[str, Any] = {}
+    for name, team in teams.items():
+        started = time.time()
+        games = [TeamGame(1 if team is policy else 2, 0, 1) for _ in range(args.games)]
+        result = evaluate_team_games(team, games, args.episodes, seed=args.seed)
+        result.update(seconds=round(time.time() - started, 1), load1=round(load_average(), 2))
+        results[name] = result
+        print(json.dumps({name: result}), flush=True)
+    record = {"start": str(args.start), "episodes": args.episodes, "seed": args.seed, "games": args.games}
+    record["margin"] = args.margin
+    args.out.mkdir(parents=True, exist_ok=True)
+    file = f"roles_margin{args.margin:g}.json" if args.margin else "roles.json"
+    (args.out / file).write_text(json.dumps({**record, "results": results}, indent=1))
+    return results
+
+
+class RoleSplitTeamBoth(RoleSplitTeam):
+    """The zero-shot team as a :class:`RoleSplitTeam`: both strikers play the 1v1 policy on their 1v1 features."""
+
+    def __init__(self, policy: Any) -> None:
+        super().__init__(policy, "noop")
+
+    def nearer(self, observations: np.ndarray) -> np.ndarray:
+        return np.ones(observations.shape[0], dtype=bool)
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     commands = parser.add_subparsers(dest="command", required=True)
@@ -259,6 +473,22 @@ def main(argv: list[str] | None = None) -> None:
         sub.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
         sub.add_argument("--threads", type=int, default=1, help="torch threads")
         sub.add_argument("--reward", choices=REWARDS, default=REWARD, help="every striker's reward")
+        sub.add_argument(
+            "--start-rule",
+            choices=IDLE_BEHAVIOURS,
+            default=None,
+            help="2v1: before RL, distil the scripted role split (the nearer striker plays the start policy, the "
+            "other this idle behaviour) into the widened policy: a taught start",
+        )
+        sub.add_argument("--teach-episodes", type=int, default=400, help="episodes per distillation round")
+        sub.add_argument("--teach-epochs", type=int, default=10)
+        sub.add_argument("--teach-margin", type=float, default=0.0, help="m: the taught rule's margin")
+        sub.add_argument(
+            "--teach-dagger", type=int, default=1, help="DAgger rounds after the teacher's states"
+        )
+        sub.add_argument("--teach-lr", type=float, default=1e-4)
+        sub.add_argument("--teach-eval-episodes", type=int, default=300)
+        sub.add_argument("--games", type=int, default=16, help="hfo2d games at once while teaching")
     training.add_argument("--arm", choices=sorted(ARMS), required=True)
     evaluating = commands.add_parser("evaluate", help="evaluate the start, zero-shot and final models")
     evaluating.add_argument("--out", type=Path, required=True, help="the run folder that train wrote")
@@ -272,7 +502,21 @@ def main(argv: list[str] | None = None) -> None:
         help="hfo2d: games played at once (game g seeded seed + g; 1: one game)",
     )
     evaluating.add_argument("--which", nargs="+", choices=sorted(EVALUATIONS), default=list(EVALUATIONS))
+    role_split = commands.add_parser("roles", help="the scripted role split's 2v1 goal rate (no training)")
+    role_split.add_argument("--start", type=Path, required=True, help="the 1v1 HybridPPO policy")
+    role_split.add_argument("--out", type=Path, required=True, help="folder for roles.json")
+    role_split.add_argument("--episodes", type=int, default=500)
+    role_split.add_argument("--seed", type=int, default=0)
+    role_split.add_argument("--games", type=int, default=16, help="hfo2d games played at once")
+    role_split.add_argument("--idle", nargs="+", choices=IDLE_BEHAVIOURS, default=list(IDLE_BEHAVIOURS))
+    role_split.add_argument("--no-zero-shot", dest="zero_shot", action="store_false")
+    role_split.add_argument(
+        "--margin", type=float, default=0.0, help="m: both play within it (RoleSplitTeam)"
+    )
     args = parser.parse_args(argv)
+    if args.command == "roles":
+        roles(args)
+        return
     if args.command == "evaluate":
         evaluate(args)
         return
@@ -287,8 +531,11 @@ def main(argv: list[str] | None = None) -> None:
             1024,
         )
         args.hp["batch_size"] = 256
+        args.teach_episodes, args.teach_epochs, args.teach_eval_episodes, args.games = 4, 1, 4, 2
+        start_rule = args.start_rule
         for arm in ARMS:
             args.arm = arm
+            args.start_rule = start_rule if ARMS[arm] == 2 else None  # the taught start is the 2v1 arm's
             train(args)
         evaluate(
             argparse.Namespace(

@@ -63,6 +63,12 @@ Rewards (this project's choice; HFO itself gives none):
   ball's progress to the goal, +5 on a goal, whoever scored); ``"shaped_gap"`` and ``"shaped_gap_refund"``
   (:mod:`hfo2d.reward`: the ball's progress measured to the gap beside the goalie, lost shots refunded), which
   read the goalie where ``HFO/Keeper-v1`` has it (:meth:`TeamGame._reward_features`); ``"sparse"``: 1 on a goal.
+  Role-aware (``"shaped_gap_refund_nearest"``, this project's): ``"shaped_gap_refund"``, except that the ball-pull
+  terms (move to the ball, first-kickable bonus) are paid only to the learning striker nearest the ball after the
+  cycle (world distances; a tie goes to the lower agent index), while the progress and goal terms stay each
+  striker's. Why: with every striker paid for its own move to the ball, all of them chase it and the goalie
+  captures (benchmarks/README.md, 2v1); with one striker it equals ``"shaped_gap_refund"``. A striker that is not
+  the nearest still has its kick bonus marked paid if it became kickable (the bonus is the episode's first touch).
 * defense (``defense_reward``): ``"sparse"`` (default): +1 on the last step when the episode ends in
   CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS or OUT_OF_TIME (truncation included), -1 on a GOAL, else 0;
   ``"shaped"``: the same plus the rise of the agent's ball proximity since its last step (DQNHFO's move-to-ball
@@ -126,7 +132,8 @@ from hfo2d.protocol import (
     POWER_MIN,
 )
 from hfo2d.referee import Referee
-from hfo2d.reward import GOALIE_READING_REWARDS, make_reward
+from hfo2d.reward import GOALIE_READING_REWARDS as SINGLE_AGENT_GOALIE_READING_REWARDS
+from hfo2d.reward import make_reward
 from hfo2d.strikers import STRIKERS, Striker, make_striker
 
 __all__ = [
@@ -141,6 +148,8 @@ __all__ = [
     "TEAM_DEFENSE_REWARDS",
     "TEAM_FEATURE_SETS",
     "TEAM_OFFENSE_REWARDS",
+    "BALL_PULL_TERMS",
+    "NEAREST_PULL_REWARDS",
     "HalfFieldOffenseEnv",
     "TeamGame",
     "TeamRoster",
@@ -193,7 +202,25 @@ _PARAMETER_BOUNDS: dict[str, tuple[tuple[float, float], ...]] = {
 TEAM_ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
 #: "high_level" is HFO's high-level feature set, offered when hfo2d.features has it (high_level_feature_list).
 TEAM_FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
-TEAM_OFFENSE_REWARDS: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "sparse")
+#: Team rewards that pay the ball-pull terms (BALL_PULL_TERMS) only to the striker nearest the ball: name -> the
+#: per-striker reward whose other terms they keep (see the module docstring, "role-aware").
+NEAREST_PULL_REWARDS: dict[str, str] = {"shaped_gap_refund_nearest": "shaped_gap_refund"}
+TEAM_OFFENSE_REWARDS: tuple[str, ...] = (
+    "shaped",
+    "shaped_gap",
+    "shaped_gap_refund",
+    "sparse",
+    *NEAREST_PULL_REWARDS,
+)
+#: Offense rewards that read the goalie's block (hfo2d.reward.GOALIE_READING_REWARDS, and the role-aware ones built
+#: on them): the team game gives them HFO/Keeper-v1's view of the state.
+GOALIE_READING_REWARDS: tuple[str, ...] = (
+    *SINGLE_AGENT_GOALIE_READING_REWARDS,
+    *(name for name, base in NEAREST_PULL_REWARDS.items() if base in SINGLE_AGENT_GOALIE_READING_REWARDS),
+)
+#: The shaped reward's terms that pull a striker to the ball (hfo2d.reward.REWARD_TERM_NAMES); a role-aware team
+#: reward pays them to the striker nearest the ball alone.
+BALL_PULL_TERMS: tuple[str, ...] = ("move_to_ball", "kick_bonus")
 TEAM_DEFENSE_REWARDS: tuple[str, ...] = ("sparse", "shaped")
 #: The statuses that end an episode in the defense's favour (its sparse reward +1).
 DEFENSE_WINS: tuple[str, ...] = (CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS, OUT_OF_TIME)
@@ -477,7 +504,9 @@ class TeamGame:
         action_space = (
             HybridActionBox(layout) if self.action_format == "flat" else _parameterized_space(layout)
         )
-        reward = make_reward(self.reward_name) if offense else None
+        reward = (
+            make_reward(NEAREST_PULL_REWARDS.get(self.reward_name, self.reward_name)) if offense else None
+        )
         return _Agent(
             name,
             player,
@@ -645,11 +674,15 @@ class TeamGame:
         observations: dict[str, np.ndarray] = {}
         rewards: dict[str, float] = {}
         infos: dict[str, dict[str, Any]] = {}
+        puller = self._ball_puller()
         for agent, (kind, _) in commands:
             paper = self._paper_features(agent)
             info = self._info(agent, paper)
             if agent.offense:
                 reward, terms = agent.reward(self._reward_features(agent, paper), status, terminated)
+                if puller is not None and agent is not puller:
+                    terms = {**terms, **dict.fromkeys(BALL_PULL_TERMS, 0.0)}
+                    reward = sum(terms.values())
             else:
                 reward, terms = self._defense_reward(agent, paper, status)
             info["reward_terms"] = terms
@@ -707,6 +740,20 @@ class TeamGame:
         if agent.player.tackle_cycles > 0:
             features[SELF_FROZEN] = 1.0
         return features
+
+    def _ball_puller(self) -> _Agent | None:
+        """Under a role-aware reward (:data:`NEAREST_PULL_REWARDS`), the learning striker nearest the ball (a tie
+        goes to the lower index), the only one paid the ball-pull terms; None under any other reward."""
+        if self.reward_name not in NEAREST_PULL_REWARDS:
+            return None
+        ball = self.world.ball
+        strikers = [agent for agent in self.agents if agent.offense]
+        if not strikers:
+            return None
+        return min(
+            strikers,
+            key=lambda agent: math.hypot(agent.player.x - ball.x, agent.player.y - ball.y),
+        )
 
     def _reward_features(self, agent: _Agent, paper: list[float]) -> list[float]:
         """What an offense agent's reward reads: its paper features, or for a gap reward in a team other than
@@ -1047,7 +1094,8 @@ class HalfFieldOffenseEnv(gym.Env):
     A striker (``reward``): ``"shaped"`` (default), Hausknecht & Stone's shaping from its own features (move to
     the ball, +1 the first time kickable, 3 x the ball's progress to the goal, +5 on a goal), ``"shaped_gap"`` /
     ``"shaped_gap_refund"`` (the progress measured to the gap beside the goalie, lost shots refunded:
-    :mod:`hfo2d.reward`), or ``"sparse"`` (1 on a goal). A defender (``defense_reward``): ``"sparse"`` (default) +1 when the episode ends in
+    :mod:`hfo2d.reward`), ``"shaped_gap_refund_nearest"`` (the same, with the move-to-ball and kick terms paid
+    only to the striker nearest the ball), or ``"sparse"`` (1 on a goal). A defender (``defense_reward``): ``"sparse"`` (default) +1 when the episode ends in
     CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS or OUT_OF_TIME, -1 on a GOAL; ``"shaped"`` adds its move-to-ball term.
 
     ## Starting State

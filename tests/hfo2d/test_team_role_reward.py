@@ -1,0 +1,88 @@
+"""hfo2d.team: the role-aware team reward pays the ball-pull terms to the striker nearest the ball alone."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from hfo2d.team import BALL_PULL_TERMS, NEAREST_PULL_REWARDS, TEAM_OFFENSE_REWARDS, TeamGame
+
+ROLE_REWARD = "shaped_gap_refund_nearest"
+
+
+def chase_actions(observations: dict[str, np.ndarray], step: int) -> dict[str, np.ndarray]:
+    """Every striker dashes at the ball and kicks it at the goal centre on every third kickable cycle (both chase,
+    so both move toward the ball and the role rule has work to do)."""
+    actions = {}
+    for name, obs in observations.items():
+        action = np.zeros(8, dtype=np.float32)
+        if obs[12] > 0 and step % 3 == 0:  # kickable
+            action[2], action[6] = 1.0, 0.6  # KICK, power 60
+            action[7] = (np.degrees(np.arctan2(obs[13], obs[14])) + 180.0) / 360.0  # at the goal centre
+        else:
+            action[0], action[3] = 1.0, 1.0  # DASH at full power
+            action[4] = (np.degrees(np.arctan2(obs[51], obs[52])) + 180.0) / 360.0  # at the ball
+        actions[name] = action
+    return actions
+
+
+def play_side_by_side(strikers: int, steps: int, seed: int) -> list[tuple[dict, dict, dict, list[float]]]:
+    """The role-aware game and the per-striker ``shaped_gap_refund`` game from one seed with the same actions:
+    per cycle (role rewards, role infos, plain infos, each striker's distance to the ball)."""
+    role = TeamGame(strikers, 0, 1, reward=ROLE_REWARD, seed=seed)
+    plain = TeamGame(strikers, 0, 1, reward=NEAREST_PULL_REWARDS[ROLE_REWARD], seed=seed)
+    observations, _ = role.reset(seed=seed)
+    plain_observations, _ = plain.reset(seed=seed)
+    rows = []
+    for step in range(steps):
+        actions = chase_actions(observations, step)
+        observations, rewards, terminated, truncated, infos = role.step(actions)
+        plain_observations, _, _, _, plain_infos = plain.step(actions)
+        for name in role.agent_names:  # same actions, same seed: the same game
+            np.testing.assert_array_equal(observations[name], plain_observations[name])
+        ball = role.world.ball
+        distances = [math.hypot(agent.player.x - ball.x, agent.player.y - ball.y) for agent in role.agents]
+        rows.append((rewards, infos, plain_infos, distances))
+        if terminated or truncated:
+            observations, _ = role.reset()
+            plain_observations, _ = plain.reset()
+    return rows
+
+
+def test_the_role_reward_is_offered_and_reads_the_goalie() -> None:
+    assert ROLE_REWARD in TEAM_OFFENSE_REWARDS
+    assert TeamGame(2, 0, 1, reward=ROLE_REWARD)._reward_needs_goalie_view
+    with pytest.raises(ValueError, match="unknown reward"):
+        TeamGame(2, 0, 1, reward="shaped_nearest")
+
+
+def test_one_striker_is_paid_exactly_shaped_gap_refund() -> None:
+    rows = play_side_by_side(1, 300, seed=3)
+    pulls = 0
+    for rewards, infos, plain_infos, _ in rows:
+        assert infos["offense_0"]["reward_terms"] == plain_infos["offense_0"]["reward_terms"]
+        assert rewards["offense_0"] == pytest.approx(
+            sum(plain_infos["offense_0"]["reward_terms"].values()), abs=1e-12
+        )
+        pulls += infos["offense_0"]["reward_terms"]["move_to_ball"] != 0.0
+    assert pulls > 0  # the lone striker is paid its move to the ball
+
+
+@pytest.mark.parametrize("strikers", [2, 3])
+def test_only_the_striker_nearest_the_ball_is_paid_the_ball_pull(strikers: int) -> None:
+    rows = play_side_by_side(strikers, 400, seed=5)
+    withheld = 0
+    for rewards, infos, plain_infos, distances in rows:
+        nearest = f"offense_{int(np.argmin(distances))}"
+        for name, info in infos.items():
+            terms, plain_terms = info["reward_terms"], plain_infos[name]["reward_terms"]
+            for term, value in terms.items():
+                if name == nearest or term not in BALL_PULL_TERMS:
+                    assert value == plain_terms[term], (name, term)
+                else:
+                    assert value == 0.0, (name, term)
+                    withheld += plain_terms[term] != 0.0
+            assert rewards[name] == pytest.approx(sum(terms.values()), abs=1e-12)
+    assert withheld > 0  # the plain reward did pay a striker that was not the nearest
