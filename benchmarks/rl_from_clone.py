@@ -16,6 +16,14 @@ imitation, not RL); below it is called e6. This run:
    first ``--critic-warmup`` steps) and a pull ``reference_coef(t) * KL(distilled(.|s) || pi(.|s))`` toward the
    frozen distilled policy whose coefficient falls linearly from ``--pull`` to 0 over the first
    ``--pull-fraction`` of the steps (:class:`sb3_hfo.common.schedules.DecayToZero`).
+With ``--router learned`` (issue 33 item 4: the learned router against ``field_half``) the student has
+``skills=2, router="learned"``: its trunk and heads start as the same copies of e6's, and distillation also fits
+its router (a linear layer on the actor trunk) to the skill ``field_half`` picks in the same states
+(cross-entropy), so both arms start from the same behaviour and differ only in whether PPO may change the routing.
+Its pull is toward the distilled policy routed by ``field_half`` (the distilled trunk and heads without the
+router): the KL over the joint (skill, action), ``-log rho(field_half(s)) + KL`` of the head field_half picks
+(:meth:`sb3_hfo.hybrid_ppo.HybridPPO.reference_kl`), so once the pull has decayed the router is free.
+
 3. Records like ``hybrid_ppo_runs.py``: ``curve.jsonl`` with greedy evaluations against the full goalie every
    ``--eval-every`` steps, ``run.json``, ``final.zip`` (``distill.json`` holds the distilled policy's score).
 
@@ -48,9 +56,11 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's
 
 from hybrid_ppo_runs import RunRecorder, greedy_evaluation, load_average  # noqa: E402
 
+from sb3_hfo.common.routers import make_router  # noqa: E402
 from sb3_hfo.common.schedules import DecayToZero  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
+from sb3_hfo.hybrid_ppo.policies import HybridActorCriticPolicy  # noqa: E402
 from sb3_hfo.models import load_model  # noqa: E402
 from sb3_hfo.vec_env import make_hfo_vec_env  # noqa: E402
 
@@ -72,6 +82,8 @@ HP: dict[str, Any] = {
 }
 #: e6's actor: the student copies it (zoo_configs/keeper_v1_skills_cloned_striker.yml).
 ACTOR_ARCH = [256, 128, 64]
+#: the student's routers: e6's hand-coded one, or one PPO learns (started as a copy of it by distillation)
+ROUTERS = ("field_half", "learned")
 
 
 def student_model(env: Any, args: argparse.Namespace, hp: dict[str, Any]) -> HybridPPO:
@@ -79,7 +91,7 @@ def student_model(env: Any, args: argparse.Namespace, hp: dict[str, Any]) -> Hyb
         "net_arch": {"pi": ACTOR_ARCH, "vf": [256, 128]},
         "activation_fn": nn.LeakyReLU,
         "skills": 2,
-        "router": "field_half",
+        "router": args.router,
         "domain": "hfo",
         "log_std_init": args.log_std,
         "squash_mean": True,  # e6's tanh output: its parameters copy exactly
@@ -117,6 +129,16 @@ def copy_teacher_weights(teacher: Any, model: HybridPPO, logit_scale: float) -> 
             head.linear.bias.copy_(source.bias * scale.squeeze(1))
 
 
+def field_half_reference(policy: HybridActorCriticPolicy) -> HybridActorCriticPolicy:
+    """A copy of ``policy`` that routes by ``field_half``: the same trunk, heads and critic, no learned router (the
+    pull's reference of a learned-router student; for a ``field_half`` student an exact copy)."""
+    kwargs = {**policy._get_constructor_parameters(), "router": "field_half"}
+    reference = HybridActorCriticPolicy(**kwargs)
+    state = {key: value for key, value in policy.state_dict().items() if not key.startswith("router_net.")}
+    reference.load_state_dict(state)  # strict: every other tensor is there
+    return reference.to(policy.device)
+
+
 def play(policy_predict: Any, episodes: int, seed: int, n_games: int) -> tuple[np.ndarray, dict[str, int]]:
     """Observations of ``episodes`` greedy games of ``policy_predict`` on Keeper-v1 and their end statuses."""
     env = make_hfo_vec_env(ENV_ID, n_games, seed=seed, monitor=False)
@@ -145,6 +167,9 @@ def distil_clone(teacher: Any, model: HybridPPO, args: argparse.Namespace) -> di
     def labels(obs: np.ndarray) -> np.ndarray:  # e6's greedy action (kick mask included) as [k, parameters]
         return adapter.from_env(teacher_predict(obs))
 
+    # a learned router's labels: the skill e6's own router (field_half) picks in each state
+    field_half = make_router("field_half", 2, "hfo") if model.policy.learned_router else None
+
     started = time.time()
     copy_teacher_weights(teacher, model, args.logit_scale)
     observations, teacher_statuses = play(
@@ -168,6 +193,7 @@ def distil_clone(teacher: Any, model: HybridPPO, args: argparse.Namespace) -> di
             learning_rate=args.distill_lr,
             parameter_weight=args.parameter_weight,
             seed=args.seed + round_index,
+            skills=None if field_half is None else field_half.numpy_route(observations),
         )
         record["rounds"].append({"states": len(observations), "last_epoch": history[-1]})
         print(json.dumps({"distill_round": round_index, **record["rounds"][-1]}), flush=True)
@@ -201,6 +227,12 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--distill-lr", type=float, default=1e-4)
     parser.add_argument("--parameter-weight", type=float, default=100.0, help="distillation's parameter term")
     parser.add_argument("--distill-eval-episodes", type=int, default=1000)
+    parser.add_argument(
+        "--router",
+        choices=ROUTERS,
+        default="field_half",
+        help="the student's skill router (module docstring)",
+    )
     parser.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument("--smoke", action="store_true", help="a few seconds: tiny budgets everywhere")
@@ -239,7 +271,10 @@ def main(argv: list[str] | None = None) -> None:
     distilled = distil_clone(teacher, model, args)
     (args.out / "distill.json").write_text(json.dumps(distilled, indent=1))
     model.save(args.out / "distilled.zip")
-    model.set_reference(copy.deepcopy(model.policy))
+    if args.router == "field_half":
+        model.set_reference(copy.deepcopy(model.policy))
+    else:
+        model.set_reference(field_half_reference(model.policy))
 
     def evaluate(policy_model: HybridPPO) -> dict:  # the full goalie, HFO's own statuses
         return greedy_evaluation(policy_model, ENV_ID, {}, args.eval_episodes, seed=10_000 + args.seed)
