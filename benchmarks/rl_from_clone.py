@@ -19,7 +19,7 @@ imitation, not RL); below it is called e6. This run:
 With ``--router learned`` (issue 33 item 4: the learned router against ``field_half``) the student has
 ``skills=2, router="learned"``: its trunk and heads start as the same copies of e6's, and distillation also fits
 its router (a linear layer on the actor trunk) to the skill ``field_half`` picks in the same states
-(cross-entropy), so both arms start from the same behaviour and differ only in whether PPO may change the routing.
+(cross-entropy, weight ``--router-weight``), so both arms start from the same behaviour and differ only in whether PPO may change the routing.
 Its pull is toward the distilled policy routed by ``field_half`` (the distilled trunk and heads without the
 router): the KL over the joint (skill, action), ``-log rho(field_half(s)) + KL`` of the head field_half picks
 (:meth:`sb3_hfo.hybrid_ppo.HybridPPO.reference_kl`), so once the pull has decayed the router is free.
@@ -60,7 +60,6 @@ from sb3_hfo.common.routers import make_router  # noqa: E402
 from sb3_hfo.common.schedules import DecayToZero  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
-from sb3_hfo.hybrid_ppo.policies import HybridActorCriticPolicy  # noqa: E402
 from sb3_hfo.models import load_model  # noqa: E402
 from sb3_hfo.vec_env import make_hfo_vec_env  # noqa: E402
 
@@ -129,16 +128,6 @@ def copy_teacher_weights(teacher: Any, model: HybridPPO, logit_scale: float) -> 
             head.linear.bias.copy_(source.bias * scale.squeeze(1))
 
 
-def field_half_reference(policy: HybridActorCriticPolicy) -> HybridActorCriticPolicy:
-    """A copy of ``policy`` that routes by ``field_half``: the same trunk, heads and critic, no learned router (the
-    pull's reference of a learned-router student; for a ``field_half`` student an exact copy)."""
-    kwargs = {**policy._get_constructor_parameters(), "router": "field_half"}
-    reference = HybridActorCriticPolicy(**kwargs)
-    state = {key: value for key, value in policy.state_dict().items() if not key.startswith("router_net.")}
-    reference.load_state_dict(state)  # strict: every other tensor is there
-    return reference.to(policy.device)
-
-
 def play(policy_predict: Any, episodes: int, seed: int, n_games: int) -> tuple[np.ndarray, dict[str, int]]:
     """Observations of ``episodes`` greedy games of ``policy_predict`` on Keeper-v1 and their end statuses."""
     env = make_hfo_vec_env(ENV_ID, n_games, seed=seed, monitor=False)
@@ -194,6 +183,7 @@ def distil_clone(teacher: Any, model: HybridPPO, args: argparse.Namespace) -> di
             parameter_weight=args.parameter_weight,
             seed=args.seed + round_index,
             skills=None if field_half is None else field_half.numpy_route(observations),
+            router_weight=args.router_weight,
         )
         record["rounds"].append({"states": len(observations), "last_epoch": history[-1]})
         print(json.dumps({"distill_round": round_index, **record["rounds"][-1]}), flush=True)
@@ -232,6 +222,9 @@ def main(argv: list[str] | None = None) -> None:
         choices=ROUTERS,
         default="field_half",
         help="the student's skill router (module docstring)",
+    )
+    parser.add_argument(
+        "--router-weight", type=float, default=3.0, help="distillation's router term (--router learned)"
     )
     parser.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
@@ -274,7 +267,7 @@ def main(argv: list[str] | None = None) -> None:
     if args.router == "field_half":
         model.set_reference(copy.deepcopy(model.policy))
     else:
-        model.set_reference(field_half_reference(model.policy))
+        model.set_reference(model.policy.hand_routed_copy("field_half"))
 
     def evaluate(policy_model: HybridPPO) -> dict:  # the full goalie, HFO's own statuses
         return greedy_evaluation(policy_model, ENV_ID, {}, args.eval_episodes, seed=10_000 + args.seed)

@@ -12,7 +12,7 @@ linear layers only. Deterministic for a given ``seed`` (the minibatch order).
 
 A policy with a learned router also takes skill labels ``s*`` (e.g. the skill a hand-coded router picks in that
 state): the terms above then score head ``s*``, the loss adds the router's cross-entropy ``-log rho(s*|s)`` (weight
-1), and Adam also runs over the router's layer. A policy with a hand-coded router takes no skill labels (its router
+``router_weight``), and Adam also runs over the router's layer. A policy with a hand-coded router takes no skill labels (its router
 picks the head).
 """
 
@@ -57,9 +57,10 @@ def routed_distillation_loss(
     discrete: th.Tensor,
     parameters: th.Tensor,
     parameter_weight: float = 1.0,
+    router_weight: float = 1.0,
 ) -> tuple[th.Tensor, th.Tensor, th.Tensor, th.Tensor, th.Tensor, th.Tensor]:
     """A learned-router policy's batch (module docstring): :func:`distillation_loss`'s four scalars for head
-    ``skills`` with the router's cross-entropy added to the loss, then that cross-entropy and the fraction of rows
+    ``skills`` with ``router_weight`` times the router's cross-entropy added to the loss, then that cross-entropy and the fraction of rows
     whose greedy skill is the label (``router_agreement``, no gradient)."""
     distribution, log_rho = policy.skill_distribution(observations, skills)
     if log_rho is None:
@@ -72,7 +73,7 @@ def routed_distillation_loss(
     router_cross_entropy = -log_rho.gather(-1, skills.unsqueeze(-1)).squeeze(-1).mean()
     router_agreement = (log_rho.detach().argmax(dim=-1) == skills).float().mean()
     return (
-        loss + router_cross_entropy,
+        loss + router_weight * router_cross_entropy,
         cross_entropy,
         squared_error,
         agreement,
@@ -92,6 +93,7 @@ def distill(
     parameter_weight: float = 1.0,
     seed: int = 0,
     skills: np.ndarray | None = None,
+    router_weight: float = 1.0,
 ) -> list[dict[str, float]]:
     """Fit ``policy``'s actor to the labels ``(discrete (N,), parameters (N, P))`` at ``observations (N, ...)``;
     a learned-router policy also to the skill labels ``skills (N,)`` (required for it, refused otherwise).
@@ -165,6 +167,7 @@ def distill(
                     discrete_t[rows],
                     parameters_t[rows],
                     parameter_weight,
+                    router_weight,
                 )
             optimizer.zero_grad(set_to_none=True)
             terms[0].backward()

@@ -374,6 +374,23 @@ class HybridActorCriticPolicy(BasePolicy):
         log_rho = th.log_softmax(router_logits, dim=-1) if router_logits is not None else None
         return self._distribution(latent, skills), log_rho
 
+    def hand_routed_copy(self, router: Any) -> HybridActorCriticPolicy:
+        """A copy of this policy whose skills a hand-coded ``router`` picks (as the ``router`` argument; e.g.
+        ``"field_half"``): the same features extractor, trunk, heads and critic; a learned router's layer is
+        dropped. E.g. the reference a learned-router policy is pulled toward (:meth:`HybridPPO.set_reference`).
+
+        :raises ValueError: ``router="learned"``, or with one skill.
+        """
+        if router == LEARNED_ROUTER or self.n_skills == 1:
+            raise ValueError(
+                f"hand_routed_copy needs a hand-coded router and skills > 1; got router={router!r} with "
+                f"{self.n_skills} skill(s)"
+            )
+        copy = type(self)(**{**self._get_constructor_parameters(), "router": router})
+        state = {key: value for key, value in self.state_dict().items() if not key.startswith("router_net.")}
+        copy.load_state_dict(state)  # strict: every other tensor has its counterpart
+        return copy.to(self.device)
+
     def predict_values(self, obs: PyTorchObs) -> th.Tensor:
         """``(B, 1)`` state values."""
         return self.value_net(self.critic_trunk(self.extract_features(obs, self.features_extractor)))
