@@ -16,6 +16,17 @@ imitation, not RL); below it is called e6. This run:
    first ``--critic-warmup`` steps) and a pull ``reference_coef(t) * KL(distilled(.|s) || pi(.|s))`` toward the
    frozen distilled policy whose coefficient falls linearly from ``--pull`` to 0 over the first
    ``--pull-fraction`` of the steps (:class:`sb3_hfo.common.schedules.DecayToZero`).
+With ``--router learned`` (issue 33 item 4: the learned router against ``field_half``) the student has
+``skills=2, router="learned"``: its trunk and heads start as the same copies of e6's, and distillation also fits
+its router (a linear layer on the actor trunk) to the skill ``field_half`` picks in the same states
+(cross-entropy, weight ``--router-weight``), so both arms start from the same behaviour and differ only in whether PPO may change the routing.
+Its pull is toward the distilled policy routed by ``field_half`` (the distilled trunk and heads without the
+router): the KL over the joint (skill, action), ``-log rho(field_half(s)) + KL`` of the head field_half picks
+(:meth:`sb3_hfo.hybrid_ppo.HybridPPO.reference_kl`), so once the pull has decayed the router is free. The router
+reads the actor trunk's last layer, where e6's copied trunk does not hold the field half linearly (a linear probe
+on a distilled field_half student's latent agrees with field_half on 77 % of states), so the trunk must learn it:
+the learned arm distils longer and faster (``--distill-epochs 40 --distill-lr 3e-4``, benchmarks/README.md).
+
 3. Records like ``hybrid_ppo_runs.py``: ``curve.jsonl`` with greedy evaluations against the full goalie every
    ``--eval-every`` steps, ``run.json``, ``final.zip`` (``distill.json`` holds the distilled policy's score).
 
@@ -48,6 +59,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's
 
 from hybrid_ppo_runs import RunRecorder, greedy_evaluation, load_average  # noqa: E402
 
+from sb3_hfo.common.routers import make_router  # noqa: E402
 from sb3_hfo.common.schedules import DecayToZero  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
@@ -72,6 +84,8 @@ HP: dict[str, Any] = {
 }
 #: e6's actor: the student copies it (zoo_configs/keeper_v1_skills_cloned_striker.yml).
 ACTOR_ARCH = [256, 128, 64]
+#: the student's routers: e6's hand-coded one, or one PPO learns (started as a copy of it by distillation)
+ROUTERS = ("field_half", "learned")
 
 
 def student_model(env: Any, args: argparse.Namespace, hp: dict[str, Any]) -> HybridPPO:
@@ -79,7 +93,7 @@ def student_model(env: Any, args: argparse.Namespace, hp: dict[str, Any]) -> Hyb
         "net_arch": {"pi": ACTOR_ARCH, "vf": [256, 128]},
         "activation_fn": nn.LeakyReLU,
         "skills": 2,
-        "router": "field_half",
+        "router": args.router,
         "domain": "hfo",
         "log_std_init": args.log_std,
         "squash_mean": True,  # e6's tanh output: its parameters copy exactly
@@ -145,6 +159,9 @@ def distil_clone(teacher: Any, model: HybridPPO, args: argparse.Namespace) -> di
     def labels(obs: np.ndarray) -> np.ndarray:  # e6's greedy action (kick mask included) as [k, parameters]
         return adapter.from_env(teacher_predict(obs))
 
+    # a learned router's labels: the skill e6's own router (field_half) picks in each state
+    field_half = make_router("field_half", 2, "hfo") if model.policy.learned_router else None
+
     started = time.time()
     copy_teacher_weights(teacher, model, args.logit_scale)
     observations, teacher_statuses = play(
@@ -168,6 +185,8 @@ def distil_clone(teacher: Any, model: HybridPPO, args: argparse.Namespace) -> di
             learning_rate=args.distill_lr,
             parameter_weight=args.parameter_weight,
             seed=args.seed + round_index,
+            skills=None if field_half is None else field_half.numpy_route(observations),
+            router_weight=args.router_weight,
         )
         record["rounds"].append({"states": len(observations), "last_epoch": history[-1]})
         print(json.dumps({"distill_round": round_index, **record["rounds"][-1]}), flush=True)
@@ -201,6 +220,15 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--distill-lr", type=float, default=1e-4)
     parser.add_argument("--parameter-weight", type=float, default=100.0, help="distillation's parameter term")
     parser.add_argument("--distill-eval-episodes", type=int, default=1000)
+    parser.add_argument(
+        "--router",
+        choices=ROUTERS,
+        default="field_half",
+        help="the student's skill router (module docstring)",
+    )
+    parser.add_argument(
+        "--router-weight", type=float, default=3.0, help="distillation's router term (--router learned)"
+    )
     parser.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument("--smoke", action="store_true", help="a few seconds: tiny budgets everywhere")
@@ -239,7 +267,10 @@ def main(argv: list[str] | None = None) -> None:
     distilled = distil_clone(teacher, model, args)
     (args.out / "distill.json").write_text(json.dumps(distilled, indent=1))
     model.save(args.out / "distilled.zip")
-    model.set_reference(copy.deepcopy(model.policy))
+    if args.router == "field_half":
+        model.set_reference(copy.deepcopy(model.policy))
+    else:
+        model.set_reference(model.policy.hand_routed_copy("field_half"))
 
     def evaluate(policy_model: HybridPPO) -> dict:  # the full goalie, HFO's own statuses
         return greedy_evaluation(policy_model, ENV_ID, {}, args.eval_episodes, seed=10_000 + args.seed)

@@ -17,7 +17,9 @@ SB3's ``PPO``:
     ``reference_coef(progress_remaining) * mean KL(reference(.|s) || pi(.|s))`` over each minibatch's states
     (:func:`~sb3_hfo.hybrid_ppo.distributions.hybrid_kl`), the cross-entropy to the teacher of "kickstarting"
     (Schmitt et al. 2018, "Kickstarting deep reinforcement learning") with a coefficient that may decay to 0
-    (:class:`~sb3_hfo.common.schedules.DecayToZero`). The reference is not saved with the model;
+    (:class:`~sb3_hfo.common.schedules.DecayToZero`). The reference is not saved with the model. A policy with a
+    learned router may be pulled toward a hand-coded-router reference of as many skills: the KL is then over the
+    joint action (skill, discrete action, parameters), :meth:`HybridPPO.reference_kl`;
   - a critic warm-up: for the first ``critic_warmup_steps`` env steps the update trains the value function only
     (no policy, entropy or pull term; the actor's weights get no gradient and do not move), so that the first
     policy updates use advantages from a critic fitted to the starting policy rather than a random one.
@@ -177,9 +179,12 @@ class HybridPPO(OnPolicyAlgorithm):
         """Pull the policy toward ``reference`` with weight ``reference_coef`` (``None``: no pull).
 
         The reference is frozen here (no gradient, evaluation mode) and moved to the model's device; it must
-        have the same action adapter layout (discrete actions and parameters) and a hand-coded router.
+        have the same action adapter layout (discrete actions and parameters) and a hand-coded router; when this
+        policy's router is learned, the reference must have as many skills (its skill ``s`` is compared with this
+        policy's skill ``s``, :meth:`reference_kl`).
 
-        :raises ValueError: a reference of another action layout, or one with a learned router.
+        :raises ValueError: a reference of another action layout, one with a learned router, or another number of
+            skills than a learned-router policy's.
         """
         if reference is None:
             self.reference_policy = None
@@ -193,6 +198,11 @@ class HybridPPO(OnPolicyAlgorithm):
             raise ValueError(f"the reference's actions {theirs!r} differ from the policy's {mine!r}")
         if reference.learned_router:
             raise ValueError("the reference must route skills by a hand-coded router, not router='learned'")
+        if self.policy.learned_router and reference.n_skills != self.policy.n_skills:
+            raise ValueError(
+                f"a learned-router policy ({self.policy.n_skills} skills) is pulled skill by skill; the reference "
+                f"has {reference.n_skills}"
+            )
         reference = reference.to(self.device)
         reference.set_training_mode(False)
         for parameter in reference.parameters():
@@ -202,13 +212,39 @@ class HybridPPO(OnPolicyAlgorithm):
     def reference_kl(self, obs: th.Tensor) -> th.Tensor:
         """``(B,)`` ``KL(reference(.|s) || pi(.|s))`` of the current policy for a batch of observations.
 
+        With a hand-coded router (or one skill) both policies act by their routed head: the hybrid KL of the two
+        heads' distributions (:func:`~sb3_hfo.hybrid_ppo.distributions.hybrid_kl`).
+
+        With a learned router this policy's action is the triple ``(skill s, k, u)`` with
+        ``pi(s, k, u) = rho(s) pi_s(k, u)``. The reference is read as a policy over the same triples that plays its
+        router's skill ``f(obs)`` with probability 1, so the KL over the triples is exact and finite (the chain rule
+        of the KL, the reference's skill being a point mass):
+
+            KL = -log rho(f(obs)) + KL(reference_f(k, u) || pi_f(k, u))
+
+        the router's cross-entropy to the reference's choice plus the hybrid KL of the head the reference routes to.
+        It is 0 exactly when the router picks ``f(obs)`` with certainty and that head plays as the reference's.
+        Why not the KL to the policy's marginal over ``(k, u)`` (the mixture ``sum_s rho(s) pi_s``): a mixture of
+        Gaussians has no closed-form KL, and the joint KL bounds it from above (chain rule again), so pulling the
+        joint KL to 0 pulls the marginal one too. The price: a router that leaves ``f(obs)`` is pulled back even
+        where the other head would play the same; the pull's coefficient may decay to 0, after which the router is
+        free (what the learned-router comparison of benchmarks/rl_from_clone.py wants).
+
         :raises ValueError: when no reference is set (:meth:`set_reference`).
         """
         if self.reference_policy is None:
             raise ValueError("no reference policy: call set_reference first")
+        if not self.policy.learned_router:
+            with th.no_grad():
+                reference = self.reference_policy.action_distribution(obs)
+            return hybrid_kl(reference, self.policy.action_distribution(obs))
         with th.no_grad():
+            reference_skills = self.reference_policy.routed_skills(obs)
             reference = self.reference_policy.action_distribution(obs)
-        return hybrid_kl(reference, self.policy.action_distribution(obs))
+        current, log_rho = self.policy.skill_distribution(obs, reference_skills)
+        assert log_rho is not None  # a learned router's log-probabilities
+        router_cross_entropy = -log_rho.gather(-1, reference_skills.unsqueeze(-1)).squeeze(-1)
+        return router_cross_entropy + hybrid_kl(reference, current)
 
     def collect_rollouts(
         self, env: VecEnv, callback: BaseCallback, rollout_buffer: RolloutBuffer, n_rollout_steps: int

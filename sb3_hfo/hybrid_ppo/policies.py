@@ -342,6 +342,55 @@ class HybridActorCriticPolicy(BasePolicy):
         latent, _, _ = self.actor_outputs(obs)
         return self._distribution(latent, self._fixed_skills(obs, latent.shape[0]))
 
+    def routed_skills(self, obs: PyTorchObs) -> th.Tensor:
+        """``(B,)`` long: the skill a hand-coded router picks for each state (zeros with one skill).
+
+        :raises ValueError: with ``router="learned"`` (its skill is drawn, not given by the state).
+        """
+        if self.learned_router:
+            raise ValueError("routed_skills needs a hand-coded router; router='learned' draws the skill")
+        return self._fixed_skills(obs, obs.shape[0])
+
+    def skill_distribution(
+        self, obs: PyTorchObs, skills: th.Tensor
+    ) -> tuple[HybridDistribution, th.Tensor | None]:
+        """The hybrid distribution of the head ``skills[i]`` in state ``i`` (whatever this policy's router would
+        pick), and with a learned router its ``(B, S)`` log-probabilities ``log rho(.|s)`` (else ``None``).
+
+        For fitting or pulling a learned-router policy toward a hand-coded router's choice (distillation, the pull
+        of :meth:`sb3_hfo.hybrid_ppo.HybridPPO.reference_kl`).
+
+        :raises ValueError: ``skills`` of another batch size or out of ``[0, n_skills)``.
+        """
+        latent, router_logits, _ = self.actor_outputs(obs)
+        skills = th.as_tensor(skills, device=latent.device).long().reshape(-1)
+        if skills.shape[0] != latent.shape[0] or (
+            skills.numel() and not 0 <= int(skills.min()) <= int(skills.max()) < self.n_skills
+        ):
+            raise ValueError(
+                f"skill_distribution needs one skill in [0, {self.n_skills}) per state; got {tuple(skills.shape)} "
+                f"for {latent.shape[0]} states"
+            )
+        log_rho = th.log_softmax(router_logits, dim=-1) if router_logits is not None else None
+        return self._distribution(latent, skills), log_rho
+
+    def hand_routed_copy(self, router: Any) -> HybridActorCriticPolicy:
+        """A copy of this policy whose skills a hand-coded ``router`` picks (as the ``router`` argument; e.g.
+        ``"field_half"``): the same features extractor, trunk, heads and critic; a learned router's layer is
+        dropped. E.g. the reference a learned-router policy is pulled toward (:meth:`HybridPPO.set_reference`).
+
+        :raises ValueError: ``router="learned"``, or with one skill.
+        """
+        if router == LEARNED_ROUTER or self.n_skills == 1:
+            raise ValueError(
+                f"hand_routed_copy needs a hand-coded router and skills > 1; got router={router!r} with "
+                f"{self.n_skills} skill(s)"
+            )
+        copy = type(self)(**{**self._get_constructor_parameters(), "router": router})
+        state = {key: value for key, value in self.state_dict().items() if not key.startswith("router_net.")}
+        copy.load_state_dict(state)  # strict: every other tensor has its counterpart
+        return copy.to(self.device)
+
     def predict_values(self, obs: PyTorchObs) -> th.Tensor:
         """``(B, 1)`` state values."""
         return self.value_net(self.critic_trunk(self.extract_features(obs, self.features_extractor)))

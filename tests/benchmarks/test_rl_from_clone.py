@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import torch as th
+
 from sb3_hfo.hybrid_ppo import HybridPPO
 
 REPO = Path(__file__).resolve().parents[2]
@@ -42,3 +44,31 @@ def test_rl_from_clone_smoke_distils_the_clone_then_trains_with_the_pull(tmp_pat
     )
     again = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert again.returncode == 2 and "already holds a run" in again.stderr
+
+
+def test_rl_from_clone_smoke_with_a_learned_router_fits_it_to_field_half_then_trains(tmp_path: Path) -> None:
+    out = tmp_path / "learned"
+    command = [
+        sys.executable,
+        str(REPO / "benchmarks" / "rl_from_clone.py"),
+        "--smoke",
+        "--out",
+        str(out),
+        "--router",
+        "learned",
+        "--distill-eval-episodes",
+        "0",
+    ]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rounds = json.loads((out / "distill.json").read_text())["rounds"]
+    assert all(0.0 <= round_["last_epoch"]["router_agreement"] <= 1.0 for round_ in rounds)
+    assert all(round_["last_epoch"]["router_cross_entropy"] > 0.0 for round_ in rounds)
+    assert json.loads((out / "run.json").read_text())["options"]["router"] == "learned"
+    rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
+    assert [row["steps"] for row in rows] == [1024, 2048, 2048]
+    distilled = HybridPPO.load(out / "distilled.zip", device="cpu").policy
+    final = HybridPPO.load(out / "final.zip", device="cpu").policy
+    assert final.learned_router and final.n_skills == 2 and final.squash_mean
+    # PPO (with the pull, after the warm-up's first rollout) moved the router as well as the heads
+    assert not th.equal(distilled.router_net.weight, final.router_net.weight)
