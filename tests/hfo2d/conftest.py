@@ -9,6 +9,7 @@ from collections.abc import Callable
 from pathlib import Path
 from types import ModuleType
 
+import numpy as np
 import pytest
 
 BENCHMARKS = Path(__file__).resolve().parents[2] / "benchmarks"
@@ -94,3 +95,25 @@ def _process_group_gone(pid: int) -> bool:
 def group_gone() -> Callable[[int], bool]:
     """Whether the process group led by a pid has no process left (a session's clean-up killed it)."""
     return _process_group_gone
+
+
+def _chase_actions(observations: dict[str, np.ndarray], kick: bool) -> dict[str, np.ndarray]:
+    """Every striker dashes at the ball, and when ``kick`` kicks it (if kickable) at the goal centre with power
+    60: both strikers of a team chase, the ball moves, and the gap rewards pay and refund."""
+    actions = {}
+    for name, obs in observations.items():
+        action = np.zeros(8, dtype=np.float32)
+        if kick and obs[12] > 0:  # kickable
+            action[2], action[6] = 1.0, 0.6  # KICK, power 60
+            action[7] = (np.degrees(np.arctan2(obs[13], obs[14])) + 180.0) / 360.0  # at the goal centre
+        else:
+            action[0], action[3] = 1.0, 1.0  # DASH at full power
+            action[4] = (np.degrees(np.arctan2(obs[51], obs[52])) + 180.0) / 360.0  # at the ball
+        actions[name] = action
+    return actions
+
+
+@pytest.fixture(scope="session")
+def chase_actions() -> Callable[[dict[str, np.ndarray], bool], dict[str, np.ndarray]]:
+    """Flat offense actions of strikers that chase the ball and shoot at the goal (``_chase_actions``)."""
+    return _chase_actions

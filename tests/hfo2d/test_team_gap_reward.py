@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 import pytest
 
@@ -9,27 +11,15 @@ from hfo2d.features import FEATURES_PER_PLAYER, NUM_BASIC_FEATURES, keeper_view_
 from hfo2d.reward import make_reward
 from hfo2d.team import TEAM_OFFENSE_REWARDS, TeamGame
 
+#: the conftest fixture chase_actions
+Chase = Callable[[dict[str, np.ndarray], bool], dict[str, np.ndarray]]
 TEAMMATE_BLOCK = np.s_[NUM_BASIC_FEATURES : NUM_BASIC_FEATURES + FEATURES_PER_PLAYER]
 
 
-def chase_actions(observations: dict[str, np.ndarray], kick: bool) -> dict[str, np.ndarray]:
-    """Dash at the ball, and kick it toward the goal centre once kickable (so the ball moves and the gap term
-    pays and refunds)."""
-    actions = {}
-    for name, obs in observations.items():
-        action = np.zeros(8, dtype=np.float32)
-        if kick and obs[12] > 0:  # kickable
-            action[2], action[6] = 1.0, 0.6  # KICK, power 60
-            action[7] = (np.degrees(np.arctan2(obs[13], obs[14])) + 180.0) / 360.0  # at the goal centre
-        else:
-            action[0], action[3] = 1.0, 1.0  # DASH at full power
-            action[4] = (np.degrees(np.arctan2(obs[51], obs[52])) + 180.0) / 360.0  # at the ball
-        actions[name] = action
-    return actions
-
-
 @pytest.mark.parametrize("reward", ["shaped_gap", "shaped_gap_refund"])
-def test_a_striker_with_a_teammate_is_paid_as_against_the_goalie_alone(reward: str) -> None:
+def test_a_striker_with_a_teammate_is_paid_as_against_the_goalie_alone(
+    reward: str, chase_actions: Chase
+) -> None:
     assert reward in TEAM_OFFENSE_REWARDS
     game = TeamGame(2, 0, 1, reward=reward, seed=0)
     observations, _ = game.reset(seed=11)
@@ -72,7 +62,9 @@ def test_one_striker_against_the_goalie_reads_its_own_features() -> None:
 
 
 @pytest.mark.parametrize(("offense", "npcs"), [(2, 1), (2, 2), (1, 2)])
-def test_the_real_backends_keeper_view_matches_the_team_games(offense: int, npcs: int) -> None:
+def test_the_real_backends_keeper_view_matches_the_team_games(
+    offense: int, npcs: int, chase_actions: Chase
+) -> None:
     """hfo2d.real_teams reads the goalie out of HFO master's vector by its uniform number
     (features.keeper_view_from_hfo); on hfo2d's own master vectors it gives TeamGame's reward view of the same state,
     including states where the field defender, not the goalie, fills the first opponent slot."""

@@ -3,32 +3,22 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
 
 from hfo2d.team import BALL_PULL_TERMS, NEAREST_PULL_REWARDS, TEAM_OFFENSE_REWARDS, TeamGame
 
+#: the conftest fixture chase_actions
+Chase = Callable[[dict[str, np.ndarray], bool], dict[str, np.ndarray]]
+
 ROLE_REWARD = "shaped_gap_refund_nearest"
 
 
-def chase_actions(observations: dict[str, np.ndarray], step: int) -> dict[str, np.ndarray]:
-    """Every striker dashes at the ball and kicks it at the goal centre on every third kickable cycle (both chase,
-    so both move toward the ball and the role rule has work to do)."""
-    actions = {}
-    for name, obs in observations.items():
-        action = np.zeros(8, dtype=np.float32)
-        if obs[12] > 0 and step % 3 == 0:  # kickable
-            action[2], action[6] = 1.0, 0.6  # KICK, power 60
-            action[7] = (np.degrees(np.arctan2(obs[13], obs[14])) + 180.0) / 360.0  # at the goal centre
-        else:
-            action[0], action[3] = 1.0, 1.0  # DASH at full power
-            action[4] = (np.degrees(np.arctan2(obs[51], obs[52])) + 180.0) / 360.0  # at the ball
-        actions[name] = action
-    return actions
-
-
-def play_side_by_side(strikers: int, steps: int, seed: int) -> list[tuple[dict, dict, dict, list[float]]]:
+def play_side_by_side(
+    strikers: int, steps: int, seed: int, chase_actions: Chase
+) -> list[tuple[dict, dict, dict, list[float]]]:
     """The role-aware game and the per-striker ``shaped_gap_refund`` game from one seed with the same actions:
     per cycle (role rewards, role infos, plain infos, each striker's distance to the ball)."""
     role = TeamGame(strikers, 0, 1, reward=ROLE_REWARD, seed=seed)
@@ -37,7 +27,7 @@ def play_side_by_side(strikers: int, steps: int, seed: int) -> list[tuple[dict, 
     plain_observations, _ = plain.reset(seed=seed)
     rows = []
     for step in range(steps):
-        actions = chase_actions(observations, step)
+        actions = chase_actions(observations, step % 3 == 0)
         observations, rewards, terminated, truncated, infos = role.step(actions)
         plain_observations, _, _, _, plain_infos = plain.step(actions)
         for name in role.agent_names:  # same actions, same seed: the same game
@@ -58,8 +48,8 @@ def test_the_role_reward_is_offered_and_reads_the_goalie() -> None:
         TeamGame(2, 0, 1, reward="shaped_nearest")
 
 
-def test_one_striker_is_paid_exactly_shaped_gap_refund() -> None:
-    rows = play_side_by_side(1, 300, seed=3)
+def test_one_striker_is_paid_exactly_shaped_gap_refund(chase_actions: Chase) -> None:
+    rows = play_side_by_side(1, 300, seed=3, chase_actions=chase_actions)
     pulls = 0
     for rewards, infos, plain_infos, _ in rows:
         assert infos["offense_0"]["reward_terms"] == plain_infos["offense_0"]["reward_terms"]
@@ -71,8 +61,8 @@ def test_one_striker_is_paid_exactly_shaped_gap_refund() -> None:
 
 
 @pytest.mark.parametrize("strikers", [2, 3])
-def test_only_the_striker_nearest_the_ball_is_paid_the_ball_pull(strikers: int) -> None:
-    rows = play_side_by_side(strikers, 400, seed=5)
+def test_only_the_striker_nearest_the_ball_is_paid_the_ball_pull(strikers: int, chase_actions: Chase) -> None:
+    rows = play_side_by_side(strikers, 400, seed=5, chase_actions=chase_actions)
     withheld = 0
     for rewards, infos, plain_infos, distances in rows:
         nearest = f"offense_{int(np.argmin(distances))}"
