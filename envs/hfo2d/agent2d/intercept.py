@@ -312,13 +312,7 @@ def full_self_cache(table: InterceptTable) -> list[InterceptEntry]:
         raise TypeError(
             f"full_self_cache needs a lazy table (build_intercept_table(..., full=False)), got {table!r}"
         )
-    view = table._view
-    player_rand, ball_rand = table._rands
-    if player_rand is None:
-        player_rand = getattr(view, "player_rand", 0.1)
-    if ball_rand is None:
-        ball_rand = getattr(view, "ball_rand", 0.05)
-    return _self_part(view, table._ball_now(), player_rand, ball_rand, True)[0]
+    return _self_part(table._view, table._ball_now(), *table._resolved_rands(), True)[0]
 
 
 def _ball_part(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float, float]:
@@ -458,16 +452,19 @@ class _LazyTable(InterceptTable):
         """The ball part (cache, resting, sin, cos of -angle(W)) that :func:`fastest_reach` reads."""
         return self._ball_now()
 
+    def _resolved_rands(self) -> tuple[float, float]:
+        """(player_rand, ball_rand): the ones given, else the view's, else rcssserver's defaults 0.1 and 0.05."""
+        player_rand, ball_rand = self._rands
+        if player_rand is None:
+            player_rand = getattr(self._view, "player_rand", 0.1)
+        if ball_rand is None:
+            ball_rand = getattr(self._view, "ball_rand", 0.05)
+        return player_rand, ball_rand
+
     def _self_now(self) -> tuple[list[InterceptEntry], int]:
         part = self._self
         if part is None:
-            view = self._view
-            player_rand, ball_rand = self._rands
-            if player_rand is None:
-                player_rand = getattr(view, "player_rand", 0.1)
-            if ball_rand is None:
-                ball_rand = getattr(view, "ball_rand", 0.05)
-            part = self._self = _self_part(view, self._ball_now(), player_rand, ball_rand, False)
+            part = self._self = _self_part(self._view, self._ball_now(), *self._resolved_rands(), False)
         return part
 
     @property  # type: ignore[override]
