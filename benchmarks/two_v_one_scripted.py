@@ -23,6 +23,8 @@ the team picks the ball player from both strikers' estimates of their distance t
 memory would. How the figures are used: benchmarks/README.md, "Two strikers against agent2d's goalie".
 
     python benchmarks/two_v_one_scripted.py --episodes 1000 --out ~/runs/twovone3/scripted.json
+    HOME=/root HFO_DIR=/root/real_hfo/HFO tools/real_hfo/loopback.sh \\
+        python benchmarks/two_v_one_scripted.py --backend real --teams alone tap_in --out ~/runs/twovone3/real.json
     python benchmarks/two_v_one_scripted.py --episodes 3 --out /tmp/scripted.json   # seconds: what the test runs
 """
 
@@ -187,40 +189,57 @@ class ScriptedTeam:
         return command
 
 
-def play(team_name: str, episodes: int, seed: int) -> dict[str, Any]:
-    """``episodes`` hfo2d episodes of one scripted team from HFO's starts (the game seeded once with ``seed``)."""
+def play(team_name: str, episodes: int, seed: int, backend: str = "hfo2d") -> dict[str, Any]:
+    """``episodes`` episodes of one scripted team from HFO's starts: in hfo2d (the game seeded once with ``seed``)
+    or in a real HFO build (``backend="real"``: ``hfo2d.parallel_env``, HFO's ``--seed`` from ``seed``)."""
     from sb3_hfo.evaluation import wilson_interval  # the project's interval, as every other benchmark reports
 
     team = ScriptedTeam(team_name)
-    game = TeamGame(team.striker_count, 0, 1, seed=seed)
-    names = list(game.agent_names)
+    if backend == "hfo2d":
+        game: Any = TeamGame(team.striker_count, 0, 1, seed=seed)
+    else:
+        import hfo2d
+
+        game = hfo2d.parallel_env(offense_agents=team.striker_count, defense_npcs=1, backend=backend)
+    names = list(game.agent_names if backend == "hfo2d" else game.possible_agents)
     statuses: Counter[str] = Counter()
     cycles = wide_of_goal = 0
     started = time.time()
     observations, _ = game.reset(seed=seed)
-    for _ in range(episodes):
-        team.reset()
-        while True:
-            actions = team.act([observations[name] for name in names])
-            observations, _, terminated, truncated, infos = game.step(dict(zip(names, actions, strict=True)))
-            cycles += 1
-            if terminated or truncated:
-                status = str(infos[names[0]]["status"])
-                statuses[status] += 1
-                if status == "OUT_OF_BOUNDS" and infos[names[0]]["ball"][0] > GOAL_LINE_X:
-                    wide_of_goal += 1  # out over the goal line: a shot that missed
-                observations, _ = game.reset()
-                break
+    try:
+        for _ in range(episodes):
+            team.reset()
+            while True:
+                actions = dict(zip(names, team.act([observations[name] for name in names]), strict=True))
+                observations, _, terminated, truncated, infos = game.step(actions)
+                cycles += 1
+                ended = (
+                    (terminated or truncated)
+                    if backend == "hfo2d"
+                    else any(terminated.values()) or any(truncated.values())
+                )
+                if ended:
+                    status = str(infos[names[0]]["status"])
+                    statuses[status] += 1
+                    ball = infos[names[0]].get("ball")  # hfo2d's true state; the real backend has none
+                    if status == "OUT_OF_BOUNDS" and ball is not None and ball[0] > GOAL_LINE_X:
+                        wide_of_goal += 1  # out over the goal line: a shot that missed
+                    observations, _ = game.reset()
+                    break
+    finally:
+        if backend != "hfo2d":
+            game.close()
     goals = statuses.get("GOAL", 0)
     low, high = wilson_interval(goals, episodes)
     return {
         "team": team_name,
+        "backend": backend,
         "episodes": episodes,
         "goals": goals,
         "rate": goals / episodes,
         "ci95": [low, high],
         "status": dict(statuses),
-        "out_over_goal_line": wide_of_goal,
+        "out_over_goal_line": wide_of_goal if backend == "hfo2d" else None,
         "passes": team.passes,
         "tap_ins_tried": team.taps,
         "cycles": cycles,
@@ -234,15 +253,24 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--teams", nargs="+", default=list(TEAMS), choices=TEAMS)
+    parser.add_argument(
+        "--backend", default="hfo2d", choices=("hfo2d", "real"), help="real: HFO_DIR's HFO build"
+    )
     parser.add_argument("--out", type=Path, required=True, help="the JSON file to write")
     args = parser.parse_args(argv)
     if args.episodes < 1:
         parser.error(f"--episodes must be >= 1, got {args.episodes}")
     results = {}
     for name in args.teams:
-        results[name] = play(name, args.episodes, args.seed)
+        results[name] = play(name, args.episodes, args.seed, args.backend)
         print(json.dumps(results[name]), flush=True)
-    record = {"episodes": args.episodes, "seed": args.seed, "striker": "soft_dribble", "results": results}
+    record = {
+        "episodes": args.episodes,
+        "seed": args.seed,
+        "backend": args.backend,
+        "striker": "soft_dribble",
+    }
+    record["results"] = results
     args.out.parent.mkdir(parents=True, exist_ok=True)
     args.out.write_text(json.dumps(record, indent=1))
     return record
