@@ -15,7 +15,11 @@ imitation, not RL); below it is called e6. This run:
    ``shaped_gap_refund`` (hfo2d.reward, documented there; not HFO's own), a critic warm-up (value loss only for the
    first ``--critic-warmup`` steps) and a pull ``reference_coef(t) * KL(distilled(.|s) || pi(.|s))`` toward the
    frozen distilled policy whose coefficient falls linearly from ``--pull`` to 0 over the first
-   ``--pull-fraction`` of the steps (:class:`sb3_hfo.common.schedules.DecayToZero`).
+   ``--pull-fraction`` of the steps (:class:`sb3_hfo.common.schedules.DecayToZero`). Options for the recipe
+   variants of benchmarks/README.md (all off by default): ``--reward sparse`` (1 per goal) instead of
+   ``shaped_gap_refund``; ``--log-std-final`` (the parameters' log std moved linearly from ``--log-std`` to it,
+   not learned: :class:`sb3_hfo.hybrid_ppo.noise.LogStdSchedule`); ``--lr-schedule linear`` (the learning rate
+   falling linearly to 0).
 With ``--router learned`` (issue 33 item 4: the learned router against ``field_half``) the student has
 ``skills=2, router="learned"``: its trunk and heads start as the same copies of e6's, and distillation also fits
 its router (a linear layer on the actor trunk) to the skill ``field_half`` picks in the same states
@@ -69,6 +73,9 @@ from sb3_hfo.vec_env import make_hfo_vec_env  # noqa: E402
 
 ENV_ID = "HFO/Keeper-v1"
 REWARD = "shaped_gap_refund"
+#: the training rewards offered (hfo2d.reward): the default, or HFO's sparse goal reward (1 per goal), whose
+#: discounted return is the goal probability (times the discount of the time to the goal) that the evaluation counts
+REWARDS = (REWARD, "sparse")
 METHOD = "reinforcement learning from reward, started from the imitation clone"
 
 #: HybridPPO's settings (a fine-tuning recipe: small steps, clipped at 0.1, stopped early on a large KL).
@@ -247,6 +254,9 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--router-weight", type=float, default=3.0, help="distillation's router term (--router learned)"
     )
+    parser.add_argument(
+        "--reward", choices=REWARDS, default=REWARD, help="PPO's training reward (hfo2d.reward)"
+    )
     parser.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument("--smoke", action="store_true", help="a few seconds: tiny budgets everywhere")
@@ -273,7 +283,7 @@ def main(argv: list[str] | None = None) -> None:
     th.set_num_threads(args.threads)
     record = {
         "env_id": ENV_ID,
-        "reward": REWARD,
+        "reward": args.reward,
         "teacher": args.teacher,
         "hp": hp,
         "options": {k: (str(v) if isinstance(v, Path) else v) for k, v in vars(args).items()},
@@ -284,7 +294,7 @@ def main(argv: list[str] | None = None) -> None:
     (args.out / "run.json").write_text(json.dumps(record, indent=1))
 
     teacher = load_model(args.teacher)
-    env = make_hfo_vec_env(ENV_ID, args.n_envs, seed=args.seed, reward=REWARD)
+    env = make_hfo_vec_env(ENV_ID, args.n_envs, seed=args.seed, reward=args.reward)
     # rewards scaled by a running std of the discounted return (as hybrid_ppo_runs.py's e6)
     env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=hp["gamma"])
     model = student_model(env, args, hp)
