@@ -313,7 +313,8 @@ def main(argv: list[str] | None = None) -> None:
     callbacks: list[Any] = [recorder]
     if args.log_std_final is not None:  # after set_reference: the schedule sets the reference's log std too
         callbacks.insert(0, LogStdSchedule(args.log_std, args.log_std_final))
-    model.learn(args.steps, callback=callbacks, progress_bar=False)
+    # the recorder alone without a schedule: the run is then the recipe's as before the option, call for call
+    model.learn(args.steps, callback=callbacks if len(callbacks) > 1 else recorder, progress_bar=False)
     recorder.row(final=True)
     env.close()
 
