@@ -15,7 +15,11 @@ imitation, not RL); below it is called e6. This run:
    ``shaped_gap_refund`` (hfo2d.reward, documented there; not HFO's own), a critic warm-up (value loss only for the
    first ``--critic-warmup`` steps) and a pull ``reference_coef(t) * KL(distilled(.|s) || pi(.|s))`` toward the
    frozen distilled policy whose coefficient falls linearly from ``--pull`` to 0 over the first
-   ``--pull-fraction`` of the steps (:class:`sb3_hfo.common.schedules.DecayToZero`).
+   ``--pull-fraction`` of the steps (:class:`sb3_hfo.common.schedules.DecayToZero`). Options for the recipe
+   variants of benchmarks/README.md (all off by default): ``--reward sparse`` (1 per goal) instead of
+   ``shaped_gap_refund``; ``--log-std-final`` (the parameters' log std moved linearly from ``--log-std`` to it,
+   not learned: :class:`sb3_hfo.hybrid_ppo.noise.LogStdSchedule`); ``--lr-schedule linear`` (the learning rate
+   falling linearly to 0).
 With ``--router learned`` (issue 33 item 4: the learned router against ``field_half``) the student has
 ``skills=2, router="learned"``: its trunk and heads start as the same copies of e6's, and distillation also fits
 its router (a linear layer on the actor trunk) to the skill ``field_half`` picks in the same states
@@ -60,14 +64,18 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's
 from hybrid_ppo_runs import RunRecorder, greedy_evaluation, load_average  # noqa: E402
 
 from sb3_hfo.common.routers import make_router  # noqa: E402
-from sb3_hfo.common.schedules import DecayToZero  # noqa: E402
+from sb3_hfo.common.schedules import DecayToZero, LinearToZero  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
+from sb3_hfo.hybrid_ppo.noise import LogStdSchedule  # noqa: E402
 from sb3_hfo.models import load_model  # noqa: E402
 from sb3_hfo.vec_env import make_hfo_vec_env  # noqa: E402
 
 ENV_ID = "HFO/Keeper-v1"
 REWARD = "shaped_gap_refund"
+#: the training rewards offered (hfo2d.reward): the default, or HFO's sparse goal reward (1 per goal), whose
+#: discounted return is the goal probability (times the discount of the time to the goal) that the evaluation counts
+REWARDS = (REWARD, "sparse")
 METHOD = "reinforcement learning from reward, started from the imitation clone"
 
 #: HybridPPO's settings (a fine-tuning recipe: small steps, clipped at 0.1, stopped early on a large KL).
@@ -86,6 +94,8 @@ HP: dict[str, Any] = {
 ACTOR_ARCH = [256, 128, 64]
 #: the student's routers: e6's hand-coded one, or one PPO learns (started as a copy of it by distillation)
 ROUTERS = ("field_half", "learned")
+#: PPO's learning rate over the run: as given, or falling linearly to 0 at the last step (rl-zoo3's ``lin_``)
+LR_SCHEDULES = ("constant", "linear")
 
 
 def student_model(env: Any, args: argparse.Namespace, hp: dict[str, Any]) -> HybridPPO:
@@ -98,6 +108,8 @@ def student_model(env: Any, args: argparse.Namespace, hp: dict[str, Any]) -> Hyb
         "log_std_init": args.log_std,
         "squash_mean": True,  # e6's tanh output: its parameters copy exactly
     }
+    if args.lr_schedule == "linear":
+        hp = {**hp, "learning_rate": LinearToZero(hp["learning_rate"])}
     return HybridPPO(
         "MlpPolicy",
         env,
@@ -213,6 +225,19 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--pull-fraction", type=float, default=0.5, help="share of the steps it decays over")
     parser.add_argument("--critic-warmup", type=int, default=300_000, help="steps of value-only updates")
     parser.add_argument("--log-std", type=float, default=-3.5, help="the parameters' initial log std")
+    parser.add_argument(
+        "--log-std-final",
+        type=float,
+        default=None,
+        help="if given, the parameters' log std is not learned but moves linearly from --log-std to this at the "
+        "last step (sb3_hfo.hybrid_ppo.noise.LogStdSchedule; the pull reference's alike)",
+    )
+    parser.add_argument(
+        "--lr-schedule",
+        choices=LR_SCHEDULES,
+        default="constant",
+        help="PPO's learning rate: the --hp value throughout, or falling linearly from it to 0",
+    )
     parser.add_argument("--logit-scale", type=float, default=10.0)
     parser.add_argument("--dagger-rounds", type=int, default=1)
     parser.add_argument("--dagger-episodes", type=int, default=400)
@@ -229,11 +254,20 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument(
         "--router-weight", type=float, default=3.0, help="distillation's router term (--router learned)"
     )
+    parser.add_argument(
+        "--reward", choices=REWARDS, default=REWARD, help="PPO's training reward (hfo2d.reward)"
+    )
     parser.add_argument("--hp", default="{}", help="JSON: HybridPPO hyperparameters over the defaults")
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
     parser.add_argument("--smoke", action="store_true", help="a few seconds: tiny budgets everywhere")
     args = parser.parse_args(argv)
     hp = {**HP, **json.loads(args.hp)}
+    for name in ("log_std", "log_std_final"):
+        value = getattr(args, name)
+        if value is not None and not np.isfinite(value):
+            parser.error(f"--{name.replace('_', '-')} must be a finite number, got {value}")
+    if args.lr_schedule == "linear" and not isinstance(hp["learning_rate"], (int, float)):
+        parser.error(f"--lr-schedule linear needs a numeric learning_rate, got {hp['learning_rate']!r}")
     if args.smoke:
         args.steps, args.eval_every, args.eval_episodes, args.n_envs = 2048, 1024, 4, 4
         args.critic_warmup, args.dagger_episodes, args.distill_epochs, args.distill_eval_episodes = (
@@ -249,7 +283,7 @@ def main(argv: list[str] | None = None) -> None:
     th.set_num_threads(args.threads)
     record = {
         "env_id": ENV_ID,
-        "reward": REWARD,
+        "reward": args.reward,
         "teacher": args.teacher,
         "hp": hp,
         "options": {k: (str(v) if isinstance(v, Path) else v) for k, v in vars(args).items()},
@@ -260,7 +294,7 @@ def main(argv: list[str] | None = None) -> None:
     (args.out / "run.json").write_text(json.dumps(record, indent=1))
 
     teacher = load_model(args.teacher)
-    env = make_hfo_vec_env(ENV_ID, args.n_envs, seed=args.seed, reward=REWARD)
+    env = make_hfo_vec_env(ENV_ID, args.n_envs, seed=args.seed, reward=args.reward)
     # rewards scaled by a running std of the discounted return (as hybrid_ppo_runs.py's e6)
     env = VecNormalize(env, norm_obs=False, norm_reward=True, gamma=hp["gamma"])
     model = student_model(env, args, hp)
@@ -276,7 +310,11 @@ def main(argv: list[str] | None = None) -> None:
         return greedy_evaluation(policy_model, ENV_ID, {}, args.eval_episodes, seed=10_000 + args.seed)
 
     recorder = RunRecorder(args.out, args.minutes, args.eval_every, evaluate)
-    model.learn(args.steps, callback=recorder, progress_bar=False)
+    callbacks: list[Any] = [recorder]
+    if args.log_std_final is not None:  # after set_reference: the schedule sets the reference's log std too
+        callbacks.insert(0, LogStdSchedule(args.log_std, args.log_std_final))
+    # the recorder alone without a schedule: the run is then the recipe's as before the option, call for call
+    model.learn(args.steps, callback=callbacks if len(callbacks) > 1 else recorder, progress_bar=False)
     recorder.row(final=True)
     env.close()
 

@@ -72,3 +72,40 @@ def test_rl_from_clone_smoke_with_a_learned_router_fits_it_to_field_half_then_tr
     assert final.learned_router and final.n_skills == 2 and final.squash_mean
     # PPO (with the pull, after the warm-up's first rollout) moved the router as well as the heads
     assert not th.equal(distilled.router_net.weight, final.router_net.weight)
+
+
+def test_rl_from_clone_smoke_with_a_log_std_schedule_a_decaying_learning_rate_and_the_sparse_reward(
+    tmp_path: Path,
+) -> None:
+    out = tmp_path / "scheduled"
+    script = str(REPO / "benchmarks" / "rl_from_clone.py")
+    options = ["--smoke", "--distill-eval-episodes", "0", "--log-std", "-3", "--log-std-final", "-4"]
+    command = [
+        sys.executable,
+        script,
+        *options,
+        "--lr-schedule",
+        "linear",
+        "--reward",
+        "sparse",
+        "--out",
+        str(out),
+    ]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    options_recorded = json.loads((out / "run.json").read_text())["options"]
+    assert options_recorded["log_std_final"] == -4.0 and options_recorded["lr_schedule"] == "linear"
+    assert json.loads((out / "run.json").read_text())["reward"] == "sparse"
+    final = HybridPPO.load(out / "final.zip", device="cpu")
+    # two rollouts of 1,024 steps out of 2,048: the second collected at half the schedule, -3.5, and kept
+    for head in final.policy.heads:
+        assert th.allclose(head.log_std, th.full_like(head.log_std, -3.5))
+    assert final.lr_schedule(1.0) == 1e-4 and final.lr_schedule(0.25) == 0.25e-4
+    for bad, message in [
+        (["--log-std-final", "nan"], "--log-std-final must be a finite number"),
+        (["--lr-schedule", "linear", "--hp", '{"learning_rate": "x"}'], "needs a numeric learning_rate"),
+    ]:
+        refused = [sys.executable, script, "--smoke", *bad, "--out", str(tmp_path / "refused")]
+        completed = subprocess.run(refused, capture_output=True, text=True, timeout=300, cwd=tmp_path)
+        assert completed.returncode == 2 and message in completed.stderr
+        assert not (tmp_path / "refused").exists()  # refused before anything was written
