@@ -290,7 +290,8 @@ class CarryReward:
     """Pays the ball's progress to the goal only as new records set while the agent has the ball (docstring)."""
 
     def __init__(self) -> None:
-        self._shaped = ShapedReward()  # supplies move_to_ball, kick_bonus and goal; its ball_to_goal is unused
+        # supplies move_to_ball, kick_bonus and goal; its ball_to_goal is unused
+        self._shaped = ShapedReward()
         self._record: float | None = None  # least ball-to-goal distance seen with the ball in possession
 
     def reset(self, features: Sequence[float] | None = None) -> None:
