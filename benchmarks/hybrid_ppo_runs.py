@@ -38,6 +38,10 @@ Presets (``--hp JSON`` overrides any hyperparameter; ``--env-kwargs JSON`` the e
 * ``e6``: HFO/Keeper-v1 (agent2d's goalie), the shaped reward toward the goalie gap with lost shots refunded
   (``reward="shaped_gap_refund"``, hfo2d.reward; not HFO's own reward, documented there), and a curriculum from a
   goalie that never moves (``keeper_skill`` 0) to the full goalie over the first half of the steps.
+* ``e6_carry``: ``e6``'s recipe with the carry reward (``reward="carry"``, hfo2d.reward: the ball's progress paid
+  only as new records set with the ball within 2 m of the agent, 0.002 a cycle, 5 a goal) and the full goalie from
+  HFO's own starts from the first step (no curriculum: a weak goalie pays long shots); research/e6_from_reward.md
+  Part D.
 """
 
 from __future__ import annotations
@@ -105,6 +109,12 @@ PRESETS: dict[str, dict[str, Any]] = {
         },
     },
 }
+
+# E6 with the carry reward (research/e6_from_reward.md Part D): the full goalie from the start, since carrying the
+# ball, not a long shot, is what the reward pays.
+PRESETS["e6_carry"] = json.loads(json.dumps(PRESETS["e6"]))  # a deep copy
+PRESETS["e6_carry"]["env_kwargs"] = {"reward": "carry"}
+PRESETS["e6_carry"]["curriculum"] = None
 
 # E2 (issue 33, item 4: the learned router against the hand-coded one): E1's recipe with the paper's two skills (one
 # actor head and one Adam each); ``field_half`` routes by the ball's field half (the paper's rule), ``learned`` adds

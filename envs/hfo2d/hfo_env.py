@@ -215,6 +215,8 @@ class HFOEnv(gym.Env):
         ball's progress measured toward the middle of the wider goalie-post gap (the goal centre without a goalie).
         ``"shaped_gap_refund"`` (not HFO's): ``"shaped_gap"`` whose last step, when an episode ends without a goal,
         takes back the progress paid since the ball was last kickable by the agent (a lost shot pays nothing).
+        ``"carry"`` (not HFO's): the shaped reward whose ball-to-goal term pays only new records of the ball's
+        closeness to the goal set with the ball within 2 m of the agent, less 0.002 a cycle (``cycle_cost``).
         ``"sparse"``: 1 for a goal, else 0.
         ``info["reward_terms"]`` holds each term.
 
@@ -247,7 +249,7 @@ class HFOEnv(gym.Env):
         action_format: "flat" or "parameterized".
         feature_set: "paper" (default, the table above), "hfo" (HFO master's 59 / 68 features) or "high_level"
             (HFO's high-level features, 12 / 15).
-        reward: "shaped", "shaped_gap", "shaped_gap_refund" or "sparse".
+        reward: "shaped", "shaped_gap", "shaped_gap_refund", "carry" or "sparse".
         noise: False turns off player, ball and kick noise (HFO's --deterministic); a bool.
         server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}`` (a mapping; each
             value range-checked, :data:`hfo2d.physics.SERVER_PARAM_RANGES`).

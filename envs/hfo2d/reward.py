@@ -38,6 +38,33 @@ progress is kept only when it ends in a goal or the agent reaches the ball again
 long shot into the keeper's arms collects most of an episode's shaping early, which a discount below 1 favours
 over dribbling closer (research/RESULTS.md).
 
+Carry (``"carry"``; not HFO's, an option of this package, research/e6_from_reward.md Part D)::
+
+    r_t = Δ ball_proximity + I_kick + 3 · carry_record_t − 0.002 + 5 · I_goal
+
+``move_to_ball``, ``kick_bonus`` and ``goal`` are the shaped reward's; the ball-to-goal term is replaced by
+``ball_to_goal`` = 3 × the ball's *new record* of closeness to the goal centre, counted only on in-game steps where
+the ball is within ``POSSESSION_RADIUS`` (2 m) of the agent: the first such step sets the record, and a later one
+pays how far the ball-to-goal distance then lies below the record (and lowers the record). ``cycle_cost`` takes
+0.002 on every step. Why each part (the E6 runs of Part B):
+
+* a kick pays nothing until the agent is back on the ball, so a long shot (24-34 m, power ~100) that the full
+  goalie catches earns nothing, while carrying the ball to the goal earns the whole ball-to-goal term; the
+  scripted ``soft_dribble`` (hfo2d.strikers), which scores 92.6 % against agent2d's goalie in real HFO by keeping
+  the ball within a few metres, collects it on most of its cycles;
+* records only: moving the ball back and forth (or kicking it away and dribbling it back) pays nothing twice, so
+  the term sums to at most 3 × the ball's start distance (about 3 for HFO's starts) and cannot be farmed;
+* the goal centre, not the goalie gap, as the target: it is fixed, so a record stays a record when the goalie moves;
+  ``soft_dribble`` also dribbles at the goal centre and aims only its shot at the far post;
+* the cycle cost: under ``shaped_gap_refund`` holding the ball was free and the agent held it for ~420 cycles
+  without shooting; 0.002 a cycle (at most 0.2 discounted with γ = 0.99) makes waiting cost a little, well below
+  what a carried metre pays (0.096), and there is no penalty for a lost ball, which would make a shot that may
+  fail worse than holding on;
+* the goal stays 5 (DQNHFO's), more than the whole carry term: the last metres are worth less than a shot that
+  scores.
+
+The terms are ``move_to_ball``, ``kick_bonus``, ``ball_to_goal`` (the carry record), ``goal`` and ``cycle_cost``.
+
 Sparse: 1 on GOAL, else 0 (gym-soccer's Soccer-v0, hfo_reference §6.3).
 """
 
@@ -69,7 +96,7 @@ from hfo2d.features import (
     landmark_position,
 )
 
-REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "sparse")
+REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "carry", "sparse")
 #: The rewards that read the goalie's block (:func:`gap_target`: features 58-65, where HFO/Keeper-v1's layout has the
 #: goalie). A team's layout puts the nearest teammate there, so a team env gives these rewards the 1v1 view of the
 #: same state (the 58 basic features, then the goalie's block alone).
@@ -86,6 +113,14 @@ SPARSE_GOAL_REWARD = 1.0
 GAP_TIE_TOLERANCE = 0.5
 
 REWARD_TERM_NAMES: tuple[str, ...] = ("move_to_ball", "kick_bonus", "ball_to_goal", "goal")
+
+# The carry reward (module docstring): the ball counts as the agent's within this many metres of it. The kickable
+# range is 1.085 m; a soft dribble's touch (0.6 m/cycle) keeps the ball within about 2 m while a shot (up to
+# 3 m/cycle) leaves it in one cycle.
+POSSESSION_RADIUS = 2.0
+CARRY_WEIGHT = BALL_TO_GOAL_WEIGHT  # per feature unit of the ball-to-goal record (0.096 per metre)
+CYCLE_COST = 0.002  # taken every step
+CARRY_TERM_NAMES: tuple[str, ...] = (*REWARD_TERM_NAMES, "cycle_cost")
 
 
 class RewardFunction(Protocol):
@@ -251,6 +286,48 @@ class RefundedGapShapedReward(GapShapedReward):
     refund_lost_progress = True
 
 
+class CarryReward:
+    """Pays the ball's progress to the goal only as new records set while the agent has the ball (docstring)."""
+
+    def __init__(self) -> None:
+        # supplies move_to_ball, kick_bonus and goal; its ball_to_goal is unused
+        self._shaped = ShapedReward()
+        self._record: float | None = None  # least ball-to-goal distance seen with the ball in possession
+
+    def reset(self, features: Sequence[float] | None = None) -> None:
+        """Start a new episode: no record yet, the kick bonus available again."""
+        self._shaped.reset(features)
+        self._record = None
+
+    def __call__(
+        self, features: Sequence[float], status: str, terminated: bool | None = None
+    ) -> tuple[float, dict[str, float]]:
+        """Reward of the step that produced ``features`` and ended with ``status`` (``terminated`` is unused: no
+        term depends on how an episode without a goal ended).
+
+        Returns:
+            (reward, terms) with the terms of CARRY_TERM_NAMES; they sum to reward.
+        """
+        _, shaped_terms = self._shaped(features, status, terminated)
+        carry = 0.0
+        ball_distance_m = (1.0 - float(features[BALL_PROXIMITY])) * 0.5 * MAX_HFO_DIST
+        if status == STATUS_IN_GAME and ball_distance_m <= POSSESSION_RADIUS:
+            ball_to_goal = ball_to_goal_distance(features)
+            if self._record is None:
+                self._record = ball_to_goal  # the first touch sets the baseline and pays nothing
+            elif ball_to_goal < self._record:
+                carry = CARRY_WEIGHT * (self._record - ball_to_goal)
+                self._record = ball_to_goal
+        terms = {
+            "move_to_ball": shaped_terms["move_to_ball"],
+            "kick_bonus": shaped_terms["kick_bonus"],
+            "ball_to_goal": carry,
+            "goal": shaped_terms["goal"],
+            "cycle_cost": -CYCLE_COST,
+        }
+        return sum(terms.values()), terms
+
+
 class SparseReward:
     """1 on GOAL, 0 otherwise."""
 
@@ -273,6 +350,8 @@ def make_reward(name: str) -> RewardFunction:
         return GapShapedReward()
     if name == "shaped_gap_refund":
         return RefundedGapShapedReward()
+    if name == "carry":
+        return CarryReward()
     if name == "sparse":
         return SparseReward()
     raise ValueError(f"unknown reward {name!r}; choose one of {REWARD_NAMES}")

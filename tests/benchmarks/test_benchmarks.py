@@ -202,3 +202,35 @@ def test_team_speed_counts_the_cpu_of_descendant_processes() -> None:
         assert team_speed.descendant_cpu_seconds(1 << 30) == 0.0  # no such process: nothing below it
     finally:
         process.communicate("\n", timeout=30)
+
+
+def test_hybrid_ppo_runs_e6_carry_is_e6_with_the_carry_reward_and_the_full_goalie(tmp_path: Path) -> None:
+    """The ``e6_carry`` preset (research/e6_from_reward.md Part D) changes only the reward and drops the goalie
+    curriculum; ``e6`` itself is untouched. Its smoke run trains against the full goalie (no keeper_skill)."""
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        import hybrid_ppo_runs
+    finally:
+        sys.path.remove(str(REPO / "benchmarks"))
+    e6, carry = hybrid_ppo_runs.PRESETS["e6"], hybrid_ppo_runs.PRESETS["e6_carry"]
+    assert e6["env_kwargs"] == {"reward": "shaped_gap_refund"} and e6["curriculum"] == (0.0, 1.0, 0.5)
+    assert carry["env_kwargs"] == {"reward": "carry"} and carry["curriculum"] is None
+    assert {k: v for k, v in carry.items() if k not in ("env_kwargs", "curriculum")} == {
+        k: v for k, v in e6.items() if k not in ("env_kwargs", "curriculum")
+    }
+    out = tmp_path / "e6_carry"
+    command = [
+        sys.executable,
+        str(REPO / "benchmarks" / "hybrid_ppo_runs.py"),
+        "e6_carry",
+        "--smoke",
+        "--out",
+    ]
+    completed = subprocess.run(
+        [*command, str(out)], capture_output=True, text=True, timeout=300, cwd=tmp_path
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    record = json.loads((out / "run.json").read_text())
+    assert record["env_kwargs"] == {"reward": "carry"} and record["curriculum"] is None
+    rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
+    assert rows[-1]["final"] and "keeper_skill" not in rows[-1]
