@@ -52,6 +52,7 @@ import os
 import sys
 import time
 from collections import Counter
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -138,10 +139,15 @@ def load_average() -> float:
     return os.getloadavg()[0]
 
 
-def greedy_evaluation(
-    model: HybridPPO, env_id: str, env_kwargs: dict[str, Any], episodes: int, seed: int
+def batched_episodes(
+    act: Callable[[np.ndarray], np.ndarray],
+    env_id: str,
+    env_kwargs: dict[str, Any],
+    episodes: int,
+    seed: int,
 ) -> dict:
-    """``episodes`` greedy episodes on 16 (or fewer) games of ``env_id``: goals, end statuses, Wilson interval."""
+    """``episodes`` episodes on 16 (or fewer) batched games of ``env_id``, ``act`` mapping a batch of observations
+    to env actions: goals, end statuses, Wilson interval. Every episode started is played to its end and counted."""
     n_games = min(16, episodes)
     env = make_hfo_vec_env(env_id, n_games, seed=seed, monitor=False, **env_kwargs)
     statuses: Counter[str] = Counter()
@@ -149,8 +155,7 @@ def greedy_evaluation(
     active = np.ones(n_games, dtype=bool)
     obs = env.reset()
     while active.any():
-        actions, _ = model.predict(obs, deterministic=True)
-        obs, _, dones, infos = env.step(actions)
+        obs, _, dones, infos = env.step(act(obs))
         for game in np.flatnonzero(dones):
             if not active[game]:
                 continue
@@ -161,6 +166,15 @@ def greedy_evaluation(
                 active[game] = False
     env.close()
     return goal_rate_summary(statuses, episodes)
+
+
+def greedy_evaluation(
+    model: HybridPPO, env_id: str, env_kwargs: dict[str, Any], episodes: int, seed: int
+) -> dict:
+    """``episodes`` greedy episodes on 16 (or fewer) games of ``env_id``: goals, end statuses, Wilson interval."""
+    return batched_episodes(
+        lambda obs: model.predict(obs, deterministic=True)[0], env_id, env_kwargs, episodes, seed
+    )
 
 
 class RunRecorder(BaseCallback):

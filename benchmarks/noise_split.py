@@ -17,7 +17,6 @@ from __future__ import annotations
 import argparse
 import json
 import sys
-from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -25,7 +24,7 @@ import torch as th
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's summary
 
-from hybrid_ppo_runs import goal_rate_summary  # noqa: E402
+from hybrid_ppo_runs import batched_episodes  # noqa: E402
 
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.vec_env import make_hfo_vec_env  # noqa: E402
@@ -56,23 +55,9 @@ def act(model: HybridPPO, obs: np.ndarray, sample_discrete: bool, sample_paramet
 def play(model: HybridPPO, env_id: str, episodes: int, seed: int, mode: tuple[str, bool, bool]) -> dict:
     """``episodes`` episodes of one mode on up to 16 batched games; the summary of ``goal_rate_summary``."""
     _, sample_discrete, sample_parameters = mode
-    n_games = min(16, episodes)
-    env = make_hfo_vec_env(env_id, n_games, seed=seed, monitor=False)
-    statuses: Counter[str] = Counter()
-    started, active = n_games, np.ones(n_games, dtype=bool)
-    obs = env.reset()
-    while active.any():
-        obs, _, dones, infos = env.step(act(model, obs, sample_discrete, sample_parameters))
-        for game in np.flatnonzero(dones):
-            if not active[game]:
-                continue
-            statuses[infos[game]["status"]] += 1
-            if started < episodes:
-                started += 1  # the game's auto-reset episode counts
-            else:
-                active[game] = False
-    env.close()
-    return goal_rate_summary(statuses, episodes)
+    return batched_episodes(
+        lambda obs: act(model, obs, sample_discrete, sample_parameters), env_id, {}, episodes, seed
+    )
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import importlib.util
 import json
 import subprocess
@@ -60,17 +61,7 @@ def test_the_tap_in_supporter_steps_onto_a_wide_shot_and_holds_for_one_on_target
         kickable=False,
         goalie=(51.0, -1.0),
     )
-    on_target = Percept(
-        x=49.0,
-        y=12.0,
-        body_deg=-90.0,
-        ball_x=42.0,
-        ball_y=0.0,
-        ball_vx=2.0,
-        ball_vy=0.4,
-        kickable=False,
-        goalie=(51.0, -1.0),
-    )
+    on_target = dataclasses.replace(wide, ball_vy=0.4)  # crosses the goal line at y 3.3
     assert team._onto_wide_shot(on_target, spot) == team._hold(on_target, spot)
     stepping = team._onto_wide_shot(wide, spot)
     assert stepping != team._hold(wide, spot)
