@@ -486,7 +486,7 @@ class HFOEnv(gym.Env):
         features = self._features()
         self._reward_fn.reset(features)
         info = self._info(features)
-        info["reward_terms"] = {"move_to_ball": 0.0, "kick_bonus": 0.0, "ball_to_goal": 0.0, "goal": 0.0}
+        info["reward_terms"] = dict.fromkeys(self._reward_fn.term_names, 0.0)
         if self.render_mode == "human":
             self.render()
         # HFO's agent starts with its last action status false (agent.cpp)

@@ -1111,7 +1111,7 @@ class RealHFOEnv(_SessionEnv, gym.Env):
         self._needs_reset = False
         self._reward_fn.reset(self._features)
         info = self._info()
-        info["reward_terms"] = {"move_to_ball": 0.0, "kick_bonus": 0.0, "ball_to_goal": 0.0, "goal": 0.0}
+        info["reward_terms"] = dict.fromkeys(self._reward_fn.term_names, 0.0)
         return np.array(self._features, dtype=np.float32), info
 
     def _finish_episode(self) -> None:

@@ -124,7 +124,10 @@ CARRY_TERM_NAMES: tuple[str, ...] = (*REWARD_TERM_NAMES, "cycle_cost")
 
 
 class RewardFunction(Protocol):
-    """What the env needs from a reward: reset at episode start, then one call per step."""
+    """What the env needs from a reward: reset at episode start, then one call per step; ``term_names`` are the keys
+    of the terms each call returns (an env reports them all as 0 on its reset step)."""
+
+    term_names: tuple[str, ...]
 
     def reset(self, features: Sequence[float] | None = None) -> None: ...
 
@@ -198,6 +201,8 @@ def ball_to_gap_distance(features: Sequence[float]) -> float:
 
 class ShapedReward:
     """Hausknecht & Stone's shaped reward, DQNHFO's 2016 computation (see the module docstring)."""
+
+    term_names = REWARD_TERM_NAMES
 
     distance_to_target = staticmethod(ball_to_goal_distance)
     #: take back, on a terminal step without a goal, the progress paid since the ball was last kickable
@@ -289,6 +294,8 @@ class RefundedGapShapedReward(GapShapedReward):
 class CarryReward:
     """Pays the ball's progress to the goal only as new records set while the agent has the ball (docstring)."""
 
+    term_names = CARRY_TERM_NAMES
+
     def __init__(self) -> None:
         # supplies move_to_ball, kick_bonus and goal; its ball_to_goal is unused
         self._shaped = ShapedReward()
@@ -330,6 +337,8 @@ class CarryReward:
 
 class SparseReward:
     """1 on GOAL, 0 otherwise."""
+
+    term_names = REWARD_TERM_NAMES
 
     def reset(self, features: Sequence[float] | None = None) -> None:
         """Nothing to forget between episodes."""

@@ -12,6 +12,7 @@ from hfo2d.reward import (
     CARRY_WEIGHT,
     CYCLE_COST,
     POSSESSION_RADIUS,
+    REWARD_NAMES,
     CarryReward,
     make_reward,
 )
@@ -90,3 +91,14 @@ def test_carrying_to_a_close_shot_earns_more_than_a_long_shot() -> None:
     assert soft_goals > long_goals
     assert soft_carry > long_carry + 0.5
     assert soft_return > long_return + 3.0
+
+
+def test_the_reset_step_lists_every_term_of_the_reward_it_uses() -> None:
+    """``info["reward_terms"]`` has the same keys on the reset step as on every later step, for each reward."""
+    for reward in REWARD_NAMES:
+        env = gym.make("HFO/Keeper-v1", reward=reward)
+        _, reset_info = env.reset(seed=0)
+        _, _, _, _, step_info = env.step(env.action_space.sample())
+        assert set(reset_info["reward_terms"]) == set(step_info["reward_terms"]), reward
+        assert all(value == 0.0 for value in reset_info["reward_terms"].values())
+        env.close()
