@@ -192,7 +192,7 @@ class ScriptedTeam:
 def play(team_name: str, episodes: int, seed: int, backend: str = "hfo2d") -> dict[str, Any]:
     """``episodes`` episodes of one scripted team from HFO's starts: in hfo2d (the game seeded once with ``seed``)
     or in a real HFO build (``backend="real"``: ``hfo2d.parallel_env``, HFO's ``--seed`` from ``seed``)."""
-    from sb3_hfo.evaluation import wilson_interval  # the project's interval, as every other benchmark reports
+    from sb3_hfo.evaluation import goal_rate_summary  # as the other benchmarks report
 
     team = ScriptedTeam(team_name)
     if backend == "hfo2d":
@@ -229,16 +229,10 @@ def play(team_name: str, episodes: int, seed: int, backend: str = "hfo2d") -> di
     finally:
         if backend != "hfo2d":
             game.close()
-    goals = statuses.get("GOAL", 0)
-    low, high = wilson_interval(goals, episodes)
     return {
         "team": team_name,
         "backend": backend,
-        "episodes": episodes,
-        "goals": goals,
-        "rate": goals / episodes,
-        "ci95": [low, high],
-        "status": dict(statuses),
+        **goal_rate_summary(statuses, episodes),
         "out_over_goal_line": wide_of_goal if backend == "hfo2d" else None,
         "passes": team.passes,
         "tap_ins_tried": team.taps,
