@@ -20,6 +20,7 @@ from operator import itemgetter
 
 import numpy as np
 
+from hfo2d import accel as _accel
 from hfo2d.agent2d import common as _common
 from hfo2d.agent2d.actions import send_command
 from hfo2d.agent2d.common import (
@@ -58,7 +59,7 @@ BALL_VEL_CHANGE_ANGLE = 20.0
 NEVER_CAUGHT = -1000
 
 
-def fullstate_value(x: float) -> float:
+def fullstate_value_python(x: float) -> float:
     """A number as the client reads it from a fullstate message: rcssserver 15 (fullstatesender.cpp, protocol
     >= 8; serializerplayerstdv1.cpp serializeFSBegin sets ``precision(6)``) prints positions, velocities, body
     angles (degrees), stamina, effort and recovery unquantised with 6 significant digits (``%g``), and librcsc
@@ -133,6 +134,10 @@ _POW10_INT = tuple(10**k for k in range(330))  # the scales of the numbers below
 _POW10_NEAREST = tuple(float(10**k) for k in range(309))  # the doubles nearest to them (exact up to 10**22)
 _FULLSTATE_MEMO: dict[float, float] = {}
 _FULLSTATE_MEMO_SIZE = 4096
+
+#: :func:`fullstate_value_python`, computed by hfo2d._accel's kernel when it is in use (the same floats, no memo:
+#: the C computes a number faster than the dict finds it; see :mod:`hfo2d.accel`)
+fullstate_value = fullstate_value_python if _accel.ACCEL is None else _accel.ACCEL.fullstate_value
 
 # Agent2dGoalie._view builds its GoalieView positionally, in this field order
 _VIEW_FIELDS = (

@@ -1,0 +1,518 @@
+/* hfo2d._accel: optional compiled kernels for hfo2d's hottest pure-Python functions.
+ *
+ * Every kernel here is a port of a Python function of hfo2d that stays the reference (and the fallback when this
+ * extension is not built, or when HFO2D_PURE_PYTHON=1): tests/hfo2d/test_accel_reference.py runs both on the same
+ * inputs and compares the results bit for bit. To give the same doubles, each kernel does the same IEEE operations
+ * in the same order as its Python original:
+ *   - setup.py compiles this file with -ffp-contract=off (no fused multiply-add) and without -ffast-math;
+ *   - sin, cos, sqrt, fmod and pow are libm's, as Python's math module and float operators call them;
+ *   - hypot is NOT libm's: CPython's math.hypot has its own algorithm since 3.10 (on glibc 2.36 about 0.4 % of
+ *     random (x, y) pairs differ from libm's hypot by an ulp), so the kernels call math.hypot itself
+ *     (py_hypot below), whatever the Python version;
+ *   - a number is printed and parsed with CPython's own PyOS_double_to_string / PyOS_string_to_double, as
+ *     float(f"{x:.6g}") does.
+ * Positions are assumed finite (no NaN): sorting compares with <, as Python's sort does, by a stable insertion
+ * sort.
+ *
+ * Units are rcssserver's: metres, metres per cycle, degrees.
+ */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+
+#include <math.h>
+#include <string.h>
+
+/* math.hypot, looked up at import (see the header comment) */
+static PyObject *math_hypot = NULL;
+
+/* hypot(x, y) as Python's math.hypot computes it; -1.0 with an exception set on failure (a distance is never
+ * negative, so the caller can test for it). */
+static double
+py_hypot(double x, double y)
+{
+    PyObject *args[2];
+    args[0] = PyFloat_FromDouble(x);
+    args[1] = PyFloat_FromDouble(y);
+    if (args[0] == NULL || args[1] == NULL) {
+        Py_XDECREF(args[0]);
+        Py_XDECREF(args[1]);
+        return -1.0;
+    }
+    PyObject *result = PyObject_Vectorcall(math_hypot, args, 2, NULL);
+    Py_DECREF(args[0]);
+    Py_DECREF(args[1]);
+    if (result == NULL) {
+        return -1.0;
+    }
+    double value = PyFloat_AsDouble(result);
+    Py_DECREF(result);
+    return value;
+}
+
+/* ------------------------------------------------------------------------------------------------------------
+ * fullstate_value (port of hfo2d.agent2d.goalie._fullstate_value_python)
+ *
+ * A number as librcsc reads it from rcssserver's fullstate message: printed with 6 significant digits (%g) and
+ * parsed back (rcssserver 15 serializerplayerstdv1.cpp serializeFSBegin sets precision(6); librcsc
+ * fullstate_sensor.cpp parses with strtod). The Python function's fast path for 1e-16 <= |x| < 10000 is ported
+ * with the same operations (its docstring proves it equals the string round trip); every other input takes the
+ * string round trip itself, which is what the Python function's other paths equal by their contract.
+ * ------------------------------------------------------------------------------------------------------------ */
+static double pow10_exact[23]; /* 10**0 .. 10**22, exact doubles */
+
+static int
+fullstate_string_round_trip(double x, double *out)
+{
+    char *text = PyOS_double_to_string(x, 'g', 6, 0, NULL);
+    if (text == NULL) {
+        return -1;
+    }
+    double value = PyOS_string_to_double(text, NULL, NULL);
+    PyMem_Free(text);
+    if (value == -1.0 && PyErr_Occurred()) {
+        return -1;
+    }
+    *out = value;
+    return 0;
+}
+
+static int
+fullstate_number(double x, double *out)
+{
+    if (x == 0.0) {
+        *out = x; /* keeps the sign of a zero */
+        return 0;
+    }
+    double a = x < 0.0 ? -x : x;
+    if (1.0e-16 <= a && a < 10000.0) {
+        double s;
+        if (a >= 1.0) {
+            s = a < 10.0 ? 100000.0 : (a < 100.0 ? 10000.0 : (a < 1000.0 ? 1000.0 : 100.0));
+        }
+        else if (a >= 0.001) {
+            s = a >= 0.1 ? 1000000.0 : (a >= 0.01 ? 10000000.0 : 100000000.0);
+        }
+        else {
+            s = pow10_exact[5 - (int)floor(log10(a))]; /* 10**9 .. 10**22 */
+        }
+        double p = a * s;
+        double f = fmod(p, 1.0); /* Python's p % 1.0 for a positive p */
+        if (100000.001 <= p && p < 999999.0 && !(0.499999 < f && f < 0.500001)) {
+            double y = (f > 0.5 ? (p - f) + 1.0 : p - f) / s;
+            *out = x < 0.0 ? -y : y;
+            return 0;
+        }
+    }
+    return fullstate_string_round_trip(x, out);
+}
+
+static PyObject *
+accel_fullstate_value(PyObject *module, PyObject *arg)
+{
+    double x = PyFloat_AsDouble(arg);
+    if (x == -1.0 && PyErr_Occurred()) {
+        return NULL;
+    }
+    double y;
+    if (fullstate_number(x, &y) < 0) {
+        return NULL;
+    }
+    return PyFloat_FromDouble(y);
+}
+
+/* ------------------------------------------------------------------------------------------------------------
+ * low_level_feature_list (port of hfo2d.features._low_level_feature_list_python without opponent_control)
+ *
+ * HFO's paper-era LowLevelFeatureExtractor layout (HFO src/lowlevel_feature_extractor.cpp before July 2017;
+ * hfo_reference §2, §9): 58 basic features, then an 8-feature block per teammate and per opponent, each group
+ * sorted by squared distance from the observer (stable), a player listed only while x > 0.
+ * ------------------------------------------------------------------------------------------------------------ */
+
+/* The normalisers of hfo2d.features; features.py checks at import that they equal its own (FEATURE_CONSTANTS). */
+#define PITCH_HALF_LENGTH 52.5
+#define PITCH_HALF_WIDTH 34.0
+#define GOAL_HALF_WIDTH 7.01
+#define PENALTY_AREA_X 36.0
+#define PENALTY_AREA_HALF_WIDTH 20.16
+#define SELF_SPEED_MAX 0.46
+#define PLAYER_SPEED_MAX 0.75
+#define BALL_SPEED_MAX 5.0
+#define STAMINA_MAX 8000.0
+#define NUM_BASIC_FEATURES 58
+#define FEATURES_PER_PLAYER 8
+#define MAX_GROUP 64 /* players per side handled here; a larger group is refused */
+
+/* the landmarks in hfo2d.features.LANDMARKS order */
+static const double LANDMARKS[11][2] = {
+    {PITCH_HALF_LENGTH, 0.0},
+    {PITCH_HALF_LENGTH, -GOAL_HALF_WIDTH},
+    {PITCH_HALF_LENGTH, GOAL_HALF_WIDTH},
+    {PENALTY_AREA_X, 0.0},
+    {PENALTY_AREA_X, -PENALTY_AREA_HALF_WIDTH},
+    {PENALTY_AREA_X, PENALTY_AREA_HALF_WIDTH},
+    {0.0, 0.0},
+    {0.0, -PITCH_HALF_WIDTH},
+    {PITCH_HALF_LENGTH, -PITCH_HALF_WIDTH},
+    {PITCH_HALF_LENGTH, PITCH_HALF_WIDTH},
+    {0.0, PITCH_HALF_WIDTH},
+};
+
+static PyObject *str_x, *str_y, *str_vx, *str_vy, *str_body_deg, *str_stamina;
+static PyObject *str_collided_ball, *str_collided_player, *str_collided_post;
+
+static int
+get_double(PyObject *obj, PyObject *name, double *out)
+{
+    PyObject *value = PyObject_GetAttr(obj, name);
+    if (value == NULL) {
+        return -1;
+    }
+    double v = PyFloat_AsDouble(value);
+    Py_DECREF(value);
+    if (v == -1.0 && PyErr_Occurred()) {
+        return -1;
+    }
+    *out = v;
+    return 0;
+}
+
+static int
+get_flag(PyObject *obj, PyObject *name, int *out)
+{
+    PyObject *value = PyObject_GetAttr(obj, name);
+    if (value == NULL) {
+        return -1;
+    }
+    int truth = PyObject_IsTrue(value);
+    Py_DECREF(value);
+    if (truth < 0) {
+        return -1;
+    }
+    *out = truth;
+    return 0;
+}
+
+typedef struct {
+    double x, y, vx, vy, body_deg;
+} Other;
+
+/* features.py's _append_player_block */
+static int
+player_block(double *out, const Other *other, double self_x, double self_y, double body_cos, double body_sin,
+             double max_dist)
+{
+    double dx = other->x - self_x;
+    double dy = other->y - self_y;
+    double dist = py_hypot(dx, dy);
+    if (dist < 0.0) {
+        return -1;
+    }
+    double heading_cos = 1.0, heading_sin = 0.0; /* rcsc's Vector2D::th() of the zero vector is 0 */
+    if (dist > 0.0) {
+        heading_cos = dx / dist;
+        heading_sin = dy / dist;
+    }
+    double other_body = other->body_deg * (M_PI / 180.0);
+    double speed = py_hypot(other->vx, other->vy);
+    if (speed < 0.0) {
+        return -1;
+    }
+    double vel_cos = 1.0, vel_sin = 0.0;
+    if (speed > 0.0) {
+        vel_cos = other->vx / speed;
+        vel_sin = other->vy / speed;
+    }
+    out[0] = heading_sin * body_cos - heading_cos * body_sin;
+    out[1] = heading_cos * body_cos + heading_sin * body_sin;
+    out[2] = dist < max_dist ? 1.0 - 2.0 / max_dist * dist : -1.0;
+    out[3] = sin(other_body);
+    out[4] = cos(other_body);
+    out[5] = speed < PLAYER_SPEED_MAX ? 2.0 * speed / PLAYER_SPEED_MAX - 1.0 : 1.0;
+    out[6] = vel_sin;
+    out[7] = vel_cos;
+    return 0;
+}
+
+/* One group (teammates or opponents): its blocks, nearest first, then the empty slots. Returns the number of
+ * features written, or -1 with an exception set. */
+static Py_ssize_t
+group_blocks(double *out, PyObject *group, double x, double y, double body_cos, double body_sin, double max_dist)
+{
+    PyObject *seq = PySequence_Fast(group, "teammates and opponents must be sequences of players");
+    if (seq == NULL) {
+        return -1;
+    }
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
+    if (n > MAX_GROUP) {
+        Py_DECREF(seq);
+        PyErr_Format(PyExc_ValueError, "at most %d players per group, got %zd", MAX_GROUP, n);
+        return -1;
+    }
+    Other others[MAX_GROUP];
+    double keys[MAX_GROUP];
+    int order[MAX_GROUP];
+    PyObject **items = PySequence_Fast_ITEMS(seq);
+    for (Py_ssize_t i = 0; i < n; i++) {
+        Other *o = &others[i];
+        if (get_double(items[i], str_x, &o->x) < 0 || get_double(items[i], str_y, &o->y) < 0 ||
+            get_double(items[i], str_vx, &o->vx) < 0 || get_double(items[i], str_vy, &o->vy) < 0 ||
+            get_double(items[i], str_body_deg, &o->body_deg) < 0) {
+            Py_DECREF(seq);
+            return -1;
+        }
+        /* sorted(group, key=lambda other: (other.x - x) ** 2 + (other.y - y) ** 2): Python's float ** calls
+         * libm pow on the magnitude (the sign of a square is +) */
+        keys[i] = pow(fabs(o->x - x), 2.0) + pow(fabs(o->y - y), 2.0);
+        order[i] = (int)i;
+    }
+    Py_DECREF(seq);
+    if (n > 1) { /* stable insertion sort by key, as Python's sorted */
+        for (Py_ssize_t i = 1; i < n; i++) {
+            int item = order[i];
+            Py_ssize_t j = i;
+            while (j > 0 && keys[item] < keys[order[j - 1]]) {
+                order[j] = order[j - 1];
+                j--;
+            }
+            order[j] = item;
+        }
+    }
+    Py_ssize_t written = 0;
+    for (Py_ssize_t i = 0; i < n; i++) {
+        const Other *o = &others[order[i]];
+        if (o->x > 0.0) { /* HFO lists a player only inside the HFO half (x > 0) */
+            if (player_block(out + written, o, x, y, body_cos, body_sin, max_dist) < 0) {
+                return -1;
+            }
+            written += FEATURES_PER_PLAYER;
+        }
+    }
+    for (Py_ssize_t k = written; k < FEATURES_PER_PLAYER * n; k++) {
+        out[k] = 0.0;
+    }
+    return FEATURES_PER_PLAYER * n;
+}
+
+static double
+out_of_bounds(double d, double d_max)
+{
+    return d <= 0.0 ? 1.0 : (d >= d_max ? -1.0 : 1.0 - 2.0 * d / d_max);
+}
+
+static PyObject *
+accel_low_level_feature_list(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 8) {
+        PyErr_SetString(PyExc_TypeError,
+                        "low_level_feature_list(player, ball, kickable_distance, teammates, opponents, max_dist, "
+                        "out_of_bounds_x_max, out_of_bounds_y_max)");
+        return NULL;
+    }
+    PyObject *player = args[0], *ball = args[1], *teammates = args[3], *opponents = args[4];
+    double kickable_distance, max_dist, oob_x_max, oob_y_max;
+    if ((kickable_distance = PyFloat_AsDouble(args[2])) == -1.0 && PyErr_Occurred()) {
+        return NULL;
+    }
+    if ((max_dist = PyFloat_AsDouble(args[5])) == -1.0 && PyErr_Occurred()) {
+        return NULL;
+    }
+    if ((oob_x_max = PyFloat_AsDouble(args[6])) == -1.0 && PyErr_Occurred()) {
+        return NULL;
+    }
+    if ((oob_y_max = PyFloat_AsDouble(args[7])) == -1.0 && PyErr_Occurred()) {
+        return NULL;
+    }
+    double x, y, vx, vy, body_deg, stamina, ball_x, ball_y, ball_vx, ball_vy;
+    int collided_ball, collided_player, collided_post;
+    if (get_double(player, str_x, &x) < 0 || get_double(player, str_y, &y) < 0 ||
+        get_double(player, str_vx, &vx) < 0 || get_double(player, str_vy, &vy) < 0 ||
+        get_double(player, str_body_deg, &body_deg) < 0 || get_double(player, str_stamina, &stamina) < 0 ||
+        get_flag(player, str_collided_ball, &collided_ball) < 0 ||
+        get_flag(player, str_collided_player, &collided_player) < 0 ||
+        get_flag(player, str_collided_post, &collided_post) < 0 || get_double(ball, str_x, &ball_x) < 0 ||
+        get_double(ball, str_y, &ball_y) < 0 || get_double(ball, str_vx, &ball_vx) < 0 ||
+        get_double(ball, str_vy, &ball_vy) < 0) {
+        return NULL;
+    }
+    Py_ssize_t n_mates = PyObject_Length(teammates);
+    Py_ssize_t n_opps = PyObject_Length(opponents);
+    if (n_mates < 0 || n_opps < 0) {
+        return NULL;
+    }
+    if (n_mates > MAX_GROUP || n_opps > MAX_GROUP) {
+        PyErr_Format(PyExc_ValueError, "at most %d players per group", MAX_GROUP);
+        return NULL;
+    }
+    double f[NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * 2 * MAX_GROUP];
+
+    double body = body_deg * (M_PI / 180.0);
+    double body_cos = cos(body);
+    double body_sin = sin(body);
+    double speed = py_hypot(vx, vy);
+    if (speed < 0.0) {
+        return NULL;
+    }
+    double vel_cos = 1.0, vel_sin = 0.0; /* heading of a zero velocity is 0 */
+    if (speed > 0.0) {
+        vel_cos = vx / speed;
+        vel_sin = vy / speed;
+    }
+    f[0] = 1.0; /* self position valid (fullstate) */
+    f[1] = 1.0; /* self velocity valid */
+    f[2] = body_sin * vel_cos - body_cos * vel_sin;
+    f[3] = body_cos * vel_cos + body_sin * vel_sin;
+    f[4] = speed < SELF_SPEED_MAX ? 2.0 * speed / SELF_SPEED_MAX - 1.0 : 1.0;
+    f[5] = body_sin;
+    f[6] = body_cos;
+    f[7] = stamina > 0.0 ? (stamina < STAMINA_MAX ? 2.0 * stamina / STAMINA_MAX - 1.0 : 1.0) : -1.0;
+    f[8] = -1.0; /* frozen: nobody tackles */
+    f[9] = collided_ball ? 1.0 : -1.0;
+    f[10] = collided_player ? 1.0 : -1.0;
+    f[11] = collided_post ? 1.0 : -1.0;
+
+    /* the landmarks: (sin, cos) of bearing = heading - body expanded without atan2, then the proximity; the
+     * Python's unrolled block forms each offset's products with cos and sin the same way */
+    double two_over_max_dist = 2.0 / max_dist;
+    for (int k = 0; k < 11; k++) {
+        double dx = LANDMARKS[k][0] - x;
+        double dy = LANDMARKS[k][1] - y;
+        double d = py_hypot(dx, dy);
+        if (d < 0.0) {
+            return NULL;
+        }
+        double *t = f + 13 + 3 * k;
+        if (d > 0.0) {
+            t[0] = (dy * body_cos - dx * body_sin) / d;
+            t[1] = (dx * body_cos + dy * body_sin) / d;
+            t[2] = d < max_dist ? 1.0 - two_over_max_dist * d : -1.0;
+        }
+        else { /* rcsc's Vector2D::th() of the zero vector is 0, so the bearing is -body */
+            t[0] = -body_sin;
+            t[1] = body_cos;
+            t[2] = 1.0;
+        }
+    }
+    double dx = ball_x - x;
+    double dy = ball_y - y;
+    double dist = py_hypot(dx, dy);
+    if (dist < 0.0) {
+        return NULL;
+    }
+    double heading_cos = 1.0, heading_sin = 0.0;
+    if (dist > 0.0) {
+        heading_cos = dx / dist;
+        heading_sin = dy / dist;
+    }
+    f[12] = dist <= kickable_distance ? 1.0 : -1.0;
+    double ball_speed = py_hypot(ball_vx, ball_vy);
+    if (ball_speed < 0.0) {
+        return NULL;
+    }
+    double ball_vel_cos = 1.0, ball_vel_sin = 0.0;
+    if (ball_speed > 0.0) {
+        ball_vel_cos = ball_vx / ball_speed;
+        ball_vel_sin = ball_vy / ball_speed;
+    }
+    f[46] = out_of_bounds(x, oob_x_max);
+    f[47] = out_of_bounds(PITCH_HALF_LENGTH - x, oob_x_max);
+    f[48] = out_of_bounds(PITCH_HALF_WIDTH + y, oob_y_max);
+    f[49] = out_of_bounds(PITCH_HALF_WIDTH - y, oob_y_max);
+    f[50] = 1.0; /* ball position valid */
+    f[51] = heading_sin * body_cos - heading_cos * body_sin;
+    f[52] = heading_cos * body_cos + heading_sin * body_sin;
+    f[53] = dist < max_dist ? 1.0 - two_over_max_dist * dist : -1.0;
+    f[54] = 1.0; /* ball velocity valid */
+    f[55] = ball_speed < BALL_SPEED_MAX ? 2.0 * ball_speed / BALL_SPEED_MAX - 1.0 : 1.0;
+    f[56] = ball_vel_sin;
+    f[57] = ball_vel_cos;
+
+    Py_ssize_t n = NUM_BASIC_FEATURES;
+    Py_ssize_t written = group_blocks(f + n, teammates, x, y, body_cos, body_sin, max_dist);
+    if (written < 0) {
+        return NULL;
+    }
+    n += written;
+    written = group_blocks(f + n, opponents, x, y, body_cos, body_sin, max_dist);
+    if (written < 0) {
+        return NULL;
+    }
+    n += written;
+    PyObject *list = PyList_New(n);
+    if (list == NULL) {
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        PyObject *value = PyFloat_FromDouble(f[i]);
+        if (value == NULL) {
+            Py_DECREF(list);
+            return NULL;
+        }
+        PyList_SET_ITEM(list, i, value);
+    }
+    return list;
+}
+
+/* ------------------------------------------------------------------------------------------------------------ */
+
+static PyMethodDef accel_methods[] = {
+    {"fullstate_value", accel_fullstate_value, METH_O,
+     "fullstate_value(x) -> float: x printed with 6 significant digits and parsed back (see "
+     "hfo2d.agent2d.goalie.fullstate_value)."},
+    {"low_level_feature_list", (PyCFunction)(void (*)(void))accel_low_level_feature_list, METH_FASTCALL,
+     "low_level_feature_list(player, ball, kickable_distance, teammates, opponents, max_dist, "
+     "out_of_bounds_x_max, out_of_bounds_y_max) -> list[float] (see hfo2d.features.low_level_feature_list)."},
+    {NULL, NULL, 0, NULL},
+};
+
+static struct PyModuleDef accel_module = {
+    PyModuleDef_HEAD_INIT, "hfo2d._accel",
+    "Optional compiled kernels of hfo2d (see envs/hfo2d/_accel.c); the pure-Python code is the reference.", -1,
+    accel_methods,
+};
+
+#define INTERN(var, text)                                                                                     \
+    if ((var = PyUnicode_InternFromString(text)) == NULL) {                                                   \
+        return NULL;                                                                                          \
+    }
+
+PyMODINIT_FUNC
+PyInit__accel(void)
+{
+    for (int k = 0; k < 23; k++) {
+        pow10_exact[k] = k == 0 ? 1.0 : pow10_exact[k - 1] * 10.0; /* exact up to 10**22 */
+    }
+    INTERN(str_x, "x");
+    INTERN(str_y, "y");
+    INTERN(str_vx, "vx");
+    INTERN(str_vy, "vy");
+    INTERN(str_body_deg, "body_deg");
+    INTERN(str_stamina, "stamina");
+    INTERN(str_collided_ball, "collided_ball");
+    INTERN(str_collided_player, "collided_player");
+    INTERN(str_collided_post, "collided_post");
+    PyObject *math = PyImport_ImportModule("math");
+    if (math == NULL) {
+        return NULL;
+    }
+    math_hypot = PyObject_GetAttrString(math, "hypot");
+    Py_DECREF(math);
+    if (math_hypot == NULL) {
+        return NULL;
+    }
+    PyObject *module = PyModule_Create(&accel_module);
+    if (module == NULL) {
+        return NULL;
+    }
+    PyObject *constants = Py_BuildValue(
+        "{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:i,s:i}", "PITCH_HALF_LENGTH", PITCH_HALF_LENGTH,
+        "PITCH_HALF_WIDTH", PITCH_HALF_WIDTH, "GOAL_HALF_WIDTH", GOAL_HALF_WIDTH, "PENALTY_AREA_X", PENALTY_AREA_X,
+        "PENALTY_AREA_HALF_WIDTH", PENALTY_AREA_HALF_WIDTH, "SELF_SPEED_MAX", SELF_SPEED_MAX, "PLAYER_SPEED_MAX",
+        PLAYER_SPEED_MAX, "BALL_SPEED_MAX", BALL_SPEED_MAX, "STAMINA_MAX", STAMINA_MAX, "NUM_BASIC_FEATURES",
+        NUM_BASIC_FEATURES, "FEATURES_PER_PLAYER", FEATURES_PER_PLAYER);
+    if (constants == NULL || PyModule_AddObject(module, "FEATURE_CONSTANTS", constants) < 0) {
+        Py_XDECREF(constants);
+        Py_DECREF(module);
+        return NULL;
+    }
+    return module;
+}
