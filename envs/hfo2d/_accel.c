@@ -452,9 +452,368 @@ accel_low_level_feature_list(PyObject *module, PyObject *const *args, Py_ssize_t
     return list;
 }
 
+/* ------------------------------------------------------------------------------------------------------------
+ * The other players' reach of the intercept table (port of hfo2d.agent2d.intercept._predict_player_python,
+ * _opp_turns, cycles_to_reach_distance and fastest_reach_python): librcsc d222758 rcsc/player/player_intercept.cpp
+ * PlayerIntercept::predict (predictTurnCycle with at most one turn, canReachAfterDash, predictFinal) and
+ * rcsc/player/player_type.cpp PlayerType::cyclesToReachDistance, under fullstate (every count 0).
+ * The server constants are bound by intercept._bind (bind_intercept), whenever hfo2d binds server parameters.
+ * ------------------------------------------------------------------------------------------------------------ */
+#define BALL_CACHE_MAX 101 /* the move sums go to 100; intercept_table.cpp MAX_CYCLE 30 gives at most 31 points */
+#define DASH_TABLE_MAX 256
+
+static int intercept_bound = 0;
+static double kickable_area;  /* PlayerType::kickableArea */
+static double real_speed_max; /* PlayerType::realSpeedMax */
+static long tackle_cycles;    /* tackle_cycles */
+static double player_move_sums[101]; /* intercept._PF: (1 - decay**n) / (1 - decay) */
+static double dash_table[DASH_TABLE_MAX]; /* common.DASH_DISTANCE_TABLE */
+static Py_ssize_t dash_table_len = 0;
+
+static int
+double_table(PyObject *values, double *out, Py_ssize_t max_len, Py_ssize_t *len, const char *what)
+{
+    PyObject *seq = PySequence_Fast(values, what);
+    if (seq == NULL) {
+        return -1;
+    }
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
+    if (n > max_len || (len == NULL && n != max_len)) {
+        Py_DECREF(seq);
+        PyErr_Format(PyExc_ValueError, "%s: %zd values, at most %zd", what, n, max_len);
+        return -1;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        double v = PyFloat_AsDouble(PySequence_Fast_GET_ITEM(seq, i));
+        if (v == -1.0 && PyErr_Occurred()) {
+            Py_DECREF(seq);
+            return -1;
+        }
+        out[i] = v;
+    }
+    Py_DECREF(seq);
+    if (len != NULL) {
+        *len = n;
+    }
+    return 0;
+}
+
+static PyObject *
+accel_bind_intercept(PyObject *module, PyObject *args)
+{
+    double area, speed;
+    long cycles;
+    PyObject *sums, *table;
+    if (!PyArg_ParseTuple(args, "ddlOO:bind_intercept", &area, &speed, &cycles, &sums, &table)) {
+        return NULL;
+    }
+    double new_sums[101], new_table[DASH_TABLE_MAX];
+    Py_ssize_t new_len;
+    if (double_table(sums, new_sums, 101, NULL, "player move sums (101)") < 0 ||
+        double_table(table, new_table, DASH_TABLE_MAX, &new_len, "dash distance table") < 0) {
+        return NULL;
+    }
+    if (new_len < 1) {
+        PyErr_SetString(PyExc_ValueError, "the dash distance table is empty");
+        return NULL;
+    }
+    /* nothing changes unless everything is valid */
+    kickable_area = area;
+    real_speed_max = speed;
+    tackle_cycles = cycles;
+    memcpy(player_move_sums, new_sums, sizeof new_sums);
+    memcpy(dash_table, new_table, sizeof(double) * (size_t)new_len);
+    dash_table_len = new_len;
+    intercept_bound = 1;
+    Py_RETURN_NONE;
+}
+
+/* AngleDeg::normalize (intercept._norm) */
+static double
+norm_deg(double a)
+{
+    if (a < -360.0 || a > 360.0) {
+        a = fmod(a, 360.0);
+    }
+    if (a < -180.0) {
+        a += 360.0;
+    }
+    if (a > 180.0) {
+        a -= 360.0;
+    }
+    return a;
+}
+
+/* Vector2D::th().degree() (intercept._th); Python's math.atan2 equals libm's for finite arguments */
+static double
+th_deg(double x, double y)
+{
+    if (x == 0.0 && y == 0.0) {
+        return 0.0;
+    }
+    double a = atan2(y, x) * (180.0 / M_PI);
+    if (a > 180.0 || a < -180.0) {
+        a = norm_deg(a);
+    }
+    return a;
+}
+
+/* PlayerType::cyclesToReachDistance (intercept.cycles_to_reach_distance: bisect_left on the dash table) */
+static long
+cycles_to_reach(double dist)
+{
+    if (dist <= 0.001) {
+        return 0;
+    }
+    double target = dist - 0.001;
+    Py_ssize_t lo = 0, hi = dash_table_len;
+    while (lo < hi) {
+        Py_ssize_t mid = (lo + hi) / 2;
+        if (dash_table[mid] < target) {
+            lo = mid + 1;
+        }
+        else {
+            hi = mid;
+        }
+    }
+    if (lo < dash_table_len) {
+        return (long)lo + 1;
+    }
+    return (long)dash_table_len + (long)ceil((dist - dash_table[dash_table_len - 1]) / real_speed_max);
+}
+
+/* intercept._opp_turns: at most one turn, and the distance from the drift point after n cycles to the ball */
+static int
+opp_turns(double ox, double oy, double ux, double uy, double obody, int n, double xbx, double xby,
+          double *target_dist)
+{
+    double f = player_move_sums[n];
+    double zx = ox + ux * f;
+    double zy = oy + uy * f;
+    double tx = xbx - zx;
+    double ty = xby - zy;
+    double dist = sqrt(tx * tx + ty * ty);
+    double margin = 180.0;
+    if (dist > kickable_area) {
+        double r = kickable_area / dist;
+        margin = r >= 1.0 ? 90.0 : asin(r) * (180.0 / M_PI); /* AngleDeg::asin_deg (r > 0) */
+    }
+    if (margin < 12.0) { /* player_intercept.cpp: minimum turn margin 12 degrees */
+        margin = 12.0;
+    }
+    double diff = fabs(norm_deg(th_deg(tx, ty) - obody));
+    if (dist < 5.0 && diff > 90.0) { /* close: a back dash will do */
+        diff = 180.0 - diff;
+    }
+    *target_dist = dist;
+    return diff > margin ? 1 : 0;
+}
+
+/* intercept._predict_player_python on a ball cache of n_cache points (xs, ys) */
+static long
+predict_player(double ox, double oy, double ux, double uy, double obody, long frozen, int resting_shortcut,
+               double self_dist, const double *xs, const double *ys, Py_ssize_t n_cache, double rel_y)
+{
+    obody = norm_deg(obody);
+    long min_cycle = (long)floor(fabs(rel_y) / real_speed_max);
+    /* librcsc PlayerObject::tackleCount from the remaining freeze (see the Python) */
+    long tackle_extra = 0;
+    if (frozen > 0) {
+        long tackle_count = tackle_cycles - 1 - frozen;
+        tackle_extra = tackle_cycles - tackle_count - 2;
+        if (tackle_extra < 0) {
+            tackle_extra = 0;
+        }
+        min_cycle += tackle_extra;
+    }
+    if (min_cycle < 0) {
+        min_cycle = 0;
+    }
+    if (resting_shortcut && min_cycle < n_cache) {
+        /* a resting ball: every cached point is one point, skip the cycles the reach bound fails at once */
+        double dx = ox - xs[min_cycle], dy = oy - ys[min_cycle];
+        double d = sqrt(dx * dx + dy * dy);
+        while (min_cycle < n_cache && kickable_area + real_speed_max * (double)min_cycle + 0.5 < d) {
+            min_cycle++;
+        }
+    }
+    double target_dist;
+    for (long cycle = min_cycle; cycle < n_cache; cycle++) {
+        double dx = ox - xs[cycle], dy = oy - ys[cycle];
+        if (kickable_area + real_speed_max * (double)cycle + 0.5 < sqrt(dx * dx + dy * dy)) {
+            continue;
+        }
+        int n_turn = opp_turns(ox, oy, ux, uy, obody, (int)cycle, xs[cycle], ys[cycle], &target_dist);
+        long n_dash = cycle - n_turn;
+        if (n_dash < 0) {
+            continue;
+        }
+        double dist = target_dist - kickable_area;
+        if (dist < 0.0) {
+            return cycle;
+        }
+        if (cycles_to_reach(dist) + tackle_extra <= n_dash) {
+            return cycle;
+        }
+    }
+    /* predictFinal: the ball's last cached point */
+    int n_turn = opp_turns(ox, oy, ux, uy, obody, 100, xs[n_cache - 1], ys[n_cache - 1], &target_dist);
+    double dash_dist = target_dist - kickable_area;
+    dash_dist -= self_dist * 0.03; /* distFromSelf; 0 for a teammate */
+    if (dash_dist < 0.0) {
+        return (long)n_cache;
+    }
+    long n_dash = cycles_to_reach(dash_dist);
+    if (n_dash < 1) {
+        n_dash = 1;
+    }
+    return n_turn + n_dash > n_cache ? n_turn + n_dash : (long)n_cache;
+}
+
+/* a ball cache (a sequence of (x, y)) as two arrays; the number of points, or -1 with an exception set */
+static Py_ssize_t
+read_ball_cache(PyObject *cache, double *xs, double *ys)
+{
+    if (!intercept_bound) {
+        PyErr_SetString(PyExc_RuntimeError, "hfo2d._accel: bind_intercept was never called");
+        return -1;
+    }
+    PyObject *seq = PySequence_Fast(cache, "the ball cache must be a sequence of (x, y)");
+    if (seq == NULL) {
+        return -1;
+    }
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
+    if (n < 1 || n > BALL_CACHE_MAX) {
+        Py_DECREF(seq);
+        PyErr_Format(PyExc_ValueError, "the ball cache holds %zd points, not 1..%d", n, BALL_CACHE_MAX);
+        return -1;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        PyObject *point = PySequence_Fast_GET_ITEM(seq, i);
+        if (!PyTuple_Check(point) || PyTuple_GET_SIZE(point) != 2) {
+            Py_DECREF(seq);
+            PyErr_SetString(PyExc_TypeError, "a ball cache point must be a tuple (x, y)");
+            return -1;
+        }
+        xs[i] = PyFloat_AsDouble(PyTuple_GET_ITEM(point, 0));
+        ys[i] = PyFloat_AsDouble(PyTuple_GET_ITEM(point, 1));
+        if (PyErr_Occurred()) {
+            Py_DECREF(seq);
+            return -1;
+        }
+    }
+    Py_DECREF(seq);
+    return n;
+}
+
+static PyObject *
+accel_predict_player(PyObject *module, PyObject *args)
+{
+    double ox, oy, ux, uy, obody, self_dist, rel_y;
+    long frozen;
+    int resting_shortcut;
+    PyObject *cache;
+    if (!PyArg_ParseTuple(args, "dddddlpdOd:predict_player", &ox, &oy, &ux, &uy, &obody, &frozen,
+                          &resting_shortcut, &self_dist, &cache, &rel_y)) {
+        return NULL;
+    }
+    double xs[BALL_CACHE_MAX], ys[BALL_CACHE_MAX];
+    Py_ssize_t n = read_ball_cache(cache, xs, ys);
+    if (n < 0) {
+        return NULL;
+    }
+    return PyLong_FromLong(predict_player(ox, oy, ux, uy, obody, frozen, resting_shortcut, self_dist, xs, ys, n,
+                                          rel_y));
+}
+
+static PyObject *
+accel_fastest_reach(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 11) {
+        PyErr_SetString(PyExc_TypeError, "fastest_reach(players, cache, bx, by, px, py, resting_shortcut, sin_a, "
+                                         "cos_a, teammate, best)");
+        return NULL;
+    }
+    double v[6];
+    for (int i = 0; i < 4; i++) {
+        v[i] = PyFloat_AsDouble(args[2 + i]);
+    }
+    double sin_a = PyFloat_AsDouble(args[7]);
+    double cos_a = PyFloat_AsDouble(args[8]);
+    long best = PyLong_AsLong(args[10]);
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    int resting_shortcut = PyObject_IsTrue(args[6]);
+    int teammate = PyObject_IsTrue(args[9]);
+    if (resting_shortcut < 0 || teammate < 0) {
+        return NULL;
+    }
+    double bx = v[0], by = v[1], px = v[2], py = v[3];
+    double xs[BALL_CACHE_MAX], ys[BALL_CACHE_MAX];
+    Py_ssize_t n = read_ball_cache(args[1], xs, ys);
+    if (n < 0) {
+        return NULL;
+    }
+    PyObject *seq = PySequence_Fast(args[0], "players must be a sequence of (x, y, vx, vy, body, frozen)");
+    if (seq == NULL) {
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < PySequence_Fast_GET_SIZE(seq); i++) {
+        PyObject *player = PySequence_Fast_GET_ITEM(seq, i);
+        if (!PyTuple_Check(player) || PyTuple_GET_SIZE(player) != 6) {
+            Py_DECREF(seq);
+            PyErr_SetString(PyExc_TypeError, "a player must be a tuple (x, y, vx, vy, body, frozen)");
+            return NULL;
+        }
+        for (int k = 0; k < 5; k++) {
+            v[k] = PyFloat_AsDouble(PyTuple_GET_ITEM(player, k));
+        }
+        long frozen = PyLong_AsLong(PyTuple_GET_ITEM(player, 5));
+        if (PyErr_Occurred()) {
+            Py_DECREF(seq);
+            return NULL;
+        }
+        double x = v[0], y = v[1];
+        double rel_y = (x - bx) * sin_a + (y - by) * cos_a;
+        double self_dist = teammate ? 0.0 : sqrt((x - px) * (x - px) + (y - py) * (y - py));
+        long reach = predict_player(x, y, v[2], v[3], v[4], frozen, resting_shortcut, self_dist, xs, ys, n, rel_y);
+        if (reach < best) {
+            best = reach;
+        }
+    }
+    Py_DECREF(seq);
+    return PyLong_FromLong(best);
+}
+
+static PyObject *
+accel_cycles_to_reach_distance(PyObject *module, PyObject *arg)
+{
+    double dist = PyFloat_AsDouble(arg);
+    if (dist == -1.0 && PyErr_Occurred()) {
+        return NULL;
+    }
+    if (!intercept_bound) {
+        PyErr_SetString(PyExc_RuntimeError, "hfo2d._accel: bind_intercept was never called");
+        return NULL;
+    }
+    return PyLong_FromLong(cycles_to_reach(dist));
+}
+
 /* ------------------------------------------------------------------------------------------------------------ */
 
 static PyMethodDef accel_methods[] = {
+    {"bind_intercept", accel_bind_intercept, METH_VARARGS,
+     "bind_intercept(kickable_area, real_speed_max, tackle_cycles, player_move_sums, dash_distance_table): the "
+     "server constants of the reach kernels (called by hfo2d.agent2d.intercept's binder)."},
+    {"predict_player", accel_predict_player, METH_VARARGS,
+     "predict_player(ox, oy, ux, uy, obody, frozen, resting_shortcut, self_dist, cache, rel_y) -> int (see "
+     "hfo2d.agent2d.intercept._predict_player_python)."},
+    {"fastest_reach", (PyCFunction)(void (*)(void))accel_fastest_reach, METH_FASTCALL,
+     "fastest_reach(players, cache, bx, by, px, py, resting_shortcut, sin_a, cos_a, teammate, best) -> int (see "
+     "hfo2d.agent2d.intercept.fastest_reach_python)."},
+    {"cycles_to_reach_distance", accel_cycles_to_reach_distance, METH_O,
+     "cycles_to_reach_distance(dist) -> int (see hfo2d.agent2d.intercept.cycles_to_reach_distance)."},
     {"fullstate_value", accel_fullstate_value, METH_O,
      "fullstate_value(x) -> float: x printed with 6 significant digits and parsed back (see "
      "hfo2d.agent2d.goalie.fullstate_value)."},

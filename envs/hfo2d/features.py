@@ -610,6 +610,7 @@ def low_level_feature_list(
         out_of_bounds_y_max,
     )
 
+
 #: rcssserver's default kickable area (kickable_margin 0.7 + player_size 0.3 + ball_size 0.085), m.
 DEFAULT_KICKABLE_AREA = 1.085
 

@@ -29,6 +29,7 @@ import math
 from bisect import bisect_left
 from collections.abc import Iterable
 
+from hfo2d import accel as _accel
 from hfo2d.physics import ServerParams
 
 from . import common as _common
@@ -50,6 +51,7 @@ _ceil = math.ceil
 _floor = math.floor
 _fmod = math.fmod
 
+_ACCEL = _accel.ACCEL  # hfo2d._accel, or None for the pure-Python code (hfo2d.accel)
 _D2R = math.pi / 180.0  # librcsc AngleDeg::DEG2RAD
 _R2D = 180.0 / math.pi  # librcsc AngleDeg::RAD2DEG
 
@@ -155,6 +157,8 @@ def _bind(sp: ServerParams) -> None:
     _ONE_DASH_RATES = tuple(_dash_dir_rate(d) for d in _ONE_DASH_DIRS)
     # predictOmniDashShort: the same grid (step max(15, 45)) without 0
     _OMNI_DIRS = tuple((d, r) for d, r in zip(_ONE_DASH_DIRS, _ONE_DASH_RATES, strict=True) if abs(d) >= 1.0)
+    if _ACCEL is not None:  # the compiled reach kernels read the same constants
+        _ACCEL.bind_intercept(_KICKABLE_AREA, _REAL_SPEED_MAX, _TACKLE_CYCLES, _PF, _DASH_TABLE)
 
 
 def _norm(a: float) -> float:
@@ -1607,8 +1611,35 @@ def fastest_reach(
     best: int = 1000,
 ) -> int:
     """``min(best, predict_player_reach(view, cache, p, teammate) for p in players)`` on a ball part of ``view``
-    (:func:`_ball_part`'s (cache, resting, sin, cos)): the ball's frame is the ball part's, not computed again
-    for every player (the same numbers: both come from the view's W by the same operations)."""
+    (:func:`_ball_part`'s (cache, resting, sin, cos)): :func:`fastest_reach_python`, computed by hfo2d._accel's
+    kernel when it is in use (the same cycles)."""
+    if _ACCEL is None:
+        return fastest_reach_python(view, ball, players, teammate, best)
+    cache, _, sin_a, cos_a = ball
+    return _ACCEL.fastest_reach(
+        players,
+        cache,
+        view.bx,
+        view.by,
+        view.px,
+        view.py,
+        view.wx == 0.0 and view.wy == 0.0 and _RESTING_SHORTCUTS,
+        sin_a,
+        cos_a,
+        teammate,
+        best,
+    )
+
+
+def fastest_reach_python(
+    view: GoalieView,
+    ball: tuple,
+    players: Iterable[tuple[float, float, float, float, float, int]],
+    teammate: bool,
+    best: int = 1000,
+) -> int:
+    """:func:`fastest_reach` in pure Python (the reference): the ball's frame is the ball part's, not computed
+    again for every player (the same numbers: both come from the view's W by the same operations)."""
     cache, _, sin_a, cos_a = ball
     bx = view.bx
     by = view.by
@@ -1617,13 +1648,33 @@ def fastest_reach(
         x, y, vx, vy, body, frozen = player
         rel_y = (x - bx) * sin_a + (y - by) * cos_a
         self_dist = 0.0 if teammate else _sqrt((x - view.px) * (x - view.px) + (y - view.py) * (y - view.py))
-        reach = _predict_player(x, y, vx, vy, body, frozen, resting, self_dist, cache, rel_y)
+        reach = _predict_player_python(x, y, vx, vy, body, frozen, resting, self_dist, cache, rel_y)
         if reach < best:
             best = reach
     return best
 
 
 def _predict_player(
+    ox: float,
+    oy: float,
+    ux: float,
+    uy: float,
+    obody: float,
+    frozen: int,
+    resting: bool,
+    self_dist: float,
+    cache: list[tuple[float, float]],
+    rel_y: float,
+) -> int:
+    """:func:`_predict_player_python`, computed by hfo2d._accel's kernel when it is in use (the same cycle)."""
+    if _ACCEL is None:
+        return _predict_player_python(ox, oy, ux, uy, obody, frozen, resting, self_dist, cache, rel_y)
+    return _ACCEL.predict_player(
+        ox, oy, ux, uy, obody, frozen, resting and _RESTING_SHORTCUTS, self_dist, cache, rel_y
+    )
+
+
+def _predict_player_python(
     ox: float,
     oy: float,
     ux: float,
