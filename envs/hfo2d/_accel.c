@@ -800,9 +800,95 @@ accel_cycles_to_reach_distance(PyObject *module, PyObject *arg)
     return PyLong_FromLong(cycles_to_reach(dist));
 }
 
+/* ------------------------------------------------------------------------------------------------------------
+ * The NPCs' per-cycle conversions of the other players (port of hfo2d.agent2d.goalie.mirrored_players_python):
+ * librcsc d222758 rcsc/player/fullstate_sensor.cpp (parse, then reverse for the right side: positions and
+ * velocities negated, body normalize(body + 180)) and the distances world_model.cpp sorts its player lists by.
+ * ------------------------------------------------------------------------------------------------------------ */
+static PyObject *str_tackle_cycles;
+
+static PyObject *
+accel_mirrored_players(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 6) {
+        PyErr_SetString(PyExc_TypeError, "mirrored_players(players, skip, bx, by, px, py)");
+        return NULL;
+    }
+    PyObject *skip = args[1];
+    double bx = PyFloat_AsDouble(args[2]);
+    double by = PyFloat_AsDouble(args[3]);
+    double px = PyFloat_AsDouble(args[4]);
+    double py = PyFloat_AsDouble(args[5]);
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    PyObject *seq = PySequence_Fast(args[0], "players must be a sequence of PlayerState");
+    if (seq == NULL) {
+        return NULL;
+    }
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
+    PyObject *result = PyList_New(0);
+    if (result == NULL) {
+        Py_DECREF(seq);
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < n; i++) {
+        PyObject *player = PySequence_Fast_GET_ITEM(seq, i);
+        if (player == skip) {
+            continue;
+        }
+        double raw[5], v[5];
+        if (get_double(player, str_x, &raw[0]) < 0 || get_double(player, str_y, &raw[1]) < 0 ||
+            get_double(player, str_vx, &raw[2]) < 0 || get_double(player, str_vy, &raw[3]) < 0 ||
+            get_double(player, str_body_deg, &raw[4]) < 0) {
+            goto fail;
+        }
+        for (int k = 0; k < 5; k++) {
+            if (fullstate_number(raw[k], &v[k]) < 0) {
+                goto fail;
+            }
+        }
+        PyObject *frozen_obj = PyObject_GetAttr(player, str_tackle_cycles);
+        if (frozen_obj == NULL) {
+            goto fail;
+        }
+        PyObject *frozen = PyNumber_Long(frozen_obj); /* int(p.tackle_cycles) */
+        Py_DECREF(frozen_obj);
+        if (frozen == NULL) {
+            goto fail;
+        }
+        double x = -v[0], y = -v[1];
+        double ball_dist = py_hypot(x - bx, y - by);
+        double self_dist = ball_dist < 0.0 ? -1.0 : py_hypot(x - px, y - py);
+        if (self_dist < 0.0) {
+            Py_DECREF(frozen);
+            goto fail;
+        }
+        PyObject *other = Py_BuildValue("(dddddN)", x, y, -v[2], -v[3], norm_deg(v[4] + 180.0), frozen);
+        if (other == NULL) {
+            goto fail;
+        }
+        PyObject *entry = Py_BuildValue("(ddNO)", ball_dist, self_dist, other, player);
+        if (entry == NULL || PyList_Append(result, entry) < 0) {
+            Py_XDECREF(entry);
+            goto fail;
+        }
+        Py_DECREF(entry);
+    }
+    Py_DECREF(seq);
+    return result;
+fail:
+    Py_DECREF(seq);
+    Py_DECREF(result);
+    return NULL;
+}
+
 /* ------------------------------------------------------------------------------------------------------------ */
 
 static PyMethodDef accel_methods[] = {
+    {"mirrored_players", (PyCFunction)(void (*)(void))accel_mirrored_players, METH_FASTCALL,
+     "mirrored_players(players, skip, bx, by, px, py) -> list of (ball distance, self distance, (x, y, vx, vy, "
+     "body, frozen), player) in server order (see hfo2d.agent2d.goalie.mirrored_players_python)."},
     {"bind_intercept", accel_bind_intercept, METH_VARARGS,
      "bind_intercept(kickable_area, real_speed_max, tackle_cycles, player_move_sums, dash_distance_table): the "
      "server constants of the reach kernels (called by hfo2d.agent2d.intercept's binder)."},
@@ -849,6 +935,7 @@ PyInit__accel(void)
     INTERN(str_collided_ball, "collided_ball");
     INTERN(str_collided_player, "collided_player");
     INTERN(str_collided_post, "collided_post");
+    INTERN(str_tackle_cycles, "tackle_cycles");
     PyObject *math = PyImport_ImportModule("math");
     if (math == NULL) {
         return NULL;

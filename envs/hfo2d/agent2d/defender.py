@@ -71,6 +71,7 @@ from hfo2d.agent2d.goalie import (
     _PACK_FOUR,
     _VIEW_FIELDS,
     fullstate_value,
+    mirrored_players,
     opponent_may_kick,
 )
 from hfo2d.agent2d.intercept import build_intercept_table, fastest_reach, full_self_cache
@@ -179,19 +180,6 @@ if tuple(f.name for f in fields(DefenderView)) != _DEFENDER_VIEW_FIELDS:
 
 
 _first = itemgetter(0)  # a sort key (in C)
-
-
-def _fs_player(p: PlayerState) -> OtherPlayer:
-    """A player as a right-side client reads it from the fullstate (6 significant digits, mirrored)."""
-    fs = fullstate_value
-    return (
-        -fs(p.x),
-        -fs(p.y),
-        -fs(p.vx),
-        -fs(p.vy),
-        norm_deg(fs(p.body_deg) + 180.0),
-        int(p.tackle_cycles),
-    )
 
 
 def _check_skill(skill: object) -> None:
@@ -358,8 +346,7 @@ class Agent2dDefender:
             stamina, effort, recovery = fs(me.stamina), fs(me.effort), fs(me.recovery)
             self._body_key = key
             self._body_numbers = (body, stamina, effort, recovery)
-        hypot = math.hypot
-        d_b = hypot(bx - px, by - py)
+        d_b = math.hypot(bx - px, by - py)
         # (distance from the ball, distance from self, numbers) of every opponent; (distance from the ball,
         # numbers) of every other field player of ours; each distance is computed once and reused by the sorts and
         # the tests below (the same expressions they used)
@@ -370,25 +357,17 @@ class Agent2dDefender:
         mates: list[tuple[float, int]] = []
         our_xs = [px]
         side = me.side
-        for p in world.players:
-            if p is me:
-                continue
-            if p.goalie and p.side == side:
-                # our goalie: only its position and freeze are read (no reach is predicted for it)
-                gx = -fs(p.x)
-                gy = -fs(p.y)
-                our_xs.append(gx)
-                mates.append((hypot(gx - bx, gy - by), int(p.tackle_cycles)))
-                goalie_pos = (gx, gy)
-                continue
-            other = _fs_player(p)
-            ball_dist = hypot(other[0] - bx, other[1] - by)
+        for ball_dist, self_dist, other, p in mirrored_players(world.players, me, bx, by, px, py):
             if p.side == side:
                 our_xs.append(other[0])
                 mates.append((ball_dist, other[5]))
-                ranked_teammates.append((ball_dist, other))
+                if p.goalie:
+                    # our goalie: only its position and freeze are read (no reach is predicted for it)
+                    goalie_pos = (other[0], other[1])
+                else:
+                    ranked_teammates.append((ball_dist, other))
             else:
-                ranked_opponents.append((ball_dist, hypot(other[0] - px, other[1] - py), other))
+                ranked_opponents.append((ball_dist, self_dist, other))
         # stable sorts by the ball distance alone: equal distances keep the server order
         ranked_opponents.sort(key=_first)
         ranked_teammates.sort(key=_first)

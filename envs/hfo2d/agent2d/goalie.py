@@ -16,6 +16,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import struct
+from collections.abc import Sequence
 from operator import itemgetter
 
 import numpy as np
@@ -138,6 +139,33 @@ _FULLSTATE_MEMO_SIZE = 4096
 #: :func:`fullstate_value_python`, computed by hfo2d._accel's kernel when it is in use (the same floats, no memo:
 #: the C computes a number faster than the dict finds it; see :mod:`hfo2d.accel`)
 fullstate_value = fullstate_value_python if _accel.ACCEL is None else _accel.ACCEL.fullstate_value
+
+
+MirroredPlayer = tuple[float, float, tuple[float, float, float, float, float, int], PlayerState]
+
+
+def mirrored_players_python(
+    players: Sequence[PlayerState], skip: PlayerState | None, bx: float, by: float, px: float, py: float
+) -> list[MirroredPlayer]:
+    """Every player but ``skip`` as a right-side client reads it from the fullstate (:func:`fullstate_value`,
+    mirrored as librcsc's FullstateSensor::reverse does), in server order: (distance from the ball (bx, by),
+    distance from the deciding player (px, py), (x, y, vx, vy, body, remaining tackle freeze), the player). The
+    reference of hfo2d._accel's kernel, which :func:`mirrored_players` runs when it is in use."""
+    fs = fullstate_value
+    hypot = math.hypot
+    out: list[MirroredPlayer] = []
+    for p in players:
+        if p is skip:
+            continue
+        x = -fs(p.x)
+        y = -fs(p.y)
+        other = (x, y, -fs(p.vx), -fs(p.vy), norm_deg(fs(p.body_deg) + 180.0), int(p.tackle_cycles))
+        out.append((hypot(x - bx, y - by), hypot(x - px, y - py), other, p))
+    return out
+
+
+#: :func:`mirrored_players_python`, computed by hfo2d._accel's kernel when it is in use (the same numbers)
+mirrored_players = mirrored_players_python if _accel.ACCEL is None else _accel.ACCEL.mirrored_players
 
 # Agent2dGoalie._view builds its GoalieView positionally, in this field order
 _VIEW_FIELDS = (
@@ -593,33 +621,23 @@ class Agent2dGoalie:
         other opponent as (x, y, vx, vy, body, tackle freeze) for the intercept table's opponent reach and the
         nearest-opponent distances, and the distance of the opponent nearest to the goalie
         (getOpponentNearestToSelf)."""
-        fs = fullstate_value
-        hypot = math.hypot
-        # (distance from the ball, distance from the goalie, x, y, player): the positions first (every opponent's
-        # is needed), each distance computed once for the sort and the tests below
-        ranked = []
-        for o in opponents:
-            x = -fs(o.x)
-            y = -fs(o.y)
-            ranked.append((hypot(x - bx, y - by), hypot(x - px, y - py), x, y, o))
+        # (distance from the ball, distance from the goalie, (x, y, vx, vy, body, freeze), player), each distance
+        # computed once for the sort and the tests below
+        ranked = mirrored_players(opponents, None, bx, by, px, py)
         # stable: equal distances keep the server order, as librcsc's sort of its opponent list does
         ranked.sort(key=_first)
         kick_opp = False
-        for opp_ball, opp_self, _, _, o in ranked:
-            if o.tackle_cycles <= 0:
+        for opp_ball, opp_self, other, _ in ranked:
+            if other[5] <= 0:
                 kick_opp = opponent_may_kick(opp_ball, opp_self, d_b)
                 break
-        # the rest of the numbers only for the opponents after the first
-        others = tuple(
-            (x, y, -fs(o.vx), -fs(o.vy), norm_deg(fs(o.body_deg) + 180.0), o.tackle_cycles)
-            for _, _, x, y, o in ranked[1:]
-        )
+        others = tuple(other for _, _, other, _ in ranked[1:])
         opp_self_dist = math.inf
-        for _, opp_self, _, _, _ in ranked:
+        for _, opp_self, _, _ in ranked:
             if opp_self < opp_self_dist:
                 opp_self_dist = opp_self
-        _, _, x, y, first = ranked[0]
-        return first, (x, y), kick_opp, others, opp_self_dist
+        _, _, other, first = ranked[0]
+        return first, (other[0], other[1]), kick_opp, others, opp_self_dist
 
     def _update_last_kicker(self, view: GoalieView, has_attacker: bool) -> None:
         """WorldModel::updateLastKicker, reduced to HFO 1v1: ours after the goalie's own tackle (or kick), theirs
