@@ -19,6 +19,8 @@
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 
+#include <structmember.h> /* T_OBJECT_EX, READ_RESTRICTED */
+
 #include <math.h>
 #include <string.h>
 
@@ -160,10 +162,64 @@ static const double LANDMARKS[11][2] = {
 static PyObject *str_x, *str_y, *str_vx, *str_vy, *str_body_deg, *str_stamina;
 static PyObject *str_collided_ball, *str_collided_player, *str_collided_post;
 
+/* Attribute reads of hfo2d's slotted dataclasses (PlayerState, BallState: @dataclass(slots=True)) without the
+ * generic attribute lookup: the offset of a plain object slot (a T_OBJECT_EX member descriptor) is cached per
+ * (type, name), and an object of another type, or whose type resolves the name otherwise (a property, a
+ * __getattr__ hook), takes PyObject_GetAttr. A new reference, or NULL with an exception set. */
+#define SLOT_CACHE_SIZE 64
+typedef struct {
+    PyTypeObject *type; /* a strong reference, so that the type outlives its entry */
+    PyObject *name;     /* interned */
+    Py_ssize_t offset;  /* -1: the generic lookup */
+} SlotEntry;
+static SlotEntry slot_cache[SLOT_CACHE_SIZE];
+static int slot_cache_len = 0;
+
+static PyObject *
+read_attr(PyObject *obj, PyObject *name)
+{
+    PyTypeObject *type = Py_TYPE(obj);
+    for (int i = 0; i < slot_cache_len; i++) {
+        SlotEntry *entry = &slot_cache[i];
+        if (entry->type == type && entry->name == name) {
+            if (entry->offset >= 0) {
+                PyObject *value = *(PyObject **)((char *)obj + entry->offset);
+                if (value != NULL) {
+                    Py_INCREF(value);
+                    return value;
+                }
+            }
+            return PyObject_GetAttr(obj, name); /* an unset slot raises AttributeError there */
+        }
+    }
+    if (slot_cache_len < SLOT_CACHE_SIZE && type->tp_getattro == PyObject_GenericGetAttr) {
+        Py_ssize_t offset = -1;
+        PyObject *descr = PyObject_GetAttr((PyObject *)type, name);
+        if (descr == NULL) {
+            PyErr_Clear();
+        }
+        else {
+            if (Py_IS_TYPE(descr, &PyMemberDescr_Type)) {
+                PyMemberDef *member = ((PyMemberDescrObject *)descr)->d_member;
+                if (member->type == T_OBJECT_EX && !(member->flags & READ_RESTRICTED)) {
+                    offset = member->offset;
+                }
+            }
+            Py_DECREF(descr);
+        }
+        Py_INCREF(type);
+        slot_cache[slot_cache_len].type = type;
+        slot_cache[slot_cache_len].name = name;
+        slot_cache[slot_cache_len].offset = offset;
+        slot_cache_len++;
+    }
+    return PyObject_GetAttr(obj, name);
+}
+
 static int
 get_double(PyObject *obj, PyObject *name, double *out)
 {
-    PyObject *value = PyObject_GetAttr(obj, name);
+    PyObject *value = read_attr(obj, name);
     if (value == NULL) {
         return -1;
     }
@@ -179,7 +235,7 @@ get_double(PyObject *obj, PyObject *name, double *out)
 static int
 get_flag(PyObject *obj, PyObject *name, int *out)
 {
-    PyObject *value = PyObject_GetAttr(obj, name);
+    PyObject *value = read_attr(obj, name);
     if (value == NULL) {
         return -1;
     }
@@ -670,6 +726,175 @@ predict_player(double ox, double oy, double ux, double uy, double obody, long fr
     return n_turn + n_dash > n_cache ? n_turn + n_dash : (long)n_cache;
 }
 
+/* ------------------------------------------------------------------------------------------------------------
+ * predictFinal of the self intercept (port of hfo2d.agent2d.intercept._final_entry_python and _wait): librcsc
+ * d222758 rcsc/player/self_intercept_v13.cpp SelfInterceptV13::predictFinal (predictTurnCycle inlined for cycle
+ * 100) and rcsc/player/stamina_model.cpp StaminaModel::simulateWait / simulateDash at full power.
+ * Constants bound by intercept._bind (bind_self_final), in the order of SELF_FINAL_NAMES.
+ * ------------------------------------------------------------------------------------------------------------ */
+enum {
+    SF_PEN_LINE_X, SF_PEN_HALF_W, SF_CATCHABLE_AREA, SF_MIN_TURN_THR, SF_MAX_MOMENT, SF_INERTIA_MOMENT,
+    SF_PLAYER_DECAY, SF_STAMINA_INC_MAX, SF_EFFORT_MAX, SF_MAX_POWER, SF_RECOVER_DEC_THR_VALUE, SF_STAMINA_MAX,
+    SF_RECOVER_MIN, SF_RECOVER_DEC, SF_EFFORT_DEC_THR_VALUE, SF_EFFORT_MIN, SF_EFFORT_DEC, SF_EFFORT_INC_THR_VALUE,
+    SF_EFFORT_INC, SF_COUNT
+};
+static double sf[SF_COUNT];
+static double ball_move_sums[101]; /* intercept._BF: (1 - ball_decay**n) / (1 - ball_decay) */
+static int self_final_bound = 0;
+
+static PyObject *
+accel_bind_self_final(PyObject *module, PyObject *args)
+{
+    PyObject *constants, *sums;
+    if (!PyArg_ParseTuple(args, "OO:bind_self_final", &constants, &sums)) {
+        return NULL;
+    }
+    double new_constants[SF_COUNT], new_sums[101];
+    if (double_table(constants, new_constants, SF_COUNT, NULL, "self final constants") < 0 ||
+        double_table(sums, new_sums, 101, NULL, "ball move sums (101)") < 0) {
+        return NULL;
+    }
+    memcpy(sf, new_constants, sizeof sf);
+    memcpy(ball_move_sums, new_sums, sizeof ball_move_sums);
+    self_final_bound = 1;
+    Py_RETURN_NONE;
+}
+
+/* intercept._wait: one cycle of stamina recovery (the capacity assumed ample) */
+static void
+stamina_wait(double *st, double *ef, double *rec)
+{
+    if (*st <= sf[SF_RECOVER_DEC_THR_VALUE] && *rec > sf[SF_RECOVER_MIN]) {
+        *rec -= sf[SF_RECOVER_DEC];
+        if (*rec < sf[SF_RECOVER_MIN]) {
+            *rec = sf[SF_RECOVER_MIN];
+        }
+    }
+    if (*st <= sf[SF_EFFORT_DEC_THR_VALUE]) {
+        if (*ef > sf[SF_EFFORT_MIN]) {
+            *ef -= sf[SF_EFFORT_DEC];
+            if (*ef < sf[SF_EFFORT_MIN]) {
+                *ef = sf[SF_EFFORT_MIN];
+            }
+        }
+    }
+    else if (*st >= sf[SF_EFFORT_INC_THR_VALUE] && *ef < sf[SF_EFFORT_MAX]) {
+        *ef += sf[SF_EFFORT_INC];
+        if (*ef > sf[SF_EFFORT_MAX]) {
+            *ef = sf[SF_EFFORT_MAX];
+        }
+    }
+    double inc = sf[SF_STAMINA_INC_MAX] * *rec;
+    double room = sf[SF_STAMINA_MAX] - *st;
+    *st += inc < room ? inc : room;
+    if (*st > sf[SF_STAMINA_MAX]) {
+        *st = sf[SF_STAMINA_MAX];
+    }
+}
+
+static PyObject *
+accel_final_entry(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 16) {
+        PyErr_SetString(PyExc_TypeError, "final_entry(px, py, vx, vy, body, speed, lk, bx, by, wx, wy, stamina, "
+                                         "effort, recovery, max_cycle, player_rand)");
+        return NULL;
+    }
+    if (!self_final_bound || !intercept_bound) {
+        PyErr_SetString(PyExc_RuntimeError, "hfo2d._accel: bind_self_final / bind_intercept were never called");
+        return NULL;
+    }
+    double a[16];
+    for (int i = 0; i < 16; i++) {
+        if (i == 6 || i == 14) {
+            continue;
+        }
+        a[i] = PyFloat_AsDouble(args[i]);
+    }
+    int lk = PyObject_IsTrue(args[6]);
+    long max_cycle = PyLong_AsLong(args[14]);
+    if (PyErr_Occurred() || lk < 0) {
+        return NULL;
+    }
+    double px = a[0], py = a[1], vx = a[2], vy = a[3], body = a[4], speed = a[5];
+    double bx = a[7], by = a[8], wx = a[9], wy = a[10], player_rand = a[15];
+    double f = player_move_sums[100];
+    double qx = px + vx * f;
+    double qy = py + vy * f;
+    double g = ball_move_sums[100];
+    double xfx = bx + wx * g;
+    double xfy = by + wy * g;
+    int goalie_mode = lk && xfx < sf[SF_PEN_LINE_X] && fabs(xfy) < sf[SF_PEN_HALF_W];
+    double ca = goalie_mode ? sf[SF_CATCHABLE_AREA] - 0.15 : kickable_area;
+    /* predictTurnCycle for cycle 100 */
+    double tx = xfx - qx;
+    double ty = xfy - qy;
+    double target_angle = th_deg(tx, ty);
+    double diff = fabs(norm_deg(target_angle - body));
+    double target_dist = sqrt(tx * tx + ty * ty);
+    double margin = 180.0;
+    double control_buf = ca - 0.25 > 0.5 ? ca - 0.25 : 0.5; /* max(0.5, ca - 0.25) */
+    if (control_buf < target_dist) {
+        double r = control_buf / target_dist; /* AngleDeg::asin_deg */
+        margin = r >= 1.0 ? 90.0 : (r <= -1.0 ? -90.0 : asin(r) * (180.0 / M_PI));
+    }
+    if (margin < sf[SF_MIN_TURN_THR]) {
+        margin = sf[SF_MIN_TURN_THR];
+    }
+    long n_turn = 0;
+    if (diff > margin) {
+        double max_moment = sf[SF_MAX_MOMENT] * (1.0 - player_rand);
+        double s = speed;
+        while (diff > margin) {
+            diff -= max_moment / (1.0 + sf[SF_INERTIA_MOMENT] * s);
+            s *= sf[SF_PLAYER_DECAY];
+            n_turn++;
+        }
+    }
+    long n_dash = cycles_to_reach(target_dist - ca);
+    if (max_cycle > n_turn + n_dash) {
+        n_dash = max_cycle - n_turn;
+    }
+    double st = a[11], ef = a[12], rec = a[13];
+    for (long k = 0; k < n_turn; k++) { /* _waited(wt, n_turn) */
+        stamina_wait(&st, &ef, &rec);
+    }
+    double inc = sf[SF_STAMINA_INC_MAX] * rec;
+    long n_dash_left;
+    if (ef >= sf[SF_EFFORT_MAX] && st - sf[SF_MAX_POWER] * (double)n_dash > sf[SF_RECOVER_DEC_THR_VALUE]) {
+        if (st == floor(st) && inc == floor(inc)) { /* float.is_integer() of finite numbers */
+            st -= (sf[SF_MAX_POWER] - inc) * (double)n_dash;
+        }
+        else {
+            for (long k = 0; k < n_dash; k++) {
+                st = st - sf[SF_MAX_POWER] + inc;
+            }
+        }
+        n_dash_left = 0;
+    }
+    else {
+        n_dash_left = n_dash;
+    }
+    for (long k = 0; k < n_dash_left; k++) {
+        st -= sf[SF_MAX_POWER];
+        if (st > sf[SF_RECOVER_DEC_THR_VALUE] && ef >= sf[SF_EFFORT_MAX]) {
+            double room = sf[SF_STAMINA_MAX] - st;
+            st += inc < room ? inc : room;
+            if (st > sf[SF_STAMINA_MAX]) {
+                st = sf[SF_STAMINA_MAX];
+            }
+        }
+        else {
+            if (st < 0.0) {
+                st = 0.0;
+            }
+            stamina_wait(&st, &ef, &rec);
+            inc = sf[SF_STAMINA_INC_MAX] * rec;
+        }
+    }
+    return Py_BuildValue("(llddd)", n_turn, n_dash, xfx, xfy, st);
+}
+
 /* a ball cache (a sequence of (x, y)) as two arrays; the number of points, or -1 with an exception set */
 static Py_ssize_t
 read_ball_cache(PyObject *cache, double *xs, double *ys)
@@ -848,7 +1073,7 @@ accel_mirrored_players(PyObject *module, PyObject *const *args, Py_ssize_t nargs
                 goto fail;
             }
         }
-        PyObject *frozen_obj = PyObject_GetAttr(player, str_tackle_cycles);
+        PyObject *frozen_obj = read_attr(player, str_tackle_cycles);
         if (frozen_obj == NULL) {
             goto fail;
         }
@@ -892,6 +1117,13 @@ static PyMethodDef accel_methods[] = {
     {"bind_intercept", accel_bind_intercept, METH_VARARGS,
      "bind_intercept(kickable_area, real_speed_max, tackle_cycles, player_move_sums, dash_distance_table): the "
      "server constants of the reach kernels (called by hfo2d.agent2d.intercept's binder)."},
+    {"bind_self_final", accel_bind_self_final, METH_VARARGS,
+     "bind_self_final(constants, ball_move_sums): the constants of final_entry, in "
+     "hfo2d.agent2d.intercept._SELF_FINAL_NAMES order (called by intercept's binder)."},
+    {"final_entry", (PyCFunction)(void (*)(void))accel_final_entry, METH_FASTCALL,
+     "final_entry(px, py, vx, vy, body, speed, lk, bx, by, wx, wy, stamina, effort, recovery, max_cycle, "
+     "player_rand) -> (turn_cycle, dash_cycle, self_x, self_y, stamina) (see "
+     "hfo2d.agent2d.intercept._final_entry_python)."},
     {"predict_player", accel_predict_player, METH_VARARGS,
      "predict_player(ox, oy, ux, uy, obody, frozen, resting_shortcut, self_dist, cache, rel_y) -> int (see "
      "hfo2d.agent2d.intercept._predict_player_python)."},

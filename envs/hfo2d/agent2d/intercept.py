@@ -157,8 +157,33 @@ def _bind(sp: ServerParams) -> None:
     _ONE_DASH_RATES = tuple(_dash_dir_rate(d) for d in _ONE_DASH_DIRS)
     # predictOmniDashShort: the same grid (step max(15, 45)) without 0
     _OMNI_DIRS = tuple((d, r) for d, r in zip(_ONE_DASH_DIRS, _ONE_DASH_RATES, strict=True) if abs(d) >= 1.0)
-    if _ACCEL is not None:  # the compiled reach kernels read the same constants
+    if _ACCEL is not None:  # the compiled kernels read the same constants
         _ACCEL.bind_intercept(_KICKABLE_AREA, _REAL_SPEED_MAX, _TACKLE_CYCLES, _PF, _DASH_TABLE)
+        _ACCEL.bind_self_final(tuple(globals()[name] for name in _SELF_FINAL_NAMES), _BF)
+
+
+# the constants of hfo2d._accel's final_entry kernel, in the order its C enum lists them
+_SELF_FINAL_NAMES = (
+    "_PEN_LINE_X",
+    "_PEN_HALF_W",
+    "_CATCHABLE_AREA",
+    "_MIN_TURN_THR",
+    "_MAX_MOMENT",
+    "_INERTIA_MOMENT",
+    "_PLAYER_DECAY",
+    "_STAMINA_INC_MAX",
+    "_EFFORT_MAX",
+    "_MAX_POWER",
+    "_RECOVER_DEC_THR_VALUE",
+    "_STAMINA_MAX",
+    "_RECOVER_MIN",
+    "_RECOVER_DEC",
+    "_EFFORT_DEC_THR_VALUE",
+    "_EFFORT_MIN",
+    "_EFFORT_DEC",
+    "_EFFORT_INC_THR_VALUE",
+    "_EFFORT_INC",
+)
 
 
 def _norm(a: float) -> float:
@@ -1453,6 +1478,35 @@ def _predict_final(
 
 
 def _final_entry(
+    px: float,
+    py: float,
+    vx: float,
+    vy: float,
+    body: float,
+    speed: float,
+    lk: bool,
+    bx: float,
+    by: float,
+    wx: float,
+    wy: float,
+    wt: list,
+    max_cycle: int,
+    player_rand: float,
+) -> InterceptEntry:
+    """:func:`_final_entry_python`, computed by hfo2d._accel's kernel when it is in use (the same entry; the
+    kernel simulates the waits from ``wt[0]`` instead of reading and extending the memo ``wt``)."""
+    if _ACCEL is None:
+        return _final_entry_python(
+            px, py, vx, vy, body, speed, lk, bx, by, wx, wy, wt, max_cycle, player_rand
+        )
+    stamina, effort, recovery = wt[0]
+    n_turn, n_dash, xfx, xfy, stamina = _ACCEL.final_entry(
+        px, py, vx, vy, body, speed, lk, bx, by, wx, wy, stamina, effort, recovery, max_cycle, player_rand
+    )
+    return InterceptEntry(NORMAL, n_turn, n_dash, _MAX_POWER, 0.0, xfx, xfy, 0.0, stamina)
+
+
+def _final_entry_python(
     px: float,
     py: float,
     vx: float,
