@@ -341,6 +341,41 @@ get_flag(PyObject *obj, PyObject *name, int *out)
     return 0;
 }
 
+/* Set an attribute (a new float or bool): by the cached slot offset as read_attr finds it, else PyObject_SetAttr.
+ * Steals nothing: ``value`` stays the caller's. 0, or -1 with an exception set. */
+static int
+write_attr(PyObject *obj, PyObject *name, PyObject *value)
+{
+    PyTypeObject *type = Py_TYPE(obj);
+    for (int i = 0; i < slot_cache_len; i++) {
+        SlotEntry *entry = &slot_cache[i];
+        if (entry->type == type && entry->name == name) {
+            if (entry->offset >= 0) {
+                PyObject **slot = (PyObject **)((char *)obj + entry->offset);
+                PyObject *old = *slot;
+                Py_INCREF(value);
+                *slot = value;
+                Py_XDECREF(old);
+                return 0;
+            }
+            break;
+        }
+    }
+    return PyObject_SetAttr(obj, name, value);
+}
+
+static int
+write_double(PyObject *obj, PyObject *name, double value)
+{
+    PyObject *number = PyFloat_FromDouble(value);
+    if (number == NULL) {
+        return -1;
+    }
+    int status = write_attr(obj, name, number);
+    Py_DECREF(number);
+    return status;
+}
+
 typedef struct {
     double x, y, vx, vy, body_deg;
 } Other;
@@ -1201,9 +1236,107 @@ fail:
     return NULL;
 }
 
+/* ------------------------------------------------------------------------------------------------------------
+ * One object's move (port of hfo2d.physics.World._move_python): rcssserver 82212ee object.cpp MPObject::_inc
+ * (accelerate with the caps, the velocity noise, move, decay). The goal-post rule stays in Python
+ * (World._posts, pymunk): near a post the kernel returns the velocity and lets Python finish the move.
+ * ------------------------------------------------------------------------------------------------------------ */
+static PyObject *str_ax, *str_ay;
+
+/* move_object(obj, size, decay, rand, speed_max, accel_max, uniforms, next_uniform, post_x, post_y, post_radius)
+ *   -> None: the buffer holds fewer than two unused uniforms and a draw is needed; nothing was changed (refill,
+ *      then call again);
+ *   -> int: the move is done (obj updated), the next unused uniform's index;
+ *   -> (vx, vy, next_uniform): the object may reach a post; obj is unchanged and Python applies the post rule
+ *      to obj.x, obj.y and this velocity (before decay), then clears the acceleration. */
+static PyObject *
+accel_move_object(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 11) {
+        PyErr_SetString(PyExc_TypeError, "move_object(obj, size, decay, rand, speed_max, accel_max, uniforms, "
+                                         "next_uniform, post_x, post_y, post_radius)");
+        return NULL;
+    }
+    PyObject *obj = args[0], *uniforms = args[6];
+    double size = PyFloat_AsDouble(args[1]);
+    double decay = PyFloat_AsDouble(args[2]);
+    double rand = PyFloat_AsDouble(args[3]);
+    double speed_max = PyFloat_AsDouble(args[4]);
+    double accel_max = PyFloat_AsDouble(args[5]);
+    Py_ssize_t i = PyLong_AsSsize_t(args[7]);
+    double post_x = PyFloat_AsDouble(args[8]);
+    double post_y = PyFloat_AsDouble(args[9]);
+    double post_radius = PyFloat_AsDouble(args[10]);
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    if (!PyList_Check(uniforms)) {
+        PyErr_SetString(PyExc_TypeError, "uniforms must be a list of floats");
+        return NULL;
+    }
+    double vx, vy, ax, ay, x, y;
+    if (get_double(obj, str_vx, &vx) < 0 || get_double(obj, str_vy, &vy) < 0 || get_double(obj, str_ax, &ax) < 0 ||
+        get_double(obj, str_ay, &ay) < 0 || get_double(obj, str_x, &x) < 0 || get_double(obj, str_y, &y) < 0) {
+        return NULL;
+    }
+    if (ax != 0.0 || ay != 0.0) {
+        double a = py_hypot(ax, ay);
+        if (a < 0.0) {
+            return NULL;
+        }
+        if (a > accel_max) {
+            ax *= accel_max / a;
+            ay *= accel_max / a;
+        }
+        vx += ax;
+        vy += ay;
+        double v = py_hypot(vx, vy);
+        if (v < 0.0) {
+            return NULL;
+        }
+        if (v > speed_max) {
+            vx *= speed_max / v;
+            vy *= speed_max / v;
+        }
+    }
+    if (rand > 0.0 && (vx != 0.0 || vy != 0.0)) {
+        if (i + 2 > PyList_GET_SIZE(uniforms)) {
+            Py_RETURN_NONE; /* Python draws the next block from the world's generator first */
+        }
+        double u0 = PyFloat_AsDouble(PyList_GET_ITEM(uniforms, i));
+        double u1 = PyFloat_AsDouble(PyList_GET_ITEM(uniforms, i + 1));
+        if (PyErr_Occurred()) {
+            return NULL;
+        }
+        i += 2;
+        double speed = py_hypot(vx, vy);
+        if (speed < 0.0) {
+            return NULL;
+        }
+        double r = rand * speed * u0;
+        double th = M_PI * (2.0 * u1 - 1.0);
+        vx += r * cos(th);
+        vy += r * sin(th);
+    }
+    double reach = size + post_radius + fabs(vx) + fabs(vy);
+    if (fabs(fabs(x) - post_x) < reach && fabs(fabs(y) - post_y) < reach) {
+        return Py_BuildValue("(ddn)", vx, vy, i);
+    }
+    if (write_attr(obj, str_collided_post, Py_False) < 0 || write_double(obj, str_x, x + vx) < 0 ||
+        write_double(obj, str_y, y + vy) < 0 || write_double(obj, str_vx, vx * decay) < 0 ||
+        write_double(obj, str_vy, vy * decay) < 0 || write_double(obj, str_ax, 0.0) < 0 ||
+        write_double(obj, str_ay, 0.0) < 0) {
+        return NULL;
+    }
+    return PyLong_FromSsize_t(i);
+}
+
 /* ------------------------------------------------------------------------------------------------------------ */
 
 static PyMethodDef accel_methods[] = {
+    {"move_object", (PyCFunction)(void (*)(void))accel_move_object, METH_FASTCALL,
+     "move_object(obj, size, decay, rand, speed_max, accel_max, uniforms, next_uniform, post_x, post_y, "
+     "post_radius) -> None | int | (vx, vy, next_uniform) (see hfo2d.physics.World._move)."},
     {"hypot", (PyCFunction)(void (*)(void))accel_hypot, METH_FASTCALL,
      "hypot(x, y) -> float: math.hypot(x, y), as the kernels compute it (NATIVE_HYPOT says how)."},
     {"mirrored_players", (PyCFunction)(void (*)(void))accel_mirrored_players, METH_FASTCALL,
@@ -1263,6 +1396,8 @@ PyInit__accel(void)
     INTERN(str_collided_player, "collided_player");
     INTERN(str_collided_post, "collided_post");
     INTERN(str_tackle_cycles, "tackle_cycles");
+    INTERN(str_ax, "ax");
+    INTERN(str_ay, "ay");
     PyObject *math = PyImport_ImportModule("math");
     if (math == NULL) {
         return NULL;

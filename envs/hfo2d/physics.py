@@ -50,6 +50,8 @@ from typing import NamedTuple
 import numpy as np
 import pymunk
 
+from hfo2d import accel as _accel
+
 # --- geometry (rcssserver 15.2.2 constants, hfo_reference §1) ---------------------------------------
 PITCH_HALF_LENGTH: float = 52.5
 PITCH_HALF_WIDTH: float = 34.0
@@ -67,6 +69,8 @@ CLIENT_KICKABLE_BUFFER: float = 0.055
 _EPS: float = 1.0e-10
 _DEG = math.pi / 180.0
 _TWO_PI = 2.0 * math.pi
+# hfo2d._accel's kernel of World._move, or None for the pure-Python code (hfo2d.accel)
+_ACCEL_MOVE = None if _accel.ACCEL is None else _accel.ACCEL.move_object
 _RANDOM_BLOCK = 1024  # uniforms drawn from the numpy Generator at a time (one call ~1 us, per-float ~10 ns)
 _POST_CATEGORY = 0b1
 _OBJECT_CATEGORY = 0b10
@@ -955,7 +959,63 @@ class World:
         speed_max: float,
         accel_max: float,
     ) -> None:
-        """``MPObject::_inc``: accelerate with caps, noise, goal posts, move, decay."""
+        """``MPObject::_inc``: accelerate with caps, noise, goal posts, move, decay. :meth:`_move_python`, by
+        hfo2d._accel's kernel when it is in use (the same floats and the same draws; the post rule in Python)."""
+        if _ACCEL_MOVE is None:
+            self._move_python(obj, size, decay, rand, speed_max, accel_max)
+            return
+        done = _ACCEL_MOVE(
+            obj,
+            size,
+            decay,
+            rand,
+            speed_max,
+            accel_max,
+            self._uniforms,
+            self._next_uniform,
+            self._post_x,
+            self._post_y,
+            GOAL_POST_RADIUS,
+        )
+        if done is None:  # a draw past the buffer: the next block first, as _move_python draws it
+            self._uniforms = self._rng.random(_RANDOM_BLOCK).tolist()
+            self._next_uniform = 0
+            done = _ACCEL_MOVE(
+                obj,
+                size,
+                decay,
+                rand,
+                speed_max,
+                accel_max,
+                self._uniforms,
+                0,
+                self._post_x,
+                self._post_y,
+                GOAL_POST_RADIUS,
+            )
+        if isinstance(done, int):
+            self._next_uniform = done
+            return
+        vx, vy, self._next_uniform = done
+        x, y, vx, vy, hit = self._posts(obj.x, obj.y, vx, vy, size)
+        obj.collided_post = hit
+        obj.x = x
+        obj.y = y
+        obj.vx = vx * decay
+        obj.vy = vy * decay
+        obj.ax = 0.0
+        obj.ay = 0.0
+
+    def _move_python(
+        self,
+        obj: PlayerState | BallState,
+        size: float,
+        decay: float,
+        rand: float,
+        speed_max: float,
+        accel_max: float,
+    ) -> None:
+        """:meth:`_move` in pure Python (the reference of hfo2d._accel's move_object)."""
         vx = obj.vx
         vy = obj.vy
         ax = obj.ax
