@@ -1331,9 +1331,180 @@ accel_move_object(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     return PyLong_FromSsize_t(i);
 }
 
+/* ------------------------------------------------------------------------------------------------------------
+ * The end of a server cycle for every player (port of hfo2d.physics.update_stamina_python): rcssserver 82212ee
+ * player.cpp Player::updateStamina (hfo_reference §4.5) and Player::updateCapacity's catch ban; and the first-pass
+ * overlap test of World._collisions (port of hfo2d.physics._any_overlap_python).
+ * ------------------------------------------------------------------------------------------------------------ */
+static PyObject *str_recovery, *str_effort, *str_capacity, *str_catch_ban;
+static PyObject *int_zero, *int_one; /* the Python ints 0 and 1 */
+
+/* update_stamina(players, recover_dec_thr, effort_dec_thr, effort_inc_thr, stamina_max, recover_min, recover_dec,
+ * effort_min, effort_dec, effort_init, effort_inc, stamina_inc_max, limited_capacity) */
+static PyObject *
+accel_update_stamina(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 13) {
+        PyErr_SetString(PyExc_TypeError, "update_stamina(players, recover_dec_thr, effort_dec_thr, effort_inc_thr, "
+                                         "stamina_max, recover_min, recover_dec, effort_min, effort_dec, "
+                                         "effort_init, effort_inc, stamina_inc_max, limited_capacity)");
+        return NULL;
+    }
+    double c[11];
+    for (int k = 0; k < 11; k++) {
+        c[k] = PyFloat_AsDouble(args[1 + k]);
+    }
+    int limited_capacity = PyObject_IsTrue(args[12]);
+    if (PyErr_Occurred() || limited_capacity < 0) {
+        return NULL;
+    }
+    double recover_dec_thr = c[0], effort_dec_thr = c[1], effort_inc_thr = c[2], smax = c[3];
+    double recover_min = c[4], recover_dec = c[5], effort_min = c[6], effort_dec = c[7], effort_init = c[8];
+    double effort_inc = c[9], stamina_inc_max = c[10];
+    PyObject *seq = PySequence_Fast(args[0], "players must be a sequence of PlayerState");
+    if (seq == NULL) {
+        return NULL;
+    }
+    for (Py_ssize_t i = 0; i < PySequence_Fast_GET_SIZE(seq); i++) {
+        PyObject *player = PySequence_Fast_GET_ITEM(seq, i);
+        double stamina, recovery, effort;
+        if (get_double(player, str_stamina, &stamina) < 0 || get_double(player, str_recovery, &recovery) < 0) {
+            goto fail;
+        }
+        /* thresholds on the current stamina, then recover; max(a, b) / min(a, b) as the builtins pick */
+        if (stamina <= recover_dec_thr && recovery > recover_min) {
+            double lowered = recovery - recover_dec;
+            recovery = lowered > recover_min ? lowered : recover_min;
+            if (write_double(player, str_recovery, recovery) < 0) {
+                goto fail;
+            }
+        }
+        if (get_double(player, str_effort, &effort) < 0) {
+            goto fail;
+        }
+        if (stamina <= effort_dec_thr && effort > effort_min) {
+            double lowered = effort - effort_dec;
+            effort = lowered > effort_min ? lowered : effort_min;
+            if (write_double(player, str_effort, effort) < 0) {
+                goto fail;
+            }
+        }
+        if (stamina >= effort_inc_thr && effort < effort_init) {
+            double raised = effort + effort_inc;
+            effort = raised < effort_init ? raised : effort_init;
+            if (write_double(player, str_effort, effort) < 0) {
+                goto fail;
+            }
+        }
+        double inc = stamina_inc_max * recovery;
+        double room = smax - stamina;
+        if (room < inc) {
+            inc = room;
+        }
+        if (limited_capacity) {
+            double capacity;
+            if (get_double(player, str_capacity, &capacity) < 0) {
+                goto fail;
+            }
+            if (capacity >= inc) {
+                if (write_double(player, str_capacity, capacity - inc) < 0) {
+                    goto fail;
+                }
+            }
+            else {
+                inc = capacity;
+                if (write_double(player, str_capacity, 0.0) < 0) {
+                    goto fail;
+                }
+            }
+        }
+        stamina += inc > 0.0 ? inc : 0.0;
+        if (write_double(player, str_stamina, stamina < smax ? stamina : smax) < 0) {
+            goto fail;
+        }
+        PyObject *ban = read_attr(player, str_catch_ban);
+        if (ban == NULL) {
+            goto fail;
+        }
+        int positive = PyObject_RichCompareBool(ban, int_zero, Py_GT);
+        if (positive > 0) {
+            PyObject *lowered = PyNumber_Subtract(ban, int_one);
+            if (lowered == NULL || write_attr(player, str_catch_ban, lowered) < 0) {
+                Py_XDECREF(lowered);
+                Py_DECREF(ban);
+                goto fail;
+            }
+            Py_DECREF(lowered);
+        }
+        Py_DECREF(ban);
+        if (positive < 0) {
+            goto fail;
+        }
+    }
+    Py_DECREF(seq);
+    Py_RETURN_NONE;
+fail:
+    Py_DECREF(seq);
+    return NULL;
+}
+
+/* any_overlap(players, ball, bp_limit2, pp_limit2) -> bool */
+static PyObject *
+accel_any_overlap(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 4) {
+        PyErr_SetString(PyExc_TypeError, "any_overlap(players, ball, bp_limit2, pp_limit2)");
+        return NULL;
+    }
+    double bp_limit2 = PyFloat_AsDouble(args[2]);
+    double pp_limit2 = PyFloat_AsDouble(args[3]);
+    double bx, by;
+    if (PyErr_Occurred() || get_double(args[1], str_x, &bx) < 0 || get_double(args[1], str_y, &by) < 0) {
+        return NULL;
+    }
+    PyObject *seq = PySequence_Fast(args[0], "players must be a sequence of PlayerState");
+    if (seq == NULL) {
+        return NULL;
+    }
+    Py_ssize_t n = PySequence_Fast_GET_SIZE(seq);
+    if (n > 2 * MAX_GROUP) {
+        Py_DECREF(seq);
+        PyErr_Format(PyExc_ValueError, "at most %d players", 2 * MAX_GROUP);
+        return NULL;
+    }
+    double xs[2 * MAX_GROUP], ys[2 * MAX_GROUP];
+    for (Py_ssize_t i = 0; i < n; i++) {
+        PyObject *player = PySequence_Fast_GET_ITEM(seq, i);
+        if (get_double(player, str_x, &xs[i]) < 0 || get_double(player, str_y, &ys[i]) < 0) {
+            Py_DECREF(seq);
+            return NULL;
+        }
+    }
+    Py_DECREF(seq);
+    for (Py_ssize_t i = 0; i < n; i++) {
+        double dx = xs[i] - bx, dy = ys[i] - by;
+        if (dx * dx + dy * dy < bp_limit2) {
+            Py_RETURN_TRUE;
+        }
+    }
+    for (Py_ssize_t i = 0; i + 1 < n; i++) {
+        for (Py_ssize_t j = i + 1; j < n; j++) {
+            double dx = xs[j] - xs[i], dy = ys[j] - ys[i];
+            if (dx * dx + dy * dy < pp_limit2) {
+                Py_RETURN_TRUE;
+            }
+        }
+    }
+    Py_RETURN_FALSE;
+}
+
 /* ------------------------------------------------------------------------------------------------------------ */
 
 static PyMethodDef accel_methods[] = {
+    {"update_stamina", (PyCFunction)(void (*)(void))accel_update_stamina, METH_FASTCALL,
+     "update_stamina(players, ...) (see hfo2d.physics.update_stamina_python)."},
+    {"any_overlap", (PyCFunction)(void (*)(void))accel_any_overlap, METH_FASTCALL,
+     "any_overlap(players, ball, bp_limit2, pp_limit2) -> bool (see hfo2d.physics._any_overlap_python)."},
     {"move_object", (PyCFunction)(void (*)(void))accel_move_object, METH_FASTCALL,
      "move_object(obj, size, decay, rand, speed_max, accel_max, uniforms, next_uniform, post_x, post_y, "
      "post_radius) -> None | int | (vx, vy, next_uniform) (see hfo2d.physics.World._move)."},
@@ -1397,6 +1568,13 @@ PyInit__accel(void)
     INTERN(str_collided_post, "collided_post");
     INTERN(str_tackle_cycles, "tackle_cycles");
     INTERN(str_ax, "ax");
+    INTERN(str_recovery, "recovery");
+    INTERN(str_effort, "effort");
+    INTERN(str_capacity, "capacity");
+    INTERN(str_catch_ban, "catch_ban");
+    if ((int_zero = PyLong_FromLong(0)) == NULL || (int_one = PyLong_FromLong(1)) == NULL) {
+        return NULL;
+    }
     INTERN(str_ay, "ay");
     PyObject *math = PyImport_ImportModule("math");
     if (math == NULL) {

@@ -70,7 +70,8 @@ _EPS: float = 1.0e-10
 _DEG = math.pi / 180.0
 _TWO_PI = 2.0 * math.pi
 # hfo2d._accel's kernel of World._move, or None for the pure-Python code (hfo2d.accel)
-_ACCEL_MOVE = None if _accel.ACCEL is None else _accel.ACCEL.move_object
+_ACCEL = _accel.ACCEL
+_ACCEL_MOVE = None if _ACCEL is None else _ACCEL.move_object
 _RANDOM_BLOCK = 1024  # uniforms drawn from the numpy Generator at a time (one call ~1 us, per-float ~10 ns)
 _POST_CATEGORY = 0b1
 _OBJECT_CATEGORY = 0b10
@@ -918,36 +919,21 @@ class World:
         # Player::updateStamina for every player (hfo_reference §4.5), its parameters read once for all
         sp = self.params
         recover_dec_thr, effort_dec_thr, effort_inc_thr = derived[4]  # each thr * stamina_max
-        smax = sp.stamina_max
-        recover_min = sp.recover_min
-        effort_min = sp.effort_min
-        effort_init = sp.effort_init
-        stamina_inc_max = sp.stamina_inc_max
-        limited_capacity = sp.stamina_capacity >= 0.0
-        for player in self.players:
-            # thresholds on the current stamina, then recover
-            stamina = player.stamina
-            if stamina <= recover_dec_thr and player.recovery > recover_min:
-                player.recovery = max(recover_min, player.recovery - sp.recover_dec)
-            if stamina <= effort_dec_thr and player.effort > effort_min:
-                player.effort = max(effort_min, player.effort - sp.effort_dec)
-            if stamina >= effort_inc_thr and player.effort < effort_init:
-                player.effort = min(effort_init, player.effort + sp.effort_inc)
-            # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
-            inc = stamina_inc_max * player.recovery
-            room = smax - stamina
-            if room < inc:
-                inc = room
-            if limited_capacity:
-                if player.capacity >= inc:
-                    player.capacity -= inc
-                else:
-                    inc = player.capacity
-                    player.capacity = 0.0
-            stamina += inc if inc > 0.0 else 0.0
-            player.stamina = stamina if stamina < smax else smax
-            if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
-                player.catch_ban -= 1
+        (_update_stamina_python if _ACCEL is None else _ACCEL.update_stamina)(
+            self.players,
+            recover_dec_thr,
+            effort_dec_thr,
+            effort_inc_thr,
+            sp.stamina_max,
+            sp.recover_min,
+            sp.recover_dec,
+            sp.effort_min,
+            sp.effort_dec,
+            sp.effort_init,
+            sp.effort_inc,
+            sp.stamina_inc_max,
+            sp.stamina_capacity >= 0.0,
+        )
         self.cycle += 1
 
     def _move(
@@ -1240,9 +1226,54 @@ class World:
                 t[2] += 1.0
 
 
-def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float) -> bool:
+def _update_stamina_python(
+    players: list[PlayerState],
+    recover_dec_thr: float,
+    effort_dec_thr: float,
+    effort_inc_thr: float,
+    smax: float,
+    recover_min: float,
+    recover_dec: float,
+    effort_min: float,
+    effort_dec: float,
+    effort_init: float,
+    effort_inc: float,
+    stamina_inc_max: float,
+    limited_capacity: bool,
+) -> None:
+    """Player::updateStamina for every player (hfo_reference §4.5), then Player::updateCapacity's catch ban: the
+    end of World.step (the reference of hfo2d._accel's update_stamina; the thresholds are thr * stamina_max)."""
+    for player in players:
+        # thresholds on the current stamina, then recover
+        stamina = player.stamina
+        if stamina <= recover_dec_thr and player.recovery > recover_min:
+            player.recovery = max(recover_min, player.recovery - recover_dec)
+        if stamina <= effort_dec_thr and player.effort > effort_min:
+            player.effort = max(effort_min, player.effort - effort_dec)
+        if stamina >= effort_inc_thr and player.effort < effort_init:
+            player.effort = min(effort_init, player.effort + effort_inc)
+        # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
+        inc = stamina_inc_max * player.recovery
+        room = smax - stamina
+        if room < inc:
+            inc = room
+        if limited_capacity:
+            if player.capacity >= inc:
+                player.capacity -= inc
+            else:
+                inc = player.capacity
+                player.capacity = 0.0
+        stamina += inc if inc > 0.0 else 0.0
+        player.stamina = stamina if stamina < smax else smax
+        if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
+            player.catch_ban -= 1
+
+
+def _any_overlap_python(
+    players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float
+) -> bool:
     """Whether any ball-player pair is closer than ``sqrt(bp_limit2)`` or any player pair than ``sqrt(pp_limit2)``
-    (the first-pass tests of :meth:`World._collisions`)."""
+    (the first-pass tests of :meth:`World._collisions`; the reference of hfo2d._accel's any_overlap)."""
     bx = ball.x
     by = ball.y
     for p in players:
@@ -1265,6 +1296,10 @@ def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, 
             if dx * dx + dy * dy < pp_limit2:
                 return True
     return False
+
+
+#: :func:`_any_overlap_python`, by hfo2d._accel's kernel when it is in use
+_any_overlap = _any_overlap_python if _accel.ACCEL is None else _accel.ACCEL.any_overlap
 
 
 # The referee's names lived here before hfo2d.referee and hfo2d.protocol held them; importing them from this module
