@@ -254,6 +254,7 @@ static const double LANDMARKS[11][2] = {
 
 static PyObject *str_x, *str_y, *str_vx, *str_vy, *str_body_deg, *str_stamina;
 static PyObject *str_collided_ball, *str_collided_player, *str_collided_post;
+static PyObject *str_recovery, *str_effort, *str_capacity, *str_catch_ban;
 
 /* Attribute reads of hfo2d's slotted dataclasses (PlayerState, BallState: @dataclass(slots=True)) without the
  * generic attribute lookup: the offset of a plain object slot (a T_OBJECT_EX member descriptor) is cached per
@@ -1160,6 +1161,30 @@ accel_cycles_to_reach_distance(PyObject *module, PyObject *arg)
  * ------------------------------------------------------------------------------------------------------------ */
 static PyObject *str_tackle_cycles;
 
+/* mirrored_self(me, ball) -> (px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy): the deciding
+ * right-side player's own numbers and the ball's as its client reads them (port of the conversions at the start
+ * of Agent2dGoalie._view and Agent2dDefender._view, goalie.mirrored_self_python) */
+static PyObject *
+accel_mirrored_self(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 2) {
+        PyErr_SetString(PyExc_TypeError, "mirrored_self(me, ball)");
+        return NULL;
+    }
+    PyObject *me = args[0], *ball = args[1];
+    PyObject *const names[12] = {str_x,       str_y,      str_vx,       str_vy, str_body_deg, str_stamina,
+                                 str_effort,  str_recovery, str_x,      str_y,  str_vx,       str_vy};
+    double v[12];
+    for (int k = 0; k < 12; k++) {
+        double raw;
+        if (get_double(k < 8 ? me : ball, names[k], &raw) < 0 || fullstate_number(raw, &v[k]) < 0) {
+            return NULL;
+        }
+    }
+    return Py_BuildValue("(dddddddddddd)", -v[0], -v[1], -v[2], -v[3], norm_deg(v[4] + 180.0), v[5], v[6], v[7],
+                         -v[8], -v[9], -v[10], -v[11]);
+}
+
 static PyObject *
 accel_mirrored_players(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
 {
@@ -1336,7 +1361,6 @@ accel_move_object(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
  * player.cpp Player::updateStamina (hfo_reference §4.5) and Player::updateCapacity's catch ban; and the first-pass
  * overlap test of World._collisions (port of hfo2d.physics._any_overlap_python).
  * ------------------------------------------------------------------------------------------------------------ */
-static PyObject *str_recovery, *str_effort, *str_capacity, *str_catch_ban;
 static PyObject *int_zero, *int_one; /* the Python ints 0 and 1 */
 
 /* update_stamina(players, recover_dec_thr, effort_dec_thr, effort_inc_thr, stamina_max, recover_min, recover_dec,
@@ -1501,6 +1525,9 @@ accel_any_overlap(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
 /* ------------------------------------------------------------------------------------------------------------ */
 
 static PyMethodDef accel_methods[] = {
+    {"mirrored_self", (PyCFunction)(void (*)(void))accel_mirrored_self, METH_FASTCALL,
+     "mirrored_self(me, ball) -> (px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy) (see "
+     "hfo2d.agent2d.goalie.mirrored_self_python)."},
     {"update_stamina", (PyCFunction)(void (*)(void))accel_update_stamina, METH_FASTCALL,
      "update_stamina(players, ...) (see hfo2d.physics.update_stamina_python)."},
     {"any_overlap", (PyCFunction)(void (*)(void))accel_any_overlap, METH_FASTCALL,

@@ -896,15 +896,61 @@ class World:
         b_size, b_decay, b_rand, b_speed_max, b_accel_max = derived[2]
         if not self.noise:
             p_rand = b_rand = 0.0
-        move = self._move
-        for player in self.players:
-            if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
-                player.tackle_cycles -= 1
-            player.collided_ball = player.collided_player = False
-            move(player, p_size, p_decay, p_rand, p_speed_max, p_accel_max)
-        ball = self.ball
-        ball.collided_player = False
-        move(ball, b_size, b_decay, b_rand, b_speed_max, b_accel_max)
+        kernel = _ACCEL_MOVE
+        if kernel is None:
+            move = self._move_python
+            for player in self.players:
+                if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
+                    player.tackle_cycles -= 1
+                player.collided_ball = player.collided_player = False
+                move(player, p_size, p_decay, p_rand, p_speed_max, p_accel_max)
+            ball = self.ball
+            ball.collided_player = False
+            move(ball, b_size, b_decay, b_rand, b_speed_max, b_accel_max)
+        else:
+            # the same moves through hfo2d._accel's kernel, called here without _move's frame (see _move)
+            post_x = self._post_x
+            post_y = self._post_y
+            for player in self.players:
+                if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
+                    player.tackle_cycles -= 1
+                player.collided_ball = player.collided_player = False
+                done = kernel(
+                    player,
+                    p_size,
+                    p_decay,
+                    p_rand,
+                    p_speed_max,
+                    p_accel_max,
+                    self._uniforms,
+                    self._next_uniform,
+                    post_x,
+                    post_y,
+                    GOAL_POST_RADIUS,
+                )
+                if done.__class__ is int:
+                    self._next_uniform = done
+                else:
+                    self._finish_move(player, done, p_size, p_decay, p_rand, p_speed_max, p_accel_max)
+            ball = self.ball
+            ball.collided_player = False
+            done = kernel(
+                ball,
+                b_size,
+                b_decay,
+                b_rand,
+                b_speed_max,
+                b_accel_max,
+                self._uniforms,
+                self._next_uniform,
+                post_x,
+                post_y,
+                GOAL_POST_RADIUS,
+            )
+            if done.__class__ is int:
+                self._next_uniform = done
+            else:
+                self._finish_move(ball, done, b_size, b_decay, b_rand, b_speed_max, b_accel_max)
         if self._catch_contacts:
             for obj, with_ball, with_player in self._catch_contacts:
                 if isinstance(obj, BallState):
@@ -963,7 +1009,25 @@ class World:
             self._post_y,
             GOAL_POST_RADIUS,
         )
-        if done is None:  # a draw past the buffer: the next block first, as _move_python draws it
+        if done.__class__ is int:
+            self._next_uniform = done
+        else:
+            self._finish_move(obj, done, size, decay, rand, speed_max, accel_max)
+
+    def _finish_move(
+        self,
+        obj: PlayerState | BallState,
+        done: tuple[float, float, int] | None,
+        size: float,
+        decay: float,
+        rand: float,
+        speed_max: float,
+        accel_max: float,
+    ) -> None:
+        """The rest of a move that hfo2d._accel's kernel handed back: a draw past the buffer (None: the next block,
+        as _move_python draws it, then the kernel again) or a move that may reach a post ((vx, vy, next uniform):
+        the post rule here)."""
+        if done is None:
             self._uniforms = self._rng.random(_RANDOM_BLOCK).tolist()
             self._next_uniform = 0
             done = _ACCEL_MOVE(
@@ -979,9 +1043,9 @@ class World:
                 self._post_y,
                 GOAL_POST_RADIUS,
             )
-        if isinstance(done, int):
-            self._next_uniform = done
-            return
+            if done.__class__ is int:
+                self._next_uniform = done
+                return
         vx, vy, self._next_uniform = done
         x, y, vx, vy, hit = self._posts(obj.x, obj.y, vx, vy, size)
         obj.collided_post = hit

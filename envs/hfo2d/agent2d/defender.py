@@ -68,6 +68,7 @@ from hfo2d.agent2d.common import (
 from hfo2d.agent2d.formation import normal_formation
 from hfo2d.agent2d.formation_data import GOALIE_CATCH_OUR
 from hfo2d.agent2d.goalie import (
+    _ACCEL_MIRRORED_SELF,
     _PACK_FOUR,
     _VIEW_FIELDS,
     fullstate_value,
@@ -328,24 +329,27 @@ class Agent2dDefender:
         """librcsc's world model just before the decision (updateJustBeforeDecision), in DF."""
         fs = fullstate_value
         ball = world.ball
-        # (the same numbers as last cycle for the same server values, as in Agent2dGoalie._view: a resting ball
-        # and a defender that does not turn or tire repeat them)
-        key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
-        if key == self._ball_key:
-            bx, by, wx, wy = self._ball_numbers
+        if _ACCEL_MIRRORED_SELF is not None:
+            px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy = _ACCEL_MIRRORED_SELF(me, ball)
         else:
-            bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
-            self._ball_key = key
-            self._ball_numbers = (bx, by, wx, wy)
-        px, py, vx, vy = -fs(me.x), -fs(me.y), -fs(me.vx), -fs(me.vy)
-        key = _PACK_FOUR(me.body_deg, me.stamina, me.effort, me.recovery)
-        if key == self._body_key:
-            body, stamina, effort, recovery = self._body_numbers
-        else:
-            body = norm_deg(fs(me.body_deg) + 180.0)
-            stamina, effort, recovery = fs(me.stamina), fs(me.effort), fs(me.recovery)
-            self._body_key = key
-            self._body_numbers = (body, stamina, effort, recovery)
+            # (the same numbers as last cycle for the same server values, as in Agent2dGoalie._view: a resting ball
+            # and a defender that does not turn or tire repeat them)
+            key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
+            if key == self._ball_key:
+                bx, by, wx, wy = self._ball_numbers
+            else:
+                bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+                self._ball_key = key
+                self._ball_numbers = (bx, by, wx, wy)
+            px, py, vx, vy = -fs(me.x), -fs(me.y), -fs(me.vx), -fs(me.vy)
+            key = _PACK_FOUR(me.body_deg, me.stamina, me.effort, me.recovery)
+            if key == self._body_key:
+                body, stamina, effort, recovery = self._body_numbers
+            else:
+                body = norm_deg(fs(me.body_deg) + 180.0)
+                stamina, effort, recovery = fs(me.stamina), fs(me.effort), fs(me.recovery)
+                self._body_key = key
+                self._body_numbers = (body, stamina, effort, recovery)
         d_b = math.hypot(bx - px, by - py)
         # (distance from the ball, distance from self, numbers) of every opponent; (distance from the ball,
         # numbers) of every other field player of ours; each distance is computed once and reused by the sorts and

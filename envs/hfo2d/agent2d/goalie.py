@@ -36,7 +36,7 @@ from hfo2d.agent2d.common import (
 )
 from hfo2d.agent2d.decision import FreeKickState, decide
 from hfo2d.agent2d.intercept import build_intercept_table
-from hfo2d.physics import PlayerState, ServerParams, World
+from hfo2d.physics import BallState, PlayerState, ServerParams, World
 from hfo2d.protocol import AGENT2D_FIRST_BODY_DEGS
 
 # librcsc world_model.cpp updatePlayerStateCache: an opponent counts as kickable within
@@ -166,6 +166,33 @@ def mirrored_players_python(
 
 #: :func:`mirrored_players_python`, computed by hfo2d._accel's kernel when it is in use (the same numbers)
 mirrored_players = mirrored_players_python if _accel.ACCEL is None else _accel.ACCEL.mirrored_players
+
+
+def mirrored_self_python(me: PlayerState, ball: BallState) -> tuple[float, ...]:
+    """(px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy): a right-side NPC's own numbers and the
+    ball's as its client reads them from the fullstate (mirrored: positions and velocities negated, body
+    normalize(body + 180)). The reference of hfo2d._accel's mirrored_self; without the extension the views keep
+    their last conversions by the numbers' bits instead (the same numbers)."""
+    fs = fullstate_value
+    return (
+        -fs(me.x),
+        -fs(me.y),
+        -fs(me.vx),
+        -fs(me.vy),
+        norm_deg(fs(me.body_deg) + 180.0),
+        fs(me.stamina),
+        fs(me.effort),
+        fs(me.recovery),
+        -fs(ball.x),
+        -fs(ball.y),
+        -fs(ball.vx),
+        -fs(ball.vy),
+    )
+
+
+#: hfo2d._accel's mirrored_self and fullstate_value, or None for the pure-Python code
+_ACCEL_MIRRORED_SELF = None if _accel.ACCEL is None else _accel.ACCEL.mirrored_self
+_ACCEL_FULLSTATE_VALUE = None if _accel.ACCEL is None else _accel.ACCEL.fullstate_value
 
 # Agent2dGoalie._view builds its GoalieView positionally, in this field order
 _VIEW_FIELDS = (
@@ -494,25 +521,31 @@ class Agent2dGoalie:
         FullstateSensor::reverse does (positions and velocities negated, body angle normalize(body + 180))."""
         ball = world.ball
         fs = fullstate_value
-        px, py, vx, vy = -fs(keeper.x), -fs(keeper.y), -fs(keeper.vx), -fs(keeper.vy)
-        # (the same numbers as last cycle for the same server values: fullstate_value is a function of the bits)
-        key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
-        if key == self._ball_key:
-            bx, by, wx, wy = self._ball_numbers
+        if _ACCEL_MIRRORED_SELF is not None:
+            px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy = _ACCEL_MIRRORED_SELF(
+                keeper, ball
+            )
         else:
-            bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
-            self._ball_key = key
-            self._ball_numbers = (bx, by, wx, wy)
-        key = _PACK_FOUR(keeper.body_deg, keeper.stamina, keeper.effort, keeper.recovery)
-        if key == self._body_key:
-            body, stamina, effort, recovery = self._body_numbers
-        else:
-            body = norm_deg(fs(keeper.body_deg) + 180.0)
-            stamina = fs(keeper.stamina)
-            effort = fs(keeper.effort)
-            recovery = fs(keeper.recovery)
-            self._body_key = key
-            self._body_numbers = (body, stamina, effort, recovery)
+            px, py, vx, vy = -fs(keeper.x), -fs(keeper.y), -fs(keeper.vx), -fs(keeper.vy)
+            # (the same numbers as last cycle for the same server values: fullstate_value is a function of the
+            # bits)
+            key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
+            if key == self._ball_key:
+                bx, by, wx, wy = self._ball_numbers
+            else:
+                bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+                self._ball_key = key
+                self._ball_numbers = (bx, by, wx, wy)
+            key = _PACK_FOUR(keeper.body_deg, keeper.stamina, keeper.effort, keeper.recovery)
+            if key == self._body_key:
+                body, stamina, effort, recovery = self._body_numbers
+            else:
+                body = norm_deg(fs(keeper.body_deg) + 180.0)
+                stamina = fs(keeper.stamina)
+                effort = fs(keeper.effort)
+                recovery = fs(keeper.recovery)
+                self._body_key = key
+                self._body_numbers = (body, stamina, effort, recovery)
         d_b = math.hypot(bx - px, by - py)
         side = keeper.side
         opponents = [player for player in world.players if player.side != side]
@@ -623,7 +656,8 @@ class Agent2dGoalie:
         (getOpponentNearestToSelf)."""
         # (distance from the ball, distance from the goalie, (x, y, vx, vy, body, freeze), player), each distance
         # computed once for the sort and the tests below
-        ranked = mirrored_players(opponents, None, bx, by, px, py)
+        convert = mirrored_players if fullstate_value is _ACCEL_FULLSTATE_VALUE else mirrored_players_python
+        ranked = convert(opponents, None, bx, by, px, py)
         # stable: equal distances keep the server order, as librcsc's sort of its opponent list does
         ranked.sort(key=_first)
         kick_opp = False
