@@ -521,7 +521,8 @@ class Agent2dGoalie:
         FullstateSensor::reverse does (positions and velocities negated, body angle normalize(body + 180))."""
         ball = world.ball
         fs = fullstate_value
-        if _ACCEL_MIRRORED_SELF is not None:
+        # (the kernel converts as the extension's fullstate_value does: not when a test replaced the function)
+        if _ACCEL_MIRRORED_SELF is not None and fs is _ACCEL_FULLSTATE_VALUE:
             px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy = _ACCEL_MIRRORED_SELF(
                 keeper, ball
             )
