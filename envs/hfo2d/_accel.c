@@ -1024,6 +1024,99 @@ accel_final_entry(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     return Py_BuildValue("(llddd)", n_turn, n_dash, xfx, xfy, st);
 }
 
+/* ball_part(bx, by, wx, wy, self_kickable, resting_shortcuts, ball_decay, x_max, y_max, max_cycle)
+ *   -> (cache, resting, sin_a, cos_a): port of hfo2d.agent2d.intercept._ball_part_python, librcsc d222758
+ * rcsc/player/intercept_table.cpp InterceptTable::createBallCache (the ball's path under its decay, at most
+ * max_cycle steps, stopped after 5 steps once slower than 0.01 or off the area) and the frame along the ball's
+ * velocity (sin and cos of -angle(W)). */
+static PyObject *
+accel_ball_part(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 10) {
+        PyErr_SetString(PyExc_TypeError, "ball_part(bx, by, wx, wy, self_kickable, resting_shortcuts, ball_decay, "
+                                         "x_max, y_max, max_cycle)");
+        return NULL;
+    }
+    double bx = PyFloat_AsDouble(args[0]);
+    double by = PyFloat_AsDouble(args[1]);
+    double wx = PyFloat_AsDouble(args[2]);
+    double wy = PyFloat_AsDouble(args[3]);
+    double decay = PyFloat_AsDouble(args[6]);
+    double x_max = PyFloat_AsDouble(args[7]);
+    double y_max = PyFloat_AsDouble(args[8]);
+    long max_cycle = PyLong_AsLong(args[9]);
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    int self_kickable = PyObject_IsTrue(args[4]);
+    int shortcuts = PyObject_IsTrue(args[5]);
+    if (self_kickable < 0 || shortcuts < 0) {
+        return NULL;
+    }
+    int resting = wx == 0.0 && wy == 0.0 && shortcuts;
+    double sin_a = -0.0, cos_a = 1.0; /* a resting ball: angle 0, rotated by -0.0 */
+    if (!resting) {
+        double a = -th_deg(wx, wy) * (M_PI / 180.0);
+        sin_a = sin(a);
+        cos_a = cos(a);
+    }
+    PyObject *cache = PyList_New(0);
+    if (cache == NULL) {
+        return NULL;
+    }
+    PyObject *point = Py_BuildValue("(dd)", bx, by);
+    if (point == NULL || PyList_Append(cache, point) < 0) {
+        Py_XDECREF(point);
+        Py_DECREF(cache);
+        return NULL;
+    }
+    Py_DECREF(point);
+    if (self_kickable) {
+        /* createBallCache stops at the current position */
+    }
+    else if (resting) {
+        /* every step adds +-0: the first step's point repeats (one tuple, as the Python appends it) */
+        double x = bx + wx, y = by + wy;
+        point = Py_BuildValue("(dd)", x, y);
+        if (point == NULL) {
+            Py_DECREF(cache);
+            return NULL;
+        }
+        int copies = !(fabs(x) > x_max || fabs(y) > y_max) ? 5 : 1;
+        for (int k = 0; k < copies; k++) {
+            if (PyList_Append(cache, point) < 0) {
+                Py_DECREF(point);
+                Py_DECREF(cache);
+                return NULL;
+            }
+        }
+        Py_DECREF(point);
+    }
+    else {
+        double x = bx, y = by, vx = wx, vy = wy;
+        for (long i = 1; i <= max_cycle; i++) {
+            x += vx;
+            y += vy;
+            vx *= decay;
+            vy *= decay;
+            point = Py_BuildValue("(dd)", x, y);
+            if (point == NULL || PyList_Append(cache, point) < 0) {
+                Py_XDECREF(point);
+                Py_DECREF(cache);
+                return NULL;
+            }
+            Py_DECREF(point);
+            if (i >= 5 && vx * vx + vy * vy < 0.01 * 0.01) {
+                break;
+            }
+            if (fabs(x) > x_max || fabs(y) > y_max) {
+                break;
+            }
+        }
+    }
+    return Py_BuildValue("(NOdd)", cache, resting ? Py_True : Py_False, sin_a, cos_a);
+}
+
 /* a ball cache (a sequence of (x, y)) as two arrays; the number of points, or -1 with an exception set */
 static Py_ssize_t
 read_ball_cache(PyObject *cache, double *xs, double *ys)
@@ -1525,6 +1618,9 @@ accel_any_overlap(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
 /* ------------------------------------------------------------------------------------------------------------ */
 
 static PyMethodDef accel_methods[] = {
+    {"ball_part", (PyCFunction)(void (*)(void))accel_ball_part, METH_FASTCALL,
+     "ball_part(bx, by, wx, wy, self_kickable, resting_shortcuts, ball_decay, x_max, y_max, max_cycle) -> (cache, "
+     "resting, sin_a, cos_a) (see hfo2d.agent2d.intercept._ball_part_python)."},
     {"mirrored_self", (PyCFunction)(void (*)(void))accel_mirrored_self, METH_FASTCALL,
      "mirrored_self(me, ball) -> (px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy) (see "
      "hfo2d.agent2d.goalie.mirrored_self_python)."},

@@ -345,6 +345,24 @@ def full_self_cache(table: InterceptTable) -> list[InterceptEntry]:
 
 
 def _ball_part(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float, float]:
+    """:func:`_ball_part_python`, computed by hfo2d._accel's kernel when it is in use (the same points)."""
+    if _ACCEL is None:
+        return _ball_part_python(view)
+    return _ACCEL.ball_part(
+        view.bx,
+        view.by,
+        view.wx,
+        view.wy,
+        view.self_kickable,
+        _RESTING_SHORTCUTS,
+        _BALL_DECAY,
+        _CACHE_X_MAX,
+        _CACHE_Y_MAX,
+        _MAX_CYCLE,
+    )
+
+
+def _ball_part_python(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float, float]:
     """createBallCache (empty past B for a kickable goalie), whether the ball rests, and sin, cos of -angle(W):
     the frame along the ball's velocity that the short-step, long-step and opponent predictions share."""
     bx = view.bx
