@@ -23,6 +23,8 @@
 
 #include <float.h>
 #include <math.h>
+#include <stdint.h>
+#include <stdio.h>
 #include <string.h>
 
 /* math.hypot, looked up at import (see the header comment) */
@@ -145,15 +147,17 @@ accel_hypot(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
 }
 
 /* ------------------------------------------------------------------------------------------------------------
- * fullstate_value (port of hfo2d.agent2d.goalie._fullstate_value_python)
+ * fullstate_value (port of hfo2d.agent2d.goalie.fullstate_value_python)
  *
  * A number as librcsc reads it from rcssserver's fullstate message: printed with 6 significant digits (%g) and
  * parsed back (rcssserver 15 serializerplayerstdv1.cpp serializeFSBegin sets precision(6); librcsc
- * fullstate_sensor.cpp parses with strtod). The Python function's fast path for 1e-16 <= |x| < 10000 is ported
- * with the same operations (its docstring proves it equals the string round trip); every other input takes the
- * string round trip itself, which is what the Python function's other paths equal by their contract.
+ * fullstate_sensor.cpp parses with strtod). The Python function's fast paths (1e-16 <= |x| < 10000, and the tiny
+ * numbers below 1e-16) are ported with the same operations (its docstring proves they equal the string round
+ * trip); every other input takes the string round trip itself, as the Python does. The Python's dict memo is
+ * replaced by a small direct-mapped memo of the slow paths only (the fast path costs less than a lookup).
  * ------------------------------------------------------------------------------------------------------------ */
-static double pow10_exact[23]; /* 10**0 .. 10**22, exact doubles */
+static double pow10_exact[23];    /* 10**0 .. 10**22, exact doubles */
+static double pow10_nearest[309]; /* the doubles nearest to 10**0 .. 10**308 (float(10**k)) */
 
 static int
 fullstate_string_round_trip(double x, double *out)
@@ -170,6 +174,15 @@ fullstate_string_round_trip(double x, double *out)
     *out = value;
     return 0;
 }
+
+/* The string round trip's results, by the input's bits (direct-mapped): the tiny and rare numbers that take it are
+ * converted by every NPC in the same cycle. */
+#define ROUND_TRIP_MEMO_SIZE 1024
+static struct {
+    uint64_t bits;
+    double value;
+    int used;
+} round_trip_memo[ROUND_TRIP_MEMO_SIZE];
 
 static int
 fullstate_number(double x, double *out)
@@ -198,7 +211,45 @@ fullstate_number(double x, double *out)
             return 0;
         }
     }
-    return fullstate_string_round_trip(x, out);
+    uint64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    size_t slot = (size_t)((bits ^ (bits >> 29) ^ (bits >> 47)) & (ROUND_TRIP_MEMO_SIZE - 1));
+    if (round_trip_memo[slot].used && round_trip_memo[slot].bits == bits) {
+        *out = round_trip_memo[slot].value;
+        return 0;
+    }
+    double y;
+    int done = 0;
+    if (a < 1.0e-16 && a == a) {
+        /* the Python's path for 5e-324 <= |x| < 1e-16: the scale 10**digits is past the exact doubles, p is |x|
+         * times its nearest double (or 1e22 times the nearest of 10**(digits - 22)), and the printed number
+         * m / 10**digits is rounded once to the nearest double: here by parsing "me-digits" (correctly rounded,
+         * as CPython's int true division is) */
+        int digits = 5 - (int)floor(log10(a)); /* 22 < digits <= 329 */
+        double p = digits <= 308 ? a * pow10_nearest[digits] : a * 1.0e22 * pow10_nearest[digits - 22];
+        double f = fmod(p, 1.0);
+        if (100000.001 <= p && p < 999999.0 && !(0.499999 < f && f < 0.500001)) {
+            long long m = (long long)p + (f > 0.5 ? 1 : 0);
+            char text[48];
+            snprintf(text, sizeof text, "%llde-%d", m, digits);
+            y = PyOS_string_to_double(text, NULL, NULL);
+            if (y == -1.0 && PyErr_Occurred()) {
+                return -1;
+            }
+            if (x < 0.0) {
+                y = -y;
+            }
+            done = 1;
+        }
+    }
+    if (!done && fullstate_string_round_trip(x, &y) < 0) {
+        return -1;
+    }
+    round_trip_memo[slot].bits = bits;
+    round_trip_memo[slot].value = y;
+    round_trip_memo[slot].used = 1;
+    *out = y;
+    return 0;
 }
 
 static PyObject *
@@ -1679,6 +1730,14 @@ PyInit__accel(void)
 {
     for (int k = 0; k < 23; k++) {
         pow10_exact[k] = k == 0 ? 1.0 : pow10_exact[k - 1] * 10.0; /* exact up to 10**22 */
+    }
+    for (int k = 0; k < 309; k++) { /* correctly rounded, as float(10**k) */
+        char text[16];
+        snprintf(text, sizeof text, "1e%d", k);
+        pow10_nearest[k] = PyOS_string_to_double(text, NULL, NULL);
+        if (pow10_nearest[k] == -1.0 && PyErr_Occurred()) {
+            return NULL;
+        }
     }
     INTERN(str_x, "x");
     INTERN(str_y, "y");
