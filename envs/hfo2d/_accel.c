@@ -267,7 +267,7 @@ accel_fullstate_value(PyObject *module, PyObject *arg)
 }
 
 /* ------------------------------------------------------------------------------------------------------------
- * low_level_feature_list (port of hfo2d.features._low_level_feature_list_python without opponent_control)
+ * low_level_feature_list (port of hfo2d.features.low_level_feature_list_python without opponent_control)
  *
  * HFO's paper-era LowLevelFeatureExtractor layout (HFO src/lowlevel_feature_extractor.cpp before July 2017;
  * hfo_reference §2, §9): 58 basic features, then an 8-feature block per teammate and per opponent, each group
@@ -284,6 +284,7 @@ accel_fullstate_value(PyObject *module, PyObject *arg)
 #define PLAYER_SPEED_MAX 0.75
 #define BALL_SPEED_MAX 5.0
 #define STAMINA_MAX 8000.0
+static double MAX_HFO_DIST; /* sqrt(52.5**2 + 34**2), set at import */
 #define NUM_BASIC_FEATURES 58
 #define FEATURES_PER_PLAYER 8
 #define MAX_GROUP 64 /* players per side handled here; a larger group is refused */
@@ -538,25 +539,26 @@ out_of_bounds(double d, double d_max)
 static PyObject *
 accel_low_level_feature_list(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
 {
-    if (nargs != 8) {
+    if (nargs != 8 && nargs != 5) {
         PyErr_SetString(PyExc_TypeError,
-                        "low_level_feature_list(player, ball, kickable_distance, teammates, opponents, max_dist, "
-                        "out_of_bounds_x_max, out_of_bounds_y_max)");
+                        "low_level_feature_list(player, ball, kickable_distance, teammates, opponents[, max_dist, "
+                        "out_of_bounds_x_max, out_of_bounds_y_max])");
         return NULL;
     }
     PyObject *player = args[0], *ball = args[1], *teammates = args[3], *opponents = args[4];
-    double kickable_distance, max_dist, oob_x_max, oob_y_max;
+    double kickable_distance;
+    /* the paper era's normalisers unless given */
+    double max_dist = MAX_HFO_DIST, oob_x_max = PITCH_HALF_LENGTH, oob_y_max = 2.0 * PITCH_HALF_WIDTH;
     if ((kickable_distance = PyFloat_AsDouble(args[2])) == -1.0 && PyErr_Occurred()) {
         return NULL;
     }
-    if ((max_dist = PyFloat_AsDouble(args[5])) == -1.0 && PyErr_Occurred()) {
-        return NULL;
-    }
-    if ((oob_x_max = PyFloat_AsDouble(args[6])) == -1.0 && PyErr_Occurred()) {
-        return NULL;
-    }
-    if ((oob_y_max = PyFloat_AsDouble(args[7])) == -1.0 && PyErr_Occurred()) {
-        return NULL;
+    if (nargs == 8) {
+        max_dist = PyFloat_AsDouble(args[5]);
+        oob_x_max = PyFloat_AsDouble(args[6]);
+        oob_y_max = PyFloat_AsDouble(args[7]);
+        if (PyErr_Occurred()) {
+            return NULL;
+        }
     }
     double x, y, vx, vy, body_deg, stamina, ball_x, ball_y, ball_vx, ball_vy;
     int collided_ball, collided_player, collided_post;
@@ -1501,7 +1503,7 @@ accel_move_object(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
 }
 
 /* ------------------------------------------------------------------------------------------------------------
- * The end of a server cycle for every player (port of hfo2d.physics.update_stamina_python): rcssserver 82212ee
+ * The end of a server cycle for every player (port of hfo2d.physics._update_stamina_python): rcssserver 82212ee
  * player.cpp Player::updateStamina (hfo_reference §4.5) and Player::updateCapacity's catch ban; and the first-pass
  * overlap test of World._collisions (port of hfo2d.physics._any_overlap_python).
  * ------------------------------------------------------------------------------------------------------------ */
@@ -1676,7 +1678,7 @@ static PyMethodDef accel_methods[] = {
      "mirrored_self(me, ball) -> (px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy) (see "
      "hfo2d.agent2d.goalie.mirrored_self_python)."},
     {"update_stamina", (PyCFunction)(void (*)(void))accel_update_stamina, METH_FASTCALL,
-     "update_stamina(players, ...) (see hfo2d.physics.update_stamina_python)."},
+     "update_stamina(players, ...) (see hfo2d.physics._update_stamina_python)."},
     {"any_overlap", (PyCFunction)(void (*)(void))accel_any_overlap, METH_FASTCALL,
      "any_overlap(players, ball, bp_limit2, pp_limit2) -> bool (see hfo2d.physics._any_overlap_python)."},
     {"move_object", (PyCFunction)(void (*)(void))accel_move_object, METH_FASTCALL,
@@ -1709,8 +1711,8 @@ static PyMethodDef accel_methods[] = {
      "fullstate_value(x) -> float: x printed with 6 significant digits and parsed back (see "
      "hfo2d.agent2d.goalie.fullstate_value)."},
     {"low_level_feature_list", (PyCFunction)(void (*)(void))accel_low_level_feature_list, METH_FASTCALL,
-     "low_level_feature_list(player, ball, kickable_distance, teammates, opponents, max_dist, "
-     "out_of_bounds_x_max, out_of_bounds_y_max) -> list[float] (see hfo2d.features.low_level_feature_list)."},
+     "low_level_feature_list(player, ball, kickable_distance, teammates, opponents[, max_dist, "
+     "out_of_bounds_x_max, out_of_bounds_y_max]) -> list[float] (see hfo2d.features.low_level_feature_list)."},
     {NULL, NULL, 0, NULL},
 };
 
@@ -1731,6 +1733,7 @@ PyInit__accel(void)
     for (int k = 0; k < 23; k++) {
         pow10_exact[k] = k == 0 ? 1.0 : pow10_exact[k - 1] * 10.0; /* exact up to 10**22 */
     }
+    MAX_HFO_DIST = sqrt(PITCH_HALF_LENGTH * PITCH_HALF_LENGTH + PITCH_HALF_WIDTH * PITCH_HALF_WIDTH);
     for (int k = 0; k < 309; k++) { /* correctly rounded, as float(10**k) */
         char text[16];
         snprintf(text, sizeof text, "1e%d", k);
@@ -1772,11 +1775,12 @@ PyInit__accel(void)
         return NULL;
     }
     PyObject *constants = Py_BuildValue(
-        "{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:i,s:i}", "PITCH_HALF_LENGTH", PITCH_HALF_LENGTH,
+        "{s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:d,s:i,s:i,s:d,s:d,s:d}", "PITCH_HALF_LENGTH", PITCH_HALF_LENGTH,
         "PITCH_HALF_WIDTH", PITCH_HALF_WIDTH, "GOAL_HALF_WIDTH", GOAL_HALF_WIDTH, "PENALTY_AREA_X", PENALTY_AREA_X,
         "PENALTY_AREA_HALF_WIDTH", PENALTY_AREA_HALF_WIDTH, "SELF_SPEED_MAX", SELF_SPEED_MAX, "PLAYER_SPEED_MAX",
         PLAYER_SPEED_MAX, "BALL_SPEED_MAX", BALL_SPEED_MAX, "STAMINA_MAX", STAMINA_MAX, "NUM_BASIC_FEATURES",
-        NUM_BASIC_FEATURES, "FEATURES_PER_PLAYER", FEATURES_PER_PLAYER);
+        NUM_BASIC_FEATURES, "FEATURES_PER_PLAYER", FEATURES_PER_PLAYER, "MAX_HFO_DIST", MAX_HFO_DIST,
+        "OUT_OF_BOUNDS_X_DIST_MAX", PITCH_HALF_LENGTH, "OUT_OF_BOUNDS_Y_DIST_MAX", 2.0 * PITCH_HALF_WIDTH);
     if (PyModule_AddIntConstant(module, "NATIVE_HYPOT", NATIVE_HYPOT) < 0) {
         Py_XDECREF(constants);
         Py_DECREF(module);

@@ -568,8 +568,17 @@ if _accel.ACCEL is not None and _accel.ACCEL.FEATURE_CONSTANTS != {
     "STAMINA_MAX": STAMINA_MAX,
     "NUM_BASIC_FEATURES": NUM_BASIC_FEATURES,
     "FEATURES_PER_PLAYER": FEATURES_PER_PLAYER,
+    "MAX_HFO_DIST": MAX_HFO_DIST,
+    "OUT_OF_BOUNDS_X_DIST_MAX": OUT_OF_BOUNDS_X_DIST_MAX,
+    "OUT_OF_BOUNDS_Y_DIST_MAX": OUT_OF_BOUNDS_Y_DIST_MAX,
 }:
     raise ImportError("hfo2d._accel's feature constants differ from hfo2d.features': rebuild the extension")
+
+
+#: ``low_level_feature_list(player, ball, kickable_distance, teammates, opponents)`` with the paper era's
+#: normalisers, positional arguments only: the extension's kernel itself when it is in use (no Python frame: the
+#: envs call it every step), else :func:`low_level_feature_list_python`
+paper_feature_list = low_level_feature_list_python if _ACCEL_FEATURES is None else _ACCEL_FEATURES
 
 
 def low_level_feature_list(

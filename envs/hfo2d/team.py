@@ -101,8 +101,8 @@ from hfo2d.features import (
     SELF_FROZEN,
     hfo_feature_list,
     hfo_num_features,
-    low_level_feature_list,
     num_features,
+    paper_feature_list,
 )
 from hfo2d.hfo_env import _as_float_list, check_render_mode  # the single-agent env's checks, shared
 from hfo2d.npc import DefenseNPC
@@ -730,13 +730,13 @@ class TeamGame:
     def _striker_observation(self, player: PlayerState) -> np.ndarray:
         """What a scripted striker reads (hfo2d.strikers): the paper features with the goalie's block only."""
         opponents = (self._goalie,) if self._goalie is not None else ()
-        features = low_level_feature_list(player, self.world.ball, self._kickable_distance, (), opponents)
+        features = paper_feature_list(player, self.world.ball, self._kickable_distance, (), opponents)
         return np.asarray(features, dtype=np.float32)
 
     def _paper_features(self, agent: _Agent) -> list[float]:
         """The agent's paper-era features (its own frame), frozen flag set; rewards read them."""
         player, ball, teammates, opponents = self._view(agent)
-        features = low_level_feature_list(player, ball, self._kickable_distance, teammates, opponents)
+        features = paper_feature_list(player, ball, self._kickable_distance, teammates, opponents)
         if agent.player.tackle_cycles > 0:
             features[SELF_FROZEN] = 1.0
         return features
@@ -762,7 +762,7 @@ class TeamGame:
         if not self._reward_needs_goalie_view:
             return paper
         opponents = (self._goalie,) if self._goalie is not None else ()
-        return low_level_feature_list(agent.player, self.world.ball, self._kickable_distance, (), opponents)
+        return paper_feature_list(agent.player, self.world.ball, self._kickable_distance, (), opponents)
 
     def _view(self, agent: _Agent) -> tuple[PlayerState, BallState, list[PlayerState], list[PlayerState]]:
         """The agent, the ball, its teammates and its opponents as its client sees them (mirrored for the

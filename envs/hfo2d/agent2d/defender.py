@@ -45,7 +45,9 @@ from operator import itemgetter
 
 import numpy as np
 
+from hfo2d.accel import ACCEL as _ACCEL
 from hfo2d.agent2d import common as _common
+from hfo2d.agent2d import intercept as _intercept
 from hfo2d.agent2d.actions import (
     body_go_to_point,
     body_intercept,
@@ -488,8 +490,27 @@ class Agent2dDefender:
         base = build_intercept_table(view, full=False)
         ball = base.ball_part()
         # the fastest of each side (fastest_reach: predict_player_reach for each, on the ball part's frame)
-        opp_min = 0 if view.kick_opp else fastest_reach(view, ball, view.opponents, False)
-        mate_min = 0 if view.mate_kick else fastest_reach(view, ball, view.teammates, True)
+        if _ACCEL is None:
+            opp_min = 0 if view.kick_opp else fastest_reach(view, ball, view.opponents, False)
+            mate_min = 0 if view.mate_kick else fastest_reach(view, ball, view.teammates, True)
+        else:  # intercept.fastest_reach's kernel called here, without its Python frame
+            cache, _, sin_a, cos_a = ball
+            bx = view.bx
+            by = view.by
+            px = view.px
+            py = view.py
+            shortcut = view.wx == 0.0 and view.wy == 0.0 and _intercept._RESTING_SHORTCUTS
+            kernel = _ACCEL.fastest_reach
+            opp_min = (
+                0
+                if view.kick_opp
+                else kernel(view.opponents, cache, bx, by, px, py, shortcut, sin_a, cos_a, False, 1000)
+            )
+            mate_min = (
+                0
+                if view.mate_kick
+                else kernel(view.teammates, cache, bx, by, px, py, shortcut, sin_a, cos_a, True, 1000)
+            )
         return TeamInterceptTable(ball[0], base.self_cache, base.self_min, opp_min, False, mate_min, base)
 
     @staticmethod
