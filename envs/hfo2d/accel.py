@@ -8,6 +8,7 @@ kernels give the same floats as the Python, bit for bit (tests/hfo2d/test_accel_
 
 from __future__ import annotations
 
+import importlib
 import os
 from types import ModuleType
 
@@ -19,10 +20,10 @@ def _load() -> tuple[ModuleType | None, str]:
     if os.environ.get(PURE_PYTHON_ENV, "") not in ("", "0"):
         return None, f"{PURE_PYTHON_ENV}={os.environ[PURE_PYTHON_ENV]} forces the pure-Python code"
     try:
-        from hfo2d import _accel
-    except ImportError as error:
-        return None, f"the C extension hfo2d._accel is not built ({error})"
-    return _accel, "the C extension hfo2d._accel is in use"
+        module = importlib.import_module("hfo2d._accel")
+    except ImportError as error:  # not built (no C compiler at install), or built for another Python
+        return None, f"the C extension hfo2d._accel is not available ({error}): the pure-Python code runs"
+    return module, "the C extension hfo2d._accel is in use"
 
 
 #: The extension module, or None when the pure-Python code runs.

@@ -470,5 +470,40 @@ def test_games_play_the_same_with_the_extension_and_without() -> None:
     assert reported["digests"] == game_digests()
 
 
+_WITHOUT_EXTENSION = """
+import importlib.abc, sys
+
+class NoExtension(importlib.abc.MetaPathFinder):
+    def find_spec(self, name, path, target=None):
+        if name == "hfo2d._accel":
+            raise ImportError("hidden by the test")
+        return None
+
+sys.meta_path.insert(0, NoExtension())
+from hfo2d import accel
+from hfo2d.team import TeamGame
+
+assert not accel.in_use() and "not available" in accel.STATUS, accel.STATUS
+game = TeamGame(offense_agents=2, defense_npcs=2)
+game.reset(seed=0)
+for _ in range(50):
+    game.step({agent.name: [0.6, 0.1, 0.1, 0.5, 0.5, 0.5, 0.5, 0.5] for agent in game.agents})
+print("played")
+"""
+
+
+def test_hfo2d_runs_without_the_extension() -> None:
+    """A machine without a C compiler installs hfo2d without hfo2d._accel: it imports and plays in pure Python
+    (the extension hidden from the import system here, whether it is built or not)."""
+    envs_dir = os.path.dirname(os.path.dirname(os.path.abspath(hfo2d.__file__)))
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([envs_dir, os.environ.get("PYTHONPATH", "")])}
+    env.pop(accel.PURE_PYTHON_ENV, None)
+    run = subprocess.run(
+        [sys.executable, "-c", _WITHOUT_EXTENSION], env=env, capture_output=True, text=True, timeout=120
+    )
+    assert run.returncode == 0, run.stderr
+    assert run.stdout.strip().endswith("played")
+
+
 if __name__ == "__main__":  # the subprocess of the test above (and a way to print the digests)
     print(json.dumps({"in_use": accel.in_use(), "status": accel.STATUS, "digests": game_digests()}))
