@@ -26,7 +26,9 @@ for 1v0, 68 for 1v1) with other normalisers: :func:`hfo_feature_list` computes i
 :func:`paper_from_hfo` converts it into the paper layout above.
 
 The code is plain ``math`` on Python floats: the env needs tens of thousands of feature vectors per second and a
-few dozen tiny numpy operations would cost more than the whole computation.
+few dozen tiny numpy operations would cost more than the whole computation. :func:`low_level_feature_list` (and
+:data:`paper_feature_list`) run the port of :func:`low_level_feature_list_python` in the optional C extension
+(:mod:`hfo2d.accel`) when it is built, with the same floats.
 """
 
 from __future__ import annotations
