@@ -400,6 +400,9 @@ static int
 write_attr(PyObject *obj, PyObject *name, PyObject *value)
 {
     PyTypeObject *type = Py_TYPE(obj);
+    if (type->tp_setattro != PyObject_GenericSetAttr) { /* a frozen dataclass, a __setattr__ hook */
+        return PyObject_SetAttr(obj, name, value);
+    }
     for (int i = 0; i < slot_cache_len; i++) {
         SlotEntry *entry = &slot_cache[i];
         if (entry->type == type && entry->name == name) {
@@ -817,7 +820,8 @@ cycles_to_reach(double dist)
     if (lo < dash_table_len) {
         return (long)lo + 1;
     }
-    return (long)dash_table_len + (long)ceil((dist - dash_table[dash_table_len - 1]) / real_speed_max);
+    double more = ceil((dist - dash_table[dash_table_len - 1]) / real_speed_max);
+    return (long)dash_table_len + (more < 1.0e9 ? (long)more : 1000000000L); /* (dist is finite) */
 }
 
 /* intercept._opp_turns: at most one turn, and the distance from the drift point after n cycles to the ball */
@@ -847,13 +851,31 @@ opp_turns(double ox, double oy, double ux, double uy, double obody, int n, doubl
     return diff > margin ? 1 : 0;
 }
 
+/* The Python raises where it turns a float into an int (math.floor of an infinity or a NaN): so does the kernel,
+ * before any work. */
+static int
+check_finite(double value, const char *what)
+{
+    if (isnan(value)) {
+        PyErr_Format(PyExc_ValueError, "%s is a NaN (cannot convert float NaN to integer)", what);
+        return -1;
+    }
+    if (isinf(value)) {
+        PyErr_Format(PyExc_OverflowError, "%s is infinite (cannot convert float infinity to integer)", what);
+        return -1;
+    }
+    return 0;
+}
+
 /* intercept._predict_player_python on a ball cache of n_cache points (xs, ys) */
 static long
 predict_player(double ox, double oy, double ux, double uy, double obody, long frozen, int resting_shortcut,
                double self_dist, const double *xs, const double *ys, Py_ssize_t n_cache, double rel_y)
 {
     obody = norm_deg(obody);
-    long min_cycle = (long)floor(fabs(rel_y) / real_speed_max);
+    /* (rel_y is finite here, see check_finite; a bound past any ball cache stands for Python's larger ints) */
+    double lower = floor(fabs(rel_y) / real_speed_max);
+    long min_cycle = lower < 1.0e9 ? (long)lower : 1000000000L;
     /* librcsc PlayerObject::tackleCount from the remaining freeze (see the Python) */
     long tackle_extra = 0;
     if (frozen > 0) {
@@ -1219,7 +1241,7 @@ accel_predict_player(PyObject *module, PyObject *args)
     }
     double xs[BALL_CACHE_MAX], ys[BALL_CACHE_MAX];
     Py_ssize_t n = read_ball_cache(cache, xs, ys);
-    if (n < 0) {
+    if (n < 0 || check_finite(rel_y, "rel_y") < 0) {
         return NULL;
     }
     return PyLong_FromLong(predict_player(ox, oy, ux, uy, obody, frozen, resting_shortcut, self_dist, xs, ys, n,
@@ -1276,6 +1298,10 @@ accel_fastest_reach(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
         }
         double x = v[0], y = v[1];
         double rel_y = (x - bx) * sin_a + (y - by) * cos_a;
+        if (check_finite(rel_y, "a player's offset from the ball's line") < 0) {
+            Py_DECREF(seq);
+            return NULL;
+        }
         double self_dist = teammate ? 0.0 : sqrt((x - px) * (x - px) + (y - py) * (y - py));
         long reach = predict_player(x, y, v[2], v[3], v[4], frozen, resting_shortcut, self_dist, xs, ys, n, rel_y);
         if (reach < best) {
@@ -1296,6 +1322,10 @@ accel_cycles_to_reach_distance(PyObject *module, PyObject *arg)
     if (!intercept_bound) {
         PyErr_SetString(PyExc_RuntimeError, "hfo2d._accel: bind_intercept was never called");
         return NULL;
+    }
+    if (isinf(dist) && dist > 0.0) { /* the Python's int(ceil(inf)) (a NaN reads 1 in both) */
+        return PyErr_Format(PyExc_OverflowError, "the distance is infinite (cannot convert float infinity to "
+                                                 "integer)"), NULL;
     }
     return PyLong_FromLong(cycles_to_reach(dist));
 }

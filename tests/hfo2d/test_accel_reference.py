@@ -234,6 +234,29 @@ def test_ball_path_and_reach_kernels_are_the_python_predictions(
         assert _accel.cycles_to_reach_distance(dist) == intercept.cycles_to_reach_distance(dist)
 
 
+def outcome(function: Any, *args: Any) -> Any:
+    """The result of a call, or the type of the exception it raised."""
+    try:
+        return function(*args)
+    except Exception as error:  # noqa: BLE001 (any exception is an outcome to compare)
+        return type(error)
+
+
+@needs_extension
+def test_reach_kernels_fail_where_the_python_fails() -> None:
+    """Non-finite inputs: the kernels return or raise as the Python does (no undefined conversion in C)."""
+    from hfo2d.agent2d import intercept
+
+    for dist in (math.nan, math.inf, -math.inf):
+        assert outcome(_accel.cycles_to_reach_distance, dist) == outcome(
+            intercept.cycles_to_reach_distance, dist
+        )
+    cache = [(10.0, 5.0), (11.0, 5.0)]
+    for rel_y in (math.nan, math.inf):
+        args = (0.0, 0.0, 0.0, 0.0, 0.0, 0, False, 0.0, cache, rel_y)
+        assert outcome(intercept._predict_player, *args) == outcome(intercept._predict_player_python, *args)
+
+
 @needs_extension
 def test_final_entry_kernel_is_the_python_predict_final() -> None:
     from hfo2d.agent2d import intercept
