@@ -940,26 +940,33 @@ enum {
     SF_PEN_LINE_X, SF_PEN_HALF_W, SF_CATCHABLE_AREA, SF_MIN_TURN_THR, SF_MAX_MOMENT, SF_INERTIA_MOMENT,
     SF_PLAYER_DECAY, SF_STAMINA_INC_MAX, SF_EFFORT_MAX, SF_MAX_POWER, SF_RECOVER_DEC_THR_VALUE, SF_STAMINA_MAX,
     SF_RECOVER_MIN, SF_RECOVER_DEC, SF_EFFORT_DEC_THR_VALUE, SF_EFFORT_MIN, SF_EFFORT_DEC, SF_EFFORT_INC_THR_VALUE,
-    SF_EFFORT_INC, SF_COUNT
+    SF_EFFORT_INC, SF_CONTROL_AREA_BUF, SF_ONE_MINUS_PD, SF_DASH_POWER_RATE, SF_SAFE_STAMINA, SF_MIN_DASH_POWER,
+    SF_COUNT
 };
 static double sf[SF_COUNT];
 static double ball_move_sums[101]; /* intercept._BF: (1 - ball_decay**n) / (1 - ball_decay) */
+static double player_decays[101]; /* intercept._PD: player_decay**n */
+static double first_term_dens[101]; /* intercept._FT_DEN: 1 - player_decay**n */
 static int self_final_bound = 0;
 
 static PyObject *
 accel_bind_self_final(PyObject *module, PyObject *args)
 {
-    PyObject *constants, *sums;
-    if (!PyArg_ParseTuple(args, "OO:bind_self_final", &constants, &sums)) {
+    PyObject *constants, *sums, *decays, *dens;
+    if (!PyArg_ParseTuple(args, "OOOO:bind_self_final", &constants, &sums, &decays, &dens)) {
         return NULL;
     }
-    double new_constants[SF_COUNT], new_sums[101];
-    if (double_table(constants, new_constants, SF_COUNT, NULL, "self final constants") < 0 ||
-        double_table(sums, new_sums, 101, NULL, "ball move sums (101)") < 0) {
+    double new_constants[SF_COUNT], new_sums[101], new_decays[101], new_dens[101];
+    if (double_table(constants, new_constants, SF_COUNT, NULL, "self intercept constants") < 0 ||
+        double_table(sums, new_sums, 101, NULL, "ball move sums (101)") < 0 ||
+        double_table(decays, new_decays, 101, NULL, "player decays (101)") < 0 ||
+        double_table(dens, new_dens, 101, NULL, "first term denominators (101)") < 0) {
         return NULL;
     }
     memcpy(sf, new_constants, sizeof sf);
     memcpy(ball_move_sums, new_sums, sizeof ball_move_sums);
+    memcpy(player_decays, new_decays, sizeof player_decays);
+    memcpy(first_term_dens, new_dens, sizeof first_term_dens);
     self_final_bound = 1;
     Py_RETURN_NONE;
 }
@@ -1190,6 +1197,222 @@ accel_ball_part(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
         }
     }
     return Py_BuildValue("(NOdd)", cache, resting ? Py_True : Py_False, sin_a, cos_a);
+}
+
+/* ------------------------------------------------------------------------------------------------------------
+ * The short steps of the self intercept (port of hfo2d.agent2d.intercept._turn_short_python and
+ * _dash_short_python): librcsc d222758 rcsc/player/self_intercept_v13.cpp SelfInterceptV13::predictTurnCycleShort
+ * (full max moment, no player_rand) and predictDashCycleShort (the waiting candidate, then the dashes after the
+ * turns with simulateDash's stamina inlined).
+ * ------------------------------------------------------------------------------------------------------------ */
+static double
+asin_deg(double x) /* AngleDeg::asin_deg (intercept._asin_deg) */
+{
+    if (x >= 1.0) {
+        return 90.0;
+    }
+    if (x <= -1.0) {
+        return -90.0;
+    }
+    return asin(x) * (180.0 / M_PI);
+}
+
+/* turn_short(target_angle, target_dist, body_angle, speed, turn_area) -> (n_turn, dash_angle) */
+static PyObject *
+accel_turn_short(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 5) {
+        PyErr_SetString(PyExc_TypeError, "turn_short(target_angle, target_dist, body_angle, speed, turn_area)");
+        return NULL;
+    }
+    if (!self_final_bound) {
+        PyErr_SetString(PyExc_RuntimeError, "hfo2d._accel: bind_self_final was never called");
+        return NULL;
+    }
+    double target_angle = PyFloat_AsDouble(args[0]);
+    double target_dist = PyFloat_AsDouble(args[1]);
+    double body_angle = PyFloat_AsDouble(args[2]);
+    double speed = PyFloat_AsDouble(args[3]);
+    double turn_area = PyFloat_AsDouble(args[4]);
+    if (PyErr_Occurred()) {
+        return NULL;
+    }
+    double signed_diff = norm_deg(target_angle - body_angle);
+    double diff = fabs(signed_diff);
+    double margin = 180.0;
+    if (turn_area < target_dist) {
+        margin = asin_deg(turn_area / target_dist);
+        if (margin < sf[SF_MIN_TURN_THR]) {
+            margin = sf[SF_MIN_TURN_THR];
+        }
+    }
+    if (diff <= margin) {
+        return Py_BuildValue("(id)", 0, body_angle);
+    }
+    long n_turn = 0;
+    double s = speed;
+    while (diff > margin) {
+        diff -= sf[SF_MAX_MOMENT] / (1.0 + sf[SF_INERTIA_MOMENT] * s);
+        s *= sf[SF_PLAYER_DECAY];
+        n_turn++;
+    }
+    if (diff < 0.0) {
+        diff = 0.0;
+    }
+    double angle = signed_diff > 0.0 ? norm_deg(target_angle - diff) : norm_deg(target_angle + diff);
+    return Py_BuildValue("(ld)", n_turn, angle);
+}
+
+#define MODE_NORMAL 0  /* hfo2d.agent2d.common.NORMAL */
+#define MODE_EXHAUST 1 /* hfo2d.agent2d.common.EXHAUST */
+
+/* dash_short(px, py, vx, vy, stamina, effort, recovery, cycle, n_turn, dash_angle, back, xbx, xby, ca, ix, iy,
+ * target_angle) -> list of the 0 to 2 candidates (mode, n_turn, n_dash, first_power, 0.0, x, y, ball_dist,
+ * stamina); (stamina, effort, recovery) is the state before any wait (the Python's wt[0]). */
+static PyObject *
+accel_dash_short(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 17) {
+        PyErr_SetString(PyExc_TypeError, "dash_short(px, py, vx, vy, stamina, effort, recovery, cycle, n_turn, "
+                                         "dash_angle, back, xbx, xby, ca, ix, iy, target_angle)");
+        return NULL;
+    }
+    if (!self_final_bound) {
+        PyErr_SetString(PyExc_RuntimeError, "hfo2d._accel: bind_self_final was never called");
+        return NULL;
+    }
+    double a[17];
+    for (int i = 0; i < 17; i++) {
+        if (i == 7 || i == 8 || i == 10) {
+            continue;
+        }
+        a[i] = PyFloat_AsDouble(args[i]);
+    }
+    long cycle = PyLong_AsLong(args[7]);
+    long n_turn = PyLong_AsLong(args[8]);
+    int back = PyObject_IsTrue(args[10]);
+    if (PyErr_Occurred() || back < 0) {
+        return NULL;
+    }
+    if (cycle < 0 || cycle > 100 || n_turn < 0 || n_turn > 100) {
+        PyErr_Format(PyExc_ValueError, "cycle %ld and n_turn %ld must lie in 0..100", cycle, n_turn);
+        return NULL;
+    }
+    double px = a[0], py = a[1], vx = a[2], vy = a[3], st0 = a[4], ef0 = a[5], rec0 = a[6];
+    double dash_angle = a[9], xbx = a[11], xby = a[12], ca = a[13], ix = a[14], iy = a[15];
+    double target_angle = a[16];
+    PyObject *candidates = PyList_New(0);
+    if (candidates == NULL) {
+        return NULL;
+    }
+    long max_dash = cycle - n_turn;
+    double ctrl2 = (ca - sf[SF_CONTROL_AREA_BUF]) * (ca - sf[SF_CONTROL_AREA_BUF]);
+    double d2 = (ix - xbx) * (ix - xbx) + (iy - xby) * (iy - xby);
+    if (d2 < ctrl2) {
+        double st = st0, ef = ef0, rec = rec0;
+        for (long k = 0; k < cycle; k++) { /* _waited(wt, cycle) */
+            stamina_wait(&st, &ef, &rec);
+        }
+        PyObject *entry = Py_BuildValue("(illdddddd)", MODE_NORMAL, n_turn, max_dash, 0.0, 0.0, ix, iy, sqrt(d2),
+                                        st);
+        if (entry == NULL || PyList_Append(candidates, entry) < 0) {
+            Py_XDECREF(entry);
+            Py_DECREF(candidates);
+            return NULL;
+        }
+        Py_DECREF(entry);
+    }
+    if (fabs(norm_deg(target_angle - dash_angle)) > 90.0) {
+        return candidates;
+    }
+    double st = st0, ef = ef0, rec = rec0;
+    for (long k = 0; k < n_turn; k++) { /* _waited(wt, n_turn) */
+        stamina_wait(&st, &ef, &rec);
+    }
+    double g = player_move_sums[n_turn];
+    double mx = px + vx * g;
+    double my = py + vy * g;
+    double d = player_decays[n_turn];
+    double mvx = vx * d;
+    double mvy = vy * d;
+    double ux = cos(dash_angle * (M_PI / 180.0));
+    double uy = sin(dash_angle * (M_PI / 180.0));
+    double rc = cos(-dash_angle * (M_PI / 180.0));
+    double rs = sin(-dash_angle * (M_PI / 180.0));
+    double first_power = 0.0;
+    for (long n_dash = 1; n_dash <= max_dash; n_dash++) {
+        double first_speed = ((xbx - mx) * rc - (xby - my) * rs) * sf[SF_ONE_MINUS_PD] /
+                             first_term_dens[max_dash - n_dash + 1];
+        double rate = ef * sf[SF_DASH_POWER_RATE];
+        double power = (first_speed - (mvx * rc - mvy * rs)) / rate;
+        double avail = st - sf[SF_SAFE_STAMINA];
+        if (avail < 0.0) {
+            avail = 0.0;
+        }
+        if (back) {
+            power = -power;
+            if (power < sf[SF_MIN_DASH_POWER]) {
+                power = sf[SF_MIN_DASH_POWER];
+            }
+            else if (power > 0.0) {
+                power = 0.0;
+            }
+            if (power < avail * -0.5) {
+                power = avail * -0.5;
+            }
+            st -= power * -2.0;
+        }
+        else {
+            if (power < 0.0) {
+                power = 0.0;
+            }
+            else if (power > sf[SF_MAX_POWER]) {
+                power = sf[SF_MAX_POWER];
+            }
+            if (avail < power) {
+                power = avail;
+            }
+            st -= power;
+        }
+        if (n_dash == 1) {
+            first_power = power;
+        }
+        double acc = fabs(power * rate);
+        mvx += ux * acc;
+        mvy += uy * acc;
+        mx += mvx;
+        my += mvy;
+        mvx *= sf[SF_PLAYER_DECAY];
+        mvy *= sf[SF_PLAYER_DECAY];
+        if (st < 0.0) { /* simulateDash (the payment is above) */
+            st = 0.0;
+        }
+        if (st > sf[SF_RECOVER_DEC_THR_VALUE] && ef >= sf[SF_EFFORT_MAX]) {
+            double inc = sf[SF_STAMINA_INC_MAX] * rec;
+            double room = sf[SF_STAMINA_MAX] - st;
+            st += inc < room ? inc : room;
+            if (st > sf[SF_STAMINA_MAX]) {
+                st = sf[SF_STAMINA_MAX];
+            }
+        }
+        else {
+            stamina_wait(&st, &ef, &rec);
+        }
+    }
+    d2 = (mx - xbx) * (mx - xbx) + (my - xby) * (my - xby);
+    if (d2 < ctrl2 ||
+        (px - mx) * (px - mx) + (py - my) * (py - my) > (px - xbx) * (px - xbx) + (py - xby) * (py - xby)) {
+        int mode = st < sf[SF_RECOVER_DEC_THR_VALUE] ? MODE_EXHAUST : MODE_NORMAL;
+        PyObject *entry = Py_BuildValue("(illdddddd)", mode, n_turn, max_dash, first_power, 0.0, mx, my, sqrt(d2),
+                                        st);
+        if (entry == NULL || PyList_Append(candidates, entry) < 0) {
+            Py_XDECREF(entry);
+            Py_DECREF(candidates);
+            return NULL;
+        }
+        Py_DECREF(entry);
+    }
+    return candidates;
 }
 
 /* a ball cache (a sequence of (x, y)) as two arrays; the number of points, or -1 with an exception set */
@@ -1701,6 +1924,12 @@ accel_any_overlap(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
 /* ------------------------------------------------------------------------------------------------------------ */
 
 static PyMethodDef accel_methods[] = {
+    {"turn_short", (PyCFunction)(void (*)(void))accel_turn_short, METH_FASTCALL,
+     "turn_short(target_angle, target_dist, body_angle, speed, turn_area) -> (n_turn, dash_angle) (see "
+     "hfo2d.agent2d.intercept._turn_short_python)."},
+    {"dash_short", (PyCFunction)(void (*)(void))accel_dash_short, METH_FASTCALL,
+     "dash_short(px, py, vx, vy, stamina, effort, recovery, cycle, n_turn, dash_angle, back, xbx, xby, ca, ix, iy, "
+     "target_angle) -> list of candidates (see hfo2d.agent2d.intercept._dash_short_python)."},
     {"ball_part", (PyCFunction)(void (*)(void))accel_ball_part, METH_FASTCALL,
      "ball_part(bx, by, wx, wy, self_kickable, resting_shortcuts, ball_decay, x_max, y_max, max_cycle) -> (cache, "
      "resting, sin_a, cos_a) (see hfo2d.agent2d.intercept._ball_part_python)."},
@@ -1723,8 +1952,8 @@ static PyMethodDef accel_methods[] = {
      "bind_intercept(kickable_area, real_speed_max, tackle_cycles, player_move_sums, dash_distance_table): the "
      "server constants of the reach kernels (called by hfo2d.agent2d.intercept's binder)."},
     {"bind_self_final", accel_bind_self_final, METH_VARARGS,
-     "bind_self_final(constants, ball_move_sums): the constants of final_entry, in "
-     "hfo2d.agent2d.intercept._SELF_FINAL_NAMES order (called by intercept's binder)."},
+     "bind_self_final(constants, ball_move_sums, player_decays, first_term_dens): the constants of the self "
+     "intercept kernels, in hfo2d.agent2d.intercept._SELF_FINAL_NAMES order (called by intercept's binder)."},
     {"final_entry", (PyCFunction)(void (*)(void))accel_final_entry, METH_FASTCALL,
      "final_entry(px, py, vx, vy, body, speed, lk, bx, by, wx, wy, stamina, effort, recovery, max_cycle, "
      "player_rand) -> (turn_cycle, dash_cycle, self_x, self_y, stamina) (see "

@@ -285,6 +285,48 @@ def test_final_entry_kernel_is_the_python_predict_final() -> None:
 
 
 @needs_extension
+def test_short_step_kernels_are_the_python_predictions() -> None:
+    """predictTurnCycleShort and predictDashCycleShort (forward and back dashes, tired and fresh players)."""
+    from hfo2d.agent2d import intercept
+
+    rng = np.random.default_rng(7)
+    for trial in range(4000):
+        px, py, bx, by = (float(v) for v in rng.uniform(-50, 50, 4))
+        vx, vy = (float(v) for v in rng.uniform(-0.8, 0.8, 2))
+        me = (px, py, vx, vy, float(rng.uniform(-180, 180)), math.hypot(vx, vy), False, bx, by, 0.0, 0.0, 1.0)
+        target_angle = float(rng.uniform(-180, 180))
+        target_dist = float(rng.choice([0.5, rng.uniform(0, 10)]))
+        speed = float(rng.uniform(0, 1))
+        area = float(rng.choice([0.1, 0.685, 0.935, 1.15]))
+        turn = intercept._turn_short_python(target_angle, target_dist, me[4], speed, area)
+        assert bits(intercept._turn_short(target_angle, target_dist, me[4], speed, area)) == bits(turn), trial
+        cycle = int(rng.integers(1, 6))
+        n_turn = int(rng.integers(0, cycle + 1))
+        stamina = float(rng.choice([8000.0, 2500.0, 600.0, rng.uniform(0, 8000)]))
+        wt = [(stamina, float(rng.choice([1.0, 0.7])), float(rng.choice([1.0, 0.6])))]
+        near = rng.random() < 0.5  # the ball within a few dashes, so that candidates are found
+        xbx = px + float(rng.uniform(-3, 3)) if near else float(rng.uniform(-50, 50))
+        xby = py + float(rng.uniform(-3, 3)) if near else float(rng.uniform(-50, 50))
+        args = (
+            cycle,
+            n_turn,
+            float(rng.uniform(-180, 180)),
+            bool(rng.random() < 0.5),
+            xbx,
+            xby,
+            float(rng.choice([1.085, 1.3])),
+            px + vx,
+            py + vy,
+            float(rng.uniform(-180, 180)),
+        )
+        want: list[tuple] = []
+        got: list[tuple] = []
+        intercept._dash_short_python(me, list(wt), *args, want)
+        intercept._dash_short(me, list(wt), *args, got)
+        assert got == want and bits(got) == bits(want), trial
+
+
+@needs_extension
 def test_server_params_reach_the_bound_kernels() -> None:
     """The kernels read the constants intercept._bind gives them: a game with another ball decay and kickable
     margin predicts as its Python reference does."""

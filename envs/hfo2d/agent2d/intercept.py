@@ -159,10 +159,11 @@ def _bind(sp: ServerParams) -> None:
     _OMNI_DIRS = tuple((d, r) for d, r in zip(_ONE_DASH_DIRS, _ONE_DASH_RATES, strict=True) if abs(d) >= 1.0)
     if _ACCEL is not None:  # the compiled kernels read the same constants
         _ACCEL.bind_intercept(_KICKABLE_AREA, _REAL_SPEED_MAX, _TACKLE_CYCLES, _PF, _DASH_TABLE)
-        _ACCEL.bind_self_final(tuple(globals()[name] for name in _SELF_FINAL_NAMES), _BF)
+        _ACCEL.bind_self_final(tuple(globals()[name] for name in _SELF_FINAL_NAMES), _BF, _PD, _FT_DEN)
 
 
-# the constants of hfo2d._accel's final_entry kernel, in the order its C enum lists them
+# the constants of hfo2d._accel's self-intercept kernels (final_entry, turn_short, dash_short), in the order its C
+# enum lists them
 _SELF_FINAL_NAMES = (
     "_PEN_LINE_X",
     "_PEN_HALF_W",
@@ -183,6 +184,11 @@ _SELF_FINAL_NAMES = (
     "_EFFORT_DEC",
     "_EFFORT_INC_THR_VALUE",
     "_EFFORT_INC",
+    "_CONTROL_AREA_BUF",
+    "_ONE_MINUS_PD",
+    "_DASH_POWER_RATE",
+    "_SAFE_STAMINA",
+    "_MIN_DASH_POWER",
 )
 
 
@@ -903,7 +909,7 @@ def _short_step(
             return
 
 
-def _turn_short(
+def _turn_short_python(
     target_angle: float, target_dist: float, body_angle: float, speed: float, turn_area: float
 ) -> tuple[int, float]:
     """predictTurnCycleShort (full max moment, no player_rand): turns and the resulting dash angle.
@@ -931,6 +937,48 @@ def _turn_short(
 
 
 def _dash_short(
+    me: tuple,
+    wt: list,
+    cycle: int,
+    n_turn: int,
+    dash_angle: float,
+    back: bool,
+    xbx: float,
+    xby: float,
+    ca: float,
+    ix: float,
+    iy: float,
+    target_angle: float,
+    tmp: list[tuple],
+) -> None:
+    """:func:`_dash_short_python`, computed by hfo2d._accel's kernel when it is in use (the same candidates; the
+    kernel simulates the waits from ``wt[0]`` instead of reading and extending the memo ``wt``)."""
+    if _ACCEL is None:
+        _dash_short_python(me, wt, cycle, n_turn, dash_angle, back, xbx, xby, ca, ix, iy, target_angle, tmp)
+        return
+    stamina, effort, recovery = wt[0]
+    tmp += _ACCEL.dash_short(
+        me[0],
+        me[1],
+        me[2],
+        me[3],
+        stamina,
+        effort,
+        recovery,
+        cycle,
+        n_turn,
+        dash_angle,
+        back,
+        xbx,
+        xby,
+        ca,
+        ix,
+        iy,
+        target_angle,
+    )
+
+
+def _dash_short_python(
     me: tuple,
     wt: list,
     cycle: int,
@@ -1806,3 +1854,7 @@ def _predict_player_python(
         return n_cache
     n_dash = max(1, cycles_to_reach_distance(dash_dist))
     return max(n_cache, n_turn + n_dash)
+
+
+#: :func:`_turn_short_python`, computed by hfo2d._accel's kernel when it is in use (the same turns and angle)
+_turn_short = _turn_short_python if _ACCEL is None else _ACCEL.turn_short
