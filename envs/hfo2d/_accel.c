@@ -1921,9 +1921,123 @@ accel_any_overlap(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
     Py_RETURN_FALSE;
 }
 
+/* ------------------------------------------------------------------------------------------------------------
+ * A learning agent's flat action (port of the usual case of hfo2d.team.TeamGame._parse_action: a float32 or
+ * float64 vector of the layout's length, every element in [0, 1]): HybridActionLayout.decode, the largest
+ * preference (the first on ties) and its parameters mapped from [0, 1] onto their bounds.
+ * ------------------------------------------------------------------------------------------------------------ */
+#define FLAT_ACTION_MAX 64
+
+/* decode_flat(action, size, decoding) -> (kind, parameters), or None where the Python must look (another type,
+ * dtype, byte order or shape; a value outside [0, 1] or NaN: the Python raises its ValueError) */
+static PyObject *
+accel_decode_flat(PyObject *module, PyObject *const *args, Py_ssize_t nargs)
+{
+    if (nargs != 3) {
+        PyErr_SetString(PyExc_TypeError, "decode_flat(action, size, decoding)");
+        return NULL;
+    }
+    Py_ssize_t size = PyLong_AsSsize_t(args[1]);
+    if (size == -1 && PyErr_Occurred()) {
+        return NULL;
+    }
+    PyObject *decoding = args[2];
+    if (!PyTuple_Check(decoding) || size < 1 || size > FLAT_ACTION_MAX || !PyObject_CheckBuffer(args[0])) {
+        Py_RETURN_NONE;
+    }
+    Py_buffer view;
+    if (PyObject_GetBuffer(args[0], &view, PyBUF_RECORDS_RO) < 0) {
+        PyErr_Clear();
+        Py_RETURN_NONE;
+    }
+    double values[FLAT_ACTION_MAX];
+    int ok = view.ndim == 1 && view.shape[0] == size && view.format != NULL;
+    int is_float = ok && (strcmp(view.format, "f") == 0 || strcmp(view.format, "<f") == 0 ||
+                          strcmp(view.format, "=f") == 0);
+    int is_double = ok && (strcmp(view.format, "d") == 0 || strcmp(view.format, "<d") == 0 ||
+                           strcmp(view.format, "=d") == 0);
+#if PY_BIG_ENDIAN
+    is_float = ok && (strcmp(view.format, "f") == 0 || strcmp(view.format, "=f") == 0);
+    is_double = ok && (strcmp(view.format, "d") == 0 || strcmp(view.format, "=d") == 0);
+#endif
+    if (is_float || is_double) {
+        for (Py_ssize_t i = 0; i < size; i++) {
+            const char *item = (const char *)view.buf + i * view.strides[0];
+            double value;
+            if (is_float) {
+                float single;
+                memcpy(&single, item, sizeof single);
+                value = (double)single; /* exact, as ndarray.tolist() */
+            }
+            else {
+                memcpy(&value, item, sizeof value);
+            }
+            if (!(0.0 <= value && value <= 1.0)) { /* (also a NaN) */
+                ok = 0;
+                break;
+            }
+            values[i] = value;
+        }
+    }
+    else {
+        ok = 0;
+    }
+    PyBuffer_Release(&view);
+    Py_ssize_t kinds = PyTuple_GET_SIZE(decoding);
+    if (!ok || kinds < 1 || kinds > size) {
+        Py_RETURN_NONE;
+    }
+    Py_ssize_t kind = 0;
+    for (Py_ssize_t index = 1; index < kinds; index++) {
+        if (values[index] > values[kind]) {
+            kind = index;
+        }
+    }
+    PyObject *entry = PyTuple_GET_ITEM(decoding, kind); /* (start, ((low, high), ...)) */
+    if (!PyTuple_Check(entry) || PyTuple_GET_SIZE(entry) != 2 || !PyTuple_Check(PyTuple_GET_ITEM(entry, 1))) {
+        Py_RETURN_NONE;
+    }
+    Py_ssize_t start = PyLong_AsSsize_t(PyTuple_GET_ITEM(entry, 0));
+    if (start == -1 && PyErr_Occurred()) {
+        return NULL;
+    }
+    PyObject *bounds = PyTuple_GET_ITEM(entry, 1);
+    Py_ssize_t n_parameters = PyTuple_GET_SIZE(bounds);
+    if (start < 0 || start + n_parameters > size) {
+        Py_RETURN_NONE;
+    }
+    PyObject *parameters = PyList_New(n_parameters);
+    if (parameters == NULL) {
+        return NULL;
+    }
+    for (Py_ssize_t k = 0; k < n_parameters; k++) {
+        PyObject *pair = PyTuple_GET_ITEM(bounds, k);
+        double low, high;
+        if (!PyTuple_Check(pair) || PyTuple_GET_SIZE(pair) != 2) {
+            Py_DECREF(parameters);
+            Py_RETURN_NONE;
+        }
+        low = PyFloat_AsDouble(PyTuple_GET_ITEM(pair, 0));
+        high = PyFloat_AsDouble(PyTuple_GET_ITEM(pair, 1));
+        if (PyErr_Occurred()) {
+            Py_DECREF(parameters);
+            return NULL;
+        }
+        PyObject *value = PyFloat_FromDouble(low + (high - low) * values[start + k]);
+        if (value == NULL) {
+            Py_DECREF(parameters);
+            return NULL;
+        }
+        PyList_SET_ITEM(parameters, k, value);
+    }
+    return Py_BuildValue("(nN)", kind, parameters);
+}
+
 /* ------------------------------------------------------------------------------------------------------------ */
 
 static PyMethodDef accel_methods[] = {
+    {"decode_flat", (PyCFunction)(void (*)(void))accel_decode_flat, METH_FASTCALL,
+     "decode_flat(action, size, decoding) -> (kind, parameters) | None (see hfo2d.team.TeamGame._parse_action)."},
     {"turn_short", (PyCFunction)(void (*)(void))accel_turn_short, METH_FASTCALL,
      "turn_short(target_angle, target_dist, body_angle, speed, turn_area) -> (n_turn, dash_angle) (see "
      "hfo2d.agent2d.intercept._turn_short_python)."},

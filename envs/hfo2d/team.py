@@ -88,6 +88,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import seeding
 
+from hfo2d import accel as _accel
 from hfo2d import features as features_module
 from hfo2d.action_layout import (
     HFO_FLAT_ACTION_LAYOUT,
@@ -891,6 +892,12 @@ class TeamGame:
         layout = agent.layout
         if self.action_format == "flat":
             size = agent.flat_size
+            if _ACCEL_DECODE_FLAT is not None:
+                # the usual case (a float vector of the right length in [0, 1]) by hfo2d._accel's kernel, the
+                # same numbers; anything else (None) takes the checks below
+                decoded = _ACCEL_DECODE_FLAT(action, size, agent.flat_decoding)
+                if decoded is not None:
+                    return decoded
             if type(action) is np.ndarray and action.dtype.kind == "f" and action.shape == (size,):
                 values = action.tolist()  # the usual case, without _as_float_list's checks
             else:
@@ -945,6 +952,9 @@ class TeamGame:
                 chosen = values
         return kind, chosen
 
+
+# hfo2d._accel's decoder of the usual flat action, or None for the pure-Python code (hfo2d.accel)
+_ACCEL_DECODE_FLAT = None if _accel.ACCEL is None else _accel.ACCEL.decode_flat
 
 # index in a layout -> action name, for the offense's layout (False) and the defense's (True; both defense layouts
 # list DASH, TURN, TACKLE, KICK first, the goalie's CATCH last)

@@ -469,6 +469,48 @@ def test_stamina_and_overlap_kernels_are_the_python_rules() -> None:
             )
 
 
+# --- the team game's flat actions ------------------------------------------------------------------------------
+@needs_extension
+def test_flat_action_kernel_decodes_as_the_python(monkeypatch: pytest.MonkeyPatch) -> None:
+    """TeamGame._parse_action through the kernel and through the Python alone: the same (kind, parameters), and
+    the same error for what the kernel hands back (other dtypes, byte orders, shapes, strides, values)."""
+    from hfo2d import team as team_module
+    from hfo2d.team import TeamGame
+
+    game = TeamGame(offense_agents=1, defense_agents=1, defense_npcs=1)
+    rng = np.random.default_rng(8)
+    kernel = team_module._ACCEL_DECODE_FLAT
+    assert kernel is not None
+    for agent in game.agents:
+        size = agent.layout.size
+        actions: list[Any] = []
+        for _ in range(300):
+            actions.append(rng.random(size, dtype=np.float32))
+            actions.append(rng.random(size))
+        ties = np.full(size, 0.5, dtype=np.float32)
+        actions += [ties, np.zeros(size), np.ones(size, dtype=np.float32)]
+        actions += [
+            rng.random(size).astype(">f8"),  # another byte order
+            rng.random(size).astype(np.float16),
+            rng.random(2 * size)[::2],  # strided
+            rng.random(size + 1),
+            rng.random((1, size)),
+            np.full(size, np.nan),
+            np.full(size, 1.5, dtype=np.float32),
+            rng.random(size).tolist(),
+        ]
+        for action in actions:
+            fast = outcome(game._parse_action, agent, action)
+            with monkeypatch.context() as patch:
+                patch.setattr(team_module, "_ACCEL_DECODE_FLAT", None)
+                slow = outcome(game._parse_action, agent, action)
+            assert fast == slow and bits([fast[0], fast[1]] if isinstance(fast, tuple) else []) == bits(
+                [slow[0], slow[1]] if isinstance(slow, tuple) else []
+            )
+        assert kernel(rng.random(size + 1), size, agent.flat_decoding) is None
+        assert kernel(np.full(size, np.nan), size, agent.flat_decoding) is None
+
+
 # --- whole games, with the extension and without ---------------------------------------------------------------
 GAMES: tuple[tuple[str, dict[str, Any], int, int], ...] = (
     ("2v2", {"offense_agents": 2, "defense_npcs": 2}, 0, 600),
