@@ -3,8 +3,9 @@
 Each kernel is compared with its Python reference on the same inputs (random states, edge values), and whole
 games (team games with agent2d's goalie and field defenders, HFO/Keeper-v1) are played once with the extension and
 once in a subprocess with ``HFO2D_PURE_PYTHON=1``: every observation, reward, status and player state must hash
-the same. Skipped where the extension is not built (``python setup.py build_ext --inplace``, or ``pip install``
-with a C compiler); the golden tests (test_team_golden.py, test_golden_rollouts.py) then check the Python alone.
+the same. Skipped where the extension is not in use (not built: ``python setup.py build_ext --inplace``, or
+``pip install`` with a C compiler; or ``HFO2D_PURE_PYTHON=1``); the golden tests (test_team_golden.py,
+test_golden_rollouts.py) then check the Python alone.
 """
 
 from __future__ import annotations
@@ -27,14 +28,10 @@ import hfo2d
 from hfo2d import accel
 from hfo2d.physics import BallState, PlayerState
 
-try:
-    from hfo2d import _accel
-except ImportError:
-    _accel = None
+_accel = accel.ACCEL  # hfo2d._accel while it is in use, else None
 
-needs_extension = pytest.mark.skipif(
-    _accel is None, reason="the C extension hfo2d._accel is not built (python setup.py build_ext --inplace)"
-)
+# (not built: python setup.py build_ext --inplace; or HFO2D_PURE_PYTHON=1, which the golden tests then check alone)
+needs_extension = pytest.mark.skipif(not accel.in_use(), reason=f"no compiled kernels here: {accel.STATUS}")
 
 
 def bits(values: Any) -> bytes:
