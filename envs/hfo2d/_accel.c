@@ -5,7 +5,8 @@
  * inputs and compares the results bit for bit. To give the same doubles, each kernel does the same IEEE operations
  * in the same order as its Python original:
  *   - setup.py compiles this file with -ffp-contract=off (no fused multiply-add) and without -ffast-math;
- *   - sin, cos, sqrt, fmod and pow are libm's, as Python's math module and float operators call them;
+ *   - sin, cos, atan2, asin, sqrt, fmod, floor, ceil, log10 and pow are libm's, as Python's math module and float
+ *     operators call them (math.atan2's special cases equal C99's for finite arguments);
  *   - hypot is NOT libm's: CPython's math.hypot has its own algorithm since 3.10 (on glibc 2.36 about 0.4 % of
  *     random (x, y) pairs differ from libm's hypot by an ulp), so the kernels compute CPython 3.11's algorithm
  *     when built for 3.11 and call math.hypot itself otherwise (py_hypot below);
@@ -13,6 +14,14 @@
  *     float(f"{x:.6g}") does.
  * Positions are assumed finite (no NaN): sorting compares with <, as Python's sort does, by a stable insertion
  * sort.
+ *
+ * Objects (hfo2d.physics.PlayerState / BallState, slotted dataclasses) are read and written through their slots
+ * (read_attr / write_attr), falling back to the generic attribute protocol for anything else.
+ *
+ * The kernels, in file order: CPython's hypot; fullstate_value; the low-level features; the intercept table's
+ * reach of the other players, predictFinal and the short steps of the self intercept, the ball path; the NPCs'
+ * fullstate conversions; one object's move, the stamina update and the overlap test of World.step; the flat
+ * action decode. Each section names its Python reference and its librcsc / rcssserver source.
  *
  * Units are rcssserver's: metres, metres per cycle, degrees.
  */
