@@ -39,6 +39,7 @@ import gymnasium as gym
 import numpy as np
 
 import hfo2d  # noqa: F401  (registers the ids)
+from hfo2d import accel
 from hfo2d.team import TeamGame
 
 
@@ -194,6 +195,9 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         "steps": args.steps,
         "repeat": args.repeat,
         "defender_npc_port": _defender_port_present(),
+        # whether hfo2d's compiled kernels (hfo2d._accel) ran, and why not (hfo2d.accel; HFO2D_PURE_PYTHON=1)
+        "accel_in_use": accel.in_use(),
+        "accel_status": accel.STATUS,
         "machine": {
             "cpus": os.cpu_count(),
             "python": platform.python_version(),
@@ -214,6 +218,7 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
             f"{row['config']:70s} {row['steps_per_s']:10,.0f}   hfo2d / real {row['hfo2d_over_real']:.1f}   "
             f"per CPU second: real {row['steps_per_cpu_s']:,.0f}, hfo2d / real {row['hfo2d_over_real_per_cpu_s']:.1f}"
         )
+    print(f"compiled kernels: {'in use' if accel.in_use() else 'NOT in use'} ({accel.STATUS})")
     print(f"load average (1 min) before {load_before:.2f}, after {result['machine']['load_1min_after']:.2f}")
     if args.out:
         with open(args.out, "w") as handle:

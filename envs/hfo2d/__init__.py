@@ -16,7 +16,9 @@ vectorization_mode="vector_entry_point")`` (:mod:`hfo2d.vector`, which also shar
   keywords), one learning agent (:class:`hfo2d.team.HalfFieldOffenseEnv`); :func:`parallel_env` makes every agent
   of such a game a PettingZoo ParallelEnv (PettingZoo is imported only then).
 
-Only numpy, gymnasium and pymunk are imported here; pygame is imported when rendering starts.
+Only numpy, gymnasium and pymunk are imported here; pygame is imported when rendering starts. The optional C
+extension ``hfo2d._accel`` (built at ``pip install`` where a C compiler is found) runs the hottest code with the
+same floats; without it, or with ``HFO2D_PURE_PYTHON=1``, the pure-Python reference runs (:mod:`hfo2d.accel`).
 """
 
 from __future__ import annotations

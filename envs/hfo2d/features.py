@@ -26,7 +26,9 @@ for 1v0, 68 for 1v1) with other normalisers: :func:`hfo_feature_list` computes i
 :func:`paper_from_hfo` converts it into the paper layout above.
 
 The code is plain ``math`` on Python floats: the env needs tens of thousands of feature vectors per second and a
-few dozen tiny numpy operations would cost more than the whole computation.
+few dozen tiny numpy operations would cost more than the whole computation. :func:`low_level_feature_list` (and
+:data:`paper_feature_list`) run the port of :func:`low_level_feature_list_python` in the optional C extension
+(:mod:`hfo2d.accel`) when it is built, with the same floats.
 """
 
 from __future__ import annotations
@@ -36,6 +38,8 @@ from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
+
+from hfo2d import accel as _accel
 
 if TYPE_CHECKING:
     from hfo2d.physics import BallState, PlayerState, World
@@ -315,7 +319,7 @@ def _landmark_features(
     return features
 
 
-def low_level_feature_list(
+def low_level_feature_list_python(
     player: PlayerState,
     ball: BallState,
     kickable_distance: float,
@@ -327,7 +331,8 @@ def low_level_feature_list(
     out_of_bounds_y_max: float = OUT_OF_BOUNDS_Y_DIST_MAX,
     opponent_control: bool = False,
 ) -> list[float]:
-    """The features as a list of Python floats (the fast path; see :func:`low_level_features`).
+    """The features as a list of Python floats (the fast path; see :func:`low_level_features`), in pure Python:
+    the reference of the compiled kernel that :func:`low_level_feature_list` runs when hfo2d._accel is built.
 
     Args:
         player: the observing player.
@@ -551,6 +556,71 @@ def low_level_feature_list(
 
 
 _EMPTY_PLAYER_BLOCK = (0.0,) * FEATURES_PER_PLAYER  # the slot of a player not listed
+
+_ACCEL_FEATURES = None if _accel.ACCEL is None else _accel.ACCEL.low_level_feature_list
+if _accel.ACCEL is not None and _accel.ACCEL.FEATURE_CONSTANTS != {
+    "PITCH_HALF_LENGTH": PITCH_HALF_LENGTH,
+    "PITCH_HALF_WIDTH": PITCH_HALF_WIDTH,
+    "GOAL_HALF_WIDTH": GOAL_HALF_WIDTH,
+    "PENALTY_AREA_X": PENALTY_AREA_X,
+    "PENALTY_AREA_HALF_WIDTH": PENALTY_AREA_HALF_WIDTH,
+    "SELF_SPEED_MAX": SELF_SPEED_MAX,
+    "PLAYER_SPEED_MAX": PLAYER_SPEED_MAX,
+    "BALL_SPEED_MAX": BALL_SPEED_MAX,
+    "STAMINA_MAX": STAMINA_MAX,
+    "NUM_BASIC_FEATURES": NUM_BASIC_FEATURES,
+    "FEATURES_PER_PLAYER": FEATURES_PER_PLAYER,
+    "MAX_HFO_DIST": MAX_HFO_DIST,
+    "OUT_OF_BOUNDS_X_DIST_MAX": OUT_OF_BOUNDS_X_DIST_MAX,
+    "OUT_OF_BOUNDS_Y_DIST_MAX": OUT_OF_BOUNDS_Y_DIST_MAX,
+}:
+    raise ImportError("hfo2d._accel's feature constants differ from hfo2d.features': rebuild the extension")
+
+
+#: ``low_level_feature_list(player, ball, kickable_distance, teammates, opponents)`` with the paper era's
+#: normalisers, positional arguments only: the extension's kernel itself when it is in use (no Python frame: the
+#: envs call it every step), else :func:`low_level_feature_list_python`
+paper_feature_list = low_level_feature_list_python if _ACCEL_FEATURES is None else _ACCEL_FEATURES
+
+
+def low_level_feature_list(
+    player: PlayerState,
+    ball: BallState,
+    kickable_distance: float,
+    teammates: list[PlayerState] | tuple[PlayerState, ...] = (),
+    opponents: list[PlayerState] | tuple[PlayerState, ...] = (),
+    *,
+    max_dist: float = MAX_HFO_DIST,
+    out_of_bounds_x_max: float = OUT_OF_BOUNDS_X_DIST_MAX,
+    out_of_bounds_y_max: float = OUT_OF_BOUNDS_Y_DIST_MAX,
+    opponent_control: bool = False,
+) -> list[float]:
+    """The features as a list of Python floats: :func:`low_level_feature_list_python` (arguments and result),
+    computed by the compiled kernel of hfo2d._accel when it is in use (the same floats; see :mod:`hfo2d.accel`).
+    ``opponent_control`` takes the Python path."""
+    if _ACCEL_FEATURES is None or opponent_control:
+        return low_level_feature_list_python(
+            player,
+            ball,
+            kickable_distance,
+            teammates,
+            opponents,
+            max_dist=max_dist,
+            out_of_bounds_x_max=out_of_bounds_x_max,
+            out_of_bounds_y_max=out_of_bounds_y_max,
+            opponent_control=opponent_control,
+        )
+    return _ACCEL_FEATURES(
+        player,
+        ball,
+        kickable_distance,
+        teammates,
+        opponents,
+        max_dist,
+        out_of_bounds_x_max,
+        out_of_bounds_y_max,
+    )
+
 
 #: rcssserver's default kickable area (kickable_margin 0.7 + player_size 0.3 + ball_size 0.085), m.
 DEFAULT_KICKABLE_AREA = 1.085

@@ -23,8 +23,8 @@ from hfo2d.features import (
     hfo_num_features,
     high_level_bounds,
     high_level_feature_list,
-    low_level_feature_list,
     num_features,
+    paper_feature_list,
 )
 from hfo2d.npc import DefenseNPC, StillGoalie
 from hfo2d.physics import PlayerState, ServerParams, World
@@ -540,7 +540,7 @@ class HFOEnv(gym.Env):
             self._last_end = (self._episode_number, status)
 
         # (self._features(), one call fewer)
-        features = low_level_feature_list(agent, world.ball, self._kickable_distance, (), self._opponents)
+        features = paper_feature_list(agent, world.ball, self._kickable_distance, (), self._opponents)
         reward, terms = self._reward_fn(features, status, terminated)
         info = self._info(features)
         info["reward_terms"] = terms
@@ -709,9 +709,7 @@ class HFOEnv(gym.Env):
         )
 
     def _features(self) -> list[float]:
-        return low_level_feature_list(
-            self.agent, self.world.ball, self._kickable_distance, (), self._opponents
-        )
+        return paper_feature_list(self.agent, self.world.ball, self._kickable_distance, (), self._opponents)
 
     def _info(self, features: Sequence[float]) -> dict[str, Any]:
         agent = self.agent

@@ -50,6 +50,8 @@ from typing import NamedTuple
 import numpy as np
 import pymunk
 
+from hfo2d import accel as _accel
+
 # --- geometry (rcssserver 15.2.2 constants, hfo_reference §1) ---------------------------------------
 PITCH_HALF_LENGTH: float = 52.5
 PITCH_HALF_WIDTH: float = 34.0
@@ -67,6 +69,9 @@ CLIENT_KICKABLE_BUFFER: float = 0.055
 _EPS: float = 1.0e-10
 _DEG = math.pi / 180.0
 _TWO_PI = 2.0 * math.pi
+# hfo2d._accel's kernel of World._move, or None for the pure-Python code (hfo2d.accel)
+_ACCEL = _accel.ACCEL
+_ACCEL_MOVE = None if _ACCEL is None else _ACCEL.move_object
 _RANDOM_BLOCK = 1024  # uniforms drawn from the numpy Generator at a time (one call ~1 us, per-float ~10 ns)
 _POST_CATEGORY = 0b1
 _OBJECT_CATEGORY = 0b10
@@ -891,15 +896,61 @@ class World:
         b_size, b_decay, b_rand, b_speed_max, b_accel_max = derived[2]
         if not self.noise:
             p_rand = b_rand = 0.0
-        move = self._move
-        for player in self.players:
-            if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
-                player.tackle_cycles -= 1
-            player.collided_ball = player.collided_player = False
-            move(player, p_size, p_decay, p_rand, p_speed_max, p_accel_max)
-        ball = self.ball
-        ball.collided_player = False
-        move(ball, b_size, b_decay, b_rand, b_speed_max, b_accel_max)
+        kernel = _ACCEL_MOVE
+        if kernel is None:
+            move = self._move_python
+            for player in self.players:
+                if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
+                    player.tackle_cycles -= 1
+                player.collided_ball = player.collided_player = False
+                move(player, p_size, p_decay, p_rand, p_speed_max, p_accel_max)
+            ball = self.ball
+            ball.collided_player = False
+            move(ball, b_size, b_decay, b_rand, b_speed_max, b_accel_max)
+        else:
+            # the same moves through hfo2d._accel's kernel, called here without _move's frame (see _move)
+            post_x = self._post_x
+            post_y = self._post_y
+            for player in self.players:
+                if player.tackle_cycles > 0:  # Player::resetCommandFlags, at the start of Stadium::step
+                    player.tackle_cycles -= 1
+                player.collided_ball = player.collided_player = False
+                done = kernel(
+                    player,
+                    p_size,
+                    p_decay,
+                    p_rand,
+                    p_speed_max,
+                    p_accel_max,
+                    self._uniforms,
+                    self._next_uniform,
+                    post_x,
+                    post_y,
+                    GOAL_POST_RADIUS,
+                )
+                if done.__class__ is int:
+                    self._next_uniform = done
+                else:
+                    self._finish_move(player, done, p_size, p_decay, p_rand, p_speed_max, p_accel_max)
+            ball = self.ball
+            ball.collided_player = False
+            done = kernel(
+                ball,
+                b_size,
+                b_decay,
+                b_rand,
+                b_speed_max,
+                b_accel_max,
+                self._uniforms,
+                self._next_uniform,
+                post_x,
+                post_y,
+                GOAL_POST_RADIUS,
+            )
+            if done.__class__ is int:
+                self._next_uniform = done
+            else:
+                self._finish_move(ball, done, b_size, b_decay, b_rand, b_speed_max, b_accel_max)
         if self._catch_contacts:
             for obj, with_ball, with_player in self._catch_contacts:
                 if isinstance(obj, BallState):
@@ -914,36 +965,21 @@ class World:
         # Player::updateStamina for every player (hfo_reference §4.5), its parameters read once for all
         sp = self.params
         recover_dec_thr, effort_dec_thr, effort_inc_thr = derived[4]  # each thr * stamina_max
-        smax = sp.stamina_max
-        recover_min = sp.recover_min
-        effort_min = sp.effort_min
-        effort_init = sp.effort_init
-        stamina_inc_max = sp.stamina_inc_max
-        limited_capacity = sp.stamina_capacity >= 0.0
-        for player in self.players:
-            # thresholds on the current stamina, then recover
-            stamina = player.stamina
-            if stamina <= recover_dec_thr and player.recovery > recover_min:
-                player.recovery = max(recover_min, player.recovery - sp.recover_dec)
-            if stamina <= effort_dec_thr and player.effort > effort_min:
-                player.effort = max(effort_min, player.effort - sp.effort_dec)
-            if stamina >= effort_inc_thr and player.effort < effort_init:
-                player.effort = min(effort_init, player.effort + sp.effort_inc)
-            # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
-            inc = stamina_inc_max * player.recovery
-            room = smax - stamina
-            if room < inc:
-                inc = room
-            if limited_capacity:
-                if player.capacity >= inc:
-                    player.capacity -= inc
-                else:
-                    inc = player.capacity
-                    player.capacity = 0.0
-            stamina += inc if inc > 0.0 else 0.0
-            player.stamina = stamina if stamina < smax else smax
-            if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
-                player.catch_ban -= 1
+        (_update_stamina_python if _ACCEL is None else _ACCEL.update_stamina)(
+            self.players,
+            recover_dec_thr,
+            effort_dec_thr,
+            effort_inc_thr,
+            sp.stamina_max,
+            sp.recover_min,
+            sp.recover_dec,
+            sp.effort_min,
+            sp.effort_dec,
+            sp.effort_init,
+            sp.effort_inc,
+            sp.stamina_inc_max,
+            sp.stamina_capacity >= 0.0,
+        )
         self.cycle += 1
 
     def _move(
@@ -955,7 +991,81 @@ class World:
         speed_max: float,
         accel_max: float,
     ) -> None:
-        """``MPObject::_inc``: accelerate with caps, noise, goal posts, move, decay."""
+        """``MPObject::_inc``: accelerate with caps, noise, goal posts, move, decay. :meth:`_move_python`, by
+        hfo2d._accel's kernel when it is in use (the same floats and the same draws; the post rule in Python)."""
+        if _ACCEL_MOVE is None:
+            self._move_python(obj, size, decay, rand, speed_max, accel_max)
+            return
+        done = _ACCEL_MOVE(
+            obj,
+            size,
+            decay,
+            rand,
+            speed_max,
+            accel_max,
+            self._uniforms,
+            self._next_uniform,
+            self._post_x,
+            self._post_y,
+            GOAL_POST_RADIUS,
+        )
+        if done.__class__ is int:
+            self._next_uniform = done
+        else:
+            self._finish_move(obj, done, size, decay, rand, speed_max, accel_max)
+
+    def _finish_move(
+        self,
+        obj: PlayerState | BallState,
+        done: tuple[float, float, int] | None,
+        size: float,
+        decay: float,
+        rand: float,
+        speed_max: float,
+        accel_max: float,
+    ) -> None:
+        """The rest of a move that hfo2d._accel's kernel handed back: a draw past the buffer (None: the next block,
+        as _move_python draws it, then the kernel again) or a move that may reach a post ((vx, vy, next uniform):
+        the post rule here)."""
+        if done is None:
+            self._uniforms = self._rng.random(_RANDOM_BLOCK).tolist()
+            self._next_uniform = 0
+            done = _ACCEL_MOVE(
+                obj,
+                size,
+                decay,
+                rand,
+                speed_max,
+                accel_max,
+                self._uniforms,
+                0,
+                self._post_x,
+                self._post_y,
+                GOAL_POST_RADIUS,
+            )
+            if done.__class__ is int:
+                self._next_uniform = done
+                return
+        vx, vy, self._next_uniform = done
+        x, y, vx, vy, hit = self._posts(obj.x, obj.y, vx, vy, size)
+        obj.collided_post = hit
+        obj.x = x
+        obj.y = y
+        obj.vx = vx * decay
+        obj.vy = vy * decay
+        obj.ax = 0.0
+        obj.ay = 0.0
+
+    def _move_python(
+        self,
+        obj: PlayerState | BallState,
+        size: float,
+        decay: float,
+        rand: float,
+        speed_max: float,
+        accel_max: float,
+    ) -> None:
+        """:meth:`_move` in pure Python (the reference of hfo2d._accel's move_object)."""
         vx = obj.vx
         vy = obj.vy
         ax = obj.ax
@@ -1180,9 +1290,54 @@ class World:
                 t[2] += 1.0
 
 
-def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float) -> bool:
+def _update_stamina_python(
+    players: list[PlayerState],
+    recover_dec_thr: float,
+    effort_dec_thr: float,
+    effort_inc_thr: float,
+    smax: float,
+    recover_min: float,
+    recover_dec: float,
+    effort_min: float,
+    effort_dec: float,
+    effort_init: float,
+    effort_inc: float,
+    stamina_inc_max: float,
+    limited_capacity: bool,
+) -> None:
+    """Player::updateStamina for every player (hfo_reference §4.5), then Player::updateCapacity's catch ban: the
+    end of World.step (the reference of hfo2d._accel's update_stamina; the thresholds are thr * stamina_max)."""
+    for player in players:
+        # thresholds on the current stamina, then recover
+        stamina = player.stamina
+        if stamina <= recover_dec_thr and player.recovery > recover_min:
+            player.recovery = max(recover_min, player.recovery - recover_dec)
+        if stamina <= effort_dec_thr and player.effort > effort_min:
+            player.effort = max(effort_min, player.effort - effort_dec)
+        if stamina >= effort_inc_thr and player.effort < effort_init:
+            player.effort = min(effort_init, player.effort + effort_inc)
+        # min(a, b) and max(a, b) written out as the builtins decide them (b only if strictly smaller / larger)
+        inc = stamina_inc_max * player.recovery
+        room = smax - stamina
+        if room < inc:
+            inc = room
+        if limited_capacity:
+            if player.capacity >= inc:
+                player.capacity -= inc
+            else:
+                inc = player.capacity
+                player.capacity = 0.0
+        stamina += inc if inc > 0.0 else 0.0
+        player.stamina = stamina if stamina < smax else smax
+        if player.catch_ban > 0:  # Player::updateCapacity, after updateStamina
+            player.catch_ban -= 1
+
+
+def _any_overlap_python(
+    players: list[PlayerState], ball: BallState, bp_limit2: float, pp_limit2: float
+) -> bool:
     """Whether any ball-player pair is closer than ``sqrt(bp_limit2)`` or any player pair than ``sqrt(pp_limit2)``
-    (the first-pass tests of :meth:`World._collisions`)."""
+    (the first-pass tests of :meth:`World._collisions`; the reference of hfo2d._accel's any_overlap)."""
     bx = ball.x
     by = ball.y
     for p in players:
@@ -1205,6 +1360,10 @@ def _any_overlap(players: list[PlayerState], ball: BallState, bp_limit2: float, 
             if dx * dx + dy * dy < pp_limit2:
                 return True
     return False
+
+
+#: :func:`_any_overlap_python`, by hfo2d._accel's kernel when it is in use
+_any_overlap = _any_overlap_python if _accel.ACCEL is None else _accel.ACCEL.any_overlap
 
 
 # The referee's names lived here before hfo2d.referee and hfo2d.protocol held them; importing them from this module

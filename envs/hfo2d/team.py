@@ -88,6 +88,7 @@ import numpy as np
 from gymnasium import spaces
 from gymnasium.utils import seeding
 
+from hfo2d import accel as _accel
 from hfo2d import features as features_module
 from hfo2d.action_layout import (
     HFO_FLAT_ACTION_LAYOUT,
@@ -101,8 +102,8 @@ from hfo2d.features import (
     SELF_FROZEN,
     hfo_feature_list,
     hfo_num_features,
-    low_level_feature_list,
     num_features,
+    paper_feature_list,
 )
 from hfo2d.hfo_env import _as_float_list, check_render_mode  # the single-agent env's checks, shared
 from hfo2d.npc import DefenseNPC
@@ -730,13 +731,13 @@ class TeamGame:
     def _striker_observation(self, player: PlayerState) -> np.ndarray:
         """What a scripted striker reads (hfo2d.strikers): the paper features with the goalie's block only."""
         opponents = (self._goalie,) if self._goalie is not None else ()
-        features = low_level_feature_list(player, self.world.ball, self._kickable_distance, (), opponents)
+        features = paper_feature_list(player, self.world.ball, self._kickable_distance, (), opponents)
         return np.asarray(features, dtype=np.float32)
 
     def _paper_features(self, agent: _Agent) -> list[float]:
         """The agent's paper-era features (its own frame), frozen flag set; rewards read them."""
         player, ball, teammates, opponents = self._view(agent)
-        features = low_level_feature_list(player, ball, self._kickable_distance, teammates, opponents)
+        features = paper_feature_list(player, ball, self._kickable_distance, teammates, opponents)
         if agent.player.tackle_cycles > 0:
             features[SELF_FROZEN] = 1.0
         return features
@@ -762,7 +763,7 @@ class TeamGame:
         if not self._reward_needs_goalie_view:
             return paper
         opponents = (self._goalie,) if self._goalie is not None else ()
-        return low_level_feature_list(agent.player, self.world.ball, self._kickable_distance, (), opponents)
+        return paper_feature_list(agent.player, self.world.ball, self._kickable_distance, (), opponents)
 
     def _view(self, agent: _Agent) -> tuple[PlayerState, BallState, list[PlayerState], list[PlayerState]]:
         """The agent, the ball, its teammates and its opponents as its client sees them (mirrored for the
@@ -891,6 +892,12 @@ class TeamGame:
         layout = agent.layout
         if self.action_format == "flat":
             size = agent.flat_size
+            if _ACCEL_DECODE_FLAT is not None:
+                # the usual case (a float vector of the right length in [0, 1]) by hfo2d._accel's kernel, the
+                # same numbers; anything else (None) takes the checks below
+                decoded = _ACCEL_DECODE_FLAT(action, size, agent.flat_decoding)
+                if decoded is not None:
+                    return decoded
             if type(action) is np.ndarray and action.dtype.kind == "f" and action.shape == (size,):
                 values = action.tolist()  # the usual case, without _as_float_list's checks
             else:
@@ -945,6 +952,9 @@ class TeamGame:
                 chosen = values
         return kind, chosen
 
+
+# hfo2d._accel's decoder of the usual flat action, or None for the pure-Python code (hfo2d.accel)
+_ACCEL_DECODE_FLAT = None if _accel.ACCEL is None else _accel.ACCEL.decode_flat
 
 # index in a layout -> action name, for the offense's layout (False) and the defense's (True; both defense layouts
 # list DASH, TURN, TACKLE, KICK first, the goalie's CATCH last)

@@ -45,7 +45,9 @@ from operator import itemgetter
 
 import numpy as np
 
+from hfo2d.accel import ACCEL as _ACCEL
 from hfo2d.agent2d import common as _common
+from hfo2d.agent2d import intercept as _intercept
 from hfo2d.agent2d.actions import (
     body_go_to_point,
     body_intercept,
@@ -68,9 +70,11 @@ from hfo2d.agent2d.common import (
 from hfo2d.agent2d.formation import normal_formation
 from hfo2d.agent2d.formation_data import GOALIE_CATCH_OUR
 from hfo2d.agent2d.goalie import (
+    _ACCEL_MIRRORED_SELF,
     _PACK_FOUR,
     _VIEW_FIELDS,
     fullstate_value,
+    mirrored_players,
     opponent_may_kick,
 )
 from hfo2d.agent2d.intercept import build_intercept_table, fastest_reach, full_self_cache
@@ -179,19 +183,6 @@ if tuple(f.name for f in fields(DefenderView)) != _DEFENDER_VIEW_FIELDS:
 
 
 _first = itemgetter(0)  # a sort key (in C)
-
-
-def _fs_player(p: PlayerState) -> OtherPlayer:
-    """A player as a right-side client reads it from the fullstate (6 significant digits, mirrored)."""
-    fs = fullstate_value
-    return (
-        -fs(p.x),
-        -fs(p.y),
-        -fs(p.vx),
-        -fs(p.vy),
-        norm_deg(fs(p.body_deg) + 180.0),
-        int(p.tackle_cycles),
-    )
 
 
 def _check_skill(skill: object) -> None:
@@ -340,26 +331,28 @@ class Agent2dDefender:
         """librcsc's world model just before the decision (updateJustBeforeDecision), in DF."""
         fs = fullstate_value
         ball = world.ball
-        # (the same numbers as last cycle for the same server values, as in Agent2dGoalie._view: a resting ball
-        # and a defender that does not turn or tire repeat them)
-        key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
-        if key == self._ball_key:
-            bx, by, wx, wy = self._ball_numbers
+        if _ACCEL_MIRRORED_SELF is not None:
+            px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy = _ACCEL_MIRRORED_SELF(me, ball)
         else:
-            bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
-            self._ball_key = key
-            self._ball_numbers = (bx, by, wx, wy)
-        px, py, vx, vy = -fs(me.x), -fs(me.y), -fs(me.vx), -fs(me.vy)
-        key = _PACK_FOUR(me.body_deg, me.stamina, me.effort, me.recovery)
-        if key == self._body_key:
-            body, stamina, effort, recovery = self._body_numbers
-        else:
-            body = norm_deg(fs(me.body_deg) + 180.0)
-            stamina, effort, recovery = fs(me.stamina), fs(me.effort), fs(me.recovery)
-            self._body_key = key
-            self._body_numbers = (body, stamina, effort, recovery)
-        hypot = math.hypot
-        d_b = hypot(bx - px, by - py)
+            # (the same numbers as last cycle for the same server values, as in Agent2dGoalie._view: a resting ball
+            # and a defender that does not turn or tire repeat them)
+            key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
+            if key == self._ball_key:
+                bx, by, wx, wy = self._ball_numbers
+            else:
+                bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+                self._ball_key = key
+                self._ball_numbers = (bx, by, wx, wy)
+            px, py, vx, vy = -fs(me.x), -fs(me.y), -fs(me.vx), -fs(me.vy)
+            key = _PACK_FOUR(me.body_deg, me.stamina, me.effort, me.recovery)
+            if key == self._body_key:
+                body, stamina, effort, recovery = self._body_numbers
+            else:
+                body = norm_deg(fs(me.body_deg) + 180.0)
+                stamina, effort, recovery = fs(me.stamina), fs(me.effort), fs(me.recovery)
+                self._body_key = key
+                self._body_numbers = (body, stamina, effort, recovery)
+        d_b = math.hypot(bx - px, by - py)
         # (distance from the ball, distance from self, numbers) of every opponent; (distance from the ball,
         # numbers) of every other field player of ours; each distance is computed once and reused by the sorts and
         # the tests below (the same expressions they used)
@@ -370,25 +363,17 @@ class Agent2dDefender:
         mates: list[tuple[float, int]] = []
         our_xs = [px]
         side = me.side
-        for p in world.players:
-            if p is me:
-                continue
-            if p.goalie and p.side == side:
-                # our goalie: only its position and freeze are read (no reach is predicted for it)
-                gx = -fs(p.x)
-                gy = -fs(p.y)
-                our_xs.append(gx)
-                mates.append((hypot(gx - bx, gy - by), int(p.tackle_cycles)))
-                goalie_pos = (gx, gy)
-                continue
-            other = _fs_player(p)
-            ball_dist = hypot(other[0] - bx, other[1] - by)
+        for ball_dist, self_dist, other, p in mirrored_players(world.players, me, bx, by, px, py):
             if p.side == side:
                 our_xs.append(other[0])
                 mates.append((ball_dist, other[5]))
-                ranked_teammates.append((ball_dist, other))
+                if p.goalie:
+                    # our goalie: only its position and freeze are read (no reach is predicted for it)
+                    goalie_pos = (other[0], other[1])
+                else:
+                    ranked_teammates.append((ball_dist, other))
             else:
-                ranked_opponents.append((ball_dist, hypot(other[0] - px, other[1] - py), other))
+                ranked_opponents.append((ball_dist, self_dist, other))
         # stable sorts by the ball distance alone: equal distances keep the server order
         ranked_opponents.sort(key=_first)
         ranked_teammates.sort(key=_first)
@@ -505,8 +490,27 @@ class Agent2dDefender:
         base = build_intercept_table(view, full=False)
         ball = base.ball_part()
         # the fastest of each side (fastest_reach: predict_player_reach for each, on the ball part's frame)
-        opp_min = 0 if view.kick_opp else fastest_reach(view, ball, view.opponents, False)
-        mate_min = 0 if view.mate_kick else fastest_reach(view, ball, view.teammates, True)
+        if _ACCEL is None:
+            opp_min = 0 if view.kick_opp else fastest_reach(view, ball, view.opponents, False)
+            mate_min = 0 if view.mate_kick else fastest_reach(view, ball, view.teammates, True)
+        else:  # intercept.fastest_reach's kernel called here, without its Python frame
+            cache, _, sin_a, cos_a = ball
+            bx = view.bx
+            by = view.by
+            px = view.px
+            py = view.py
+            shortcut = view.wx == 0.0 and view.wy == 0.0 and _intercept._RESTING_SHORTCUTS
+            kernel = _ACCEL.fastest_reach
+            opp_min = (
+                0
+                if view.kick_opp
+                else kernel(view.opponents, cache, bx, by, px, py, shortcut, sin_a, cos_a, False, 1000)
+            )
+            mate_min = (
+                0
+                if view.mate_kick
+                else kernel(view.teammates, cache, bx, by, px, py, shortcut, sin_a, cos_a, True, 1000)
+            )
         return TeamInterceptTable(ball[0], base.self_cache, base.self_min, opp_min, False, mate_min, base)
 
     @staticmethod

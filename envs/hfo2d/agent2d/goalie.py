@@ -16,10 +16,12 @@ from __future__ import annotations
 import dataclasses
 import math
 import struct
+from collections.abc import Sequence
 from operator import itemgetter
 
 import numpy as np
 
+from hfo2d import accel as _accel
 from hfo2d.agent2d import common as _common
 from hfo2d.agent2d.actions import send_command
 from hfo2d.agent2d.common import (
@@ -34,7 +36,7 @@ from hfo2d.agent2d.common import (
 )
 from hfo2d.agent2d.decision import FreeKickState, decide
 from hfo2d.agent2d.intercept import build_intercept_table
-from hfo2d.physics import PlayerState, ServerParams, World
+from hfo2d.physics import BallState, PlayerState, ServerParams, World
 from hfo2d.protocol import AGENT2D_FIRST_BODY_DEGS
 
 # librcsc world_model.cpp updatePlayerStateCache: an opponent counts as kickable within
@@ -58,7 +60,7 @@ BALL_VEL_CHANGE_ANGLE = 20.0
 NEVER_CAUGHT = -1000
 
 
-def fullstate_value(x: float) -> float:
+def fullstate_value_python(x: float) -> float:
     """A number as the client reads it from a fullstate message: rcssserver 15 (fullstatesender.cpp, protocol
     >= 8; serializerplayerstdv1.cpp serializeFSBegin sets ``precision(6)``) prints positions, velocities, body
     angles (degrees), stamina, effort and recovery unquantised with 6 significant digits (``%g``), and librcsc
@@ -133,6 +135,64 @@ _POW10_INT = tuple(10**k for k in range(330))  # the scales of the numbers below
 _POW10_NEAREST = tuple(float(10**k) for k in range(309))  # the doubles nearest to them (exact up to 10**22)
 _FULLSTATE_MEMO: dict[float, float] = {}
 _FULLSTATE_MEMO_SIZE = 4096
+
+#: :func:`fullstate_value_python`, computed by hfo2d._accel's kernel when it is in use (the same floats, no memo:
+#: the C computes a number faster than the dict finds it; see :mod:`hfo2d.accel`)
+fullstate_value = fullstate_value_python if _accel.ACCEL is None else _accel.ACCEL.fullstate_value
+
+
+MirroredPlayer = tuple[float, float, tuple[float, float, float, float, float, int], PlayerState]
+
+
+def mirrored_players_python(
+    players: Sequence[PlayerState], skip: PlayerState | None, bx: float, by: float, px: float, py: float
+) -> list[MirroredPlayer]:
+    """Every player but ``skip`` as a right-side client reads it from the fullstate (:func:`fullstate_value`,
+    mirrored as librcsc's FullstateSensor::reverse does), in server order: (distance from the ball (bx, by),
+    distance from the deciding player (px, py), (x, y, vx, vy, body, remaining tackle freeze), the player). The
+    reference of hfo2d._accel's kernel, which :func:`mirrored_players` runs when it is in use."""
+    fs = fullstate_value
+    hypot = math.hypot
+    out: list[MirroredPlayer] = []
+    for p in players:
+        if p is skip:
+            continue
+        x = -fs(p.x)
+        y = -fs(p.y)
+        other = (x, y, -fs(p.vx), -fs(p.vy), norm_deg(fs(p.body_deg) + 180.0), int(p.tackle_cycles))
+        out.append((hypot(x - bx, y - by), hypot(x - px, y - py), other, p))
+    return out
+
+
+#: :func:`mirrored_players_python`, computed by hfo2d._accel's kernel when it is in use (the same numbers)
+mirrored_players = mirrored_players_python if _accel.ACCEL is None else _accel.ACCEL.mirrored_players
+
+
+def mirrored_self_python(me: PlayerState, ball: BallState) -> tuple[float, ...]:
+    """(px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy): a right-side NPC's own numbers and the
+    ball's as its client reads them from the fullstate (mirrored: positions and velocities negated, body
+    normalize(body + 180)). The reference of hfo2d._accel's mirrored_self; without the extension the views keep
+    their last conversions by the numbers' bits instead (the same numbers)."""
+    fs = fullstate_value
+    return (
+        -fs(me.x),
+        -fs(me.y),
+        -fs(me.vx),
+        -fs(me.vy),
+        norm_deg(fs(me.body_deg) + 180.0),
+        fs(me.stamina),
+        fs(me.effort),
+        fs(me.recovery),
+        -fs(ball.x),
+        -fs(ball.y),
+        -fs(ball.vx),
+        -fs(ball.vy),
+    )
+
+
+#: hfo2d._accel's mirrored_self and fullstate_value, or None for the pure-Python code
+_ACCEL_MIRRORED_SELF = None if _accel.ACCEL is None else _accel.ACCEL.mirrored_self
+_ACCEL_FULLSTATE_VALUE = None if _accel.ACCEL is None else _accel.ACCEL.fullstate_value
 
 # Agent2dGoalie._view builds its GoalieView positionally, in this field order
 _VIEW_FIELDS = (
@@ -461,25 +521,32 @@ class Agent2dGoalie:
         FullstateSensor::reverse does (positions and velocities negated, body angle normalize(body + 180))."""
         ball = world.ball
         fs = fullstate_value
-        px, py, vx, vy = -fs(keeper.x), -fs(keeper.y), -fs(keeper.vx), -fs(keeper.vy)
-        # (the same numbers as last cycle for the same server values: fullstate_value is a function of the bits)
-        key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
-        if key == self._ball_key:
-            bx, by, wx, wy = self._ball_numbers
+        # (the kernel converts as the extension's fullstate_value does: not when a test replaced the function)
+        if _ACCEL_MIRRORED_SELF is not None and fs is _ACCEL_FULLSTATE_VALUE:
+            px, py, vx, vy, body, stamina, effort, recovery, bx, by, wx, wy = _ACCEL_MIRRORED_SELF(
+                keeper, ball
+            )
         else:
-            bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
-            self._ball_key = key
-            self._ball_numbers = (bx, by, wx, wy)
-        key = _PACK_FOUR(keeper.body_deg, keeper.stamina, keeper.effort, keeper.recovery)
-        if key == self._body_key:
-            body, stamina, effort, recovery = self._body_numbers
-        else:
-            body = norm_deg(fs(keeper.body_deg) + 180.0)
-            stamina = fs(keeper.stamina)
-            effort = fs(keeper.effort)
-            recovery = fs(keeper.recovery)
-            self._body_key = key
-            self._body_numbers = (body, stamina, effort, recovery)
+            px, py, vx, vy = -fs(keeper.x), -fs(keeper.y), -fs(keeper.vx), -fs(keeper.vy)
+            # (the same numbers as last cycle for the same server values: fullstate_value is a function of the
+            # bits)
+            key = _PACK_FOUR(ball.x, ball.y, ball.vx, ball.vy)
+            if key == self._ball_key:
+                bx, by, wx, wy = self._ball_numbers
+            else:
+                bx, by, wx, wy = -fs(ball.x), -fs(ball.y), -fs(ball.vx), -fs(ball.vy)
+                self._ball_key = key
+                self._ball_numbers = (bx, by, wx, wy)
+            key = _PACK_FOUR(keeper.body_deg, keeper.stamina, keeper.effort, keeper.recovery)
+            if key == self._body_key:
+                body, stamina, effort, recovery = self._body_numbers
+            else:
+                body = norm_deg(fs(keeper.body_deg) + 180.0)
+                stamina = fs(keeper.stamina)
+                effort = fs(keeper.effort)
+                recovery = fs(keeper.recovery)
+                self._body_key = key
+                self._body_numbers = (body, stamina, effort, recovery)
         d_b = math.hypot(bx - px, by - py)
         side = keeper.side
         opponents = [player for player in world.players if player.side != side]
@@ -588,33 +655,24 @@ class Agent2dGoalie:
         other opponent as (x, y, vx, vy, body, tackle freeze) for the intercept table's opponent reach and the
         nearest-opponent distances, and the distance of the opponent nearest to the goalie
         (getOpponentNearestToSelf)."""
-        fs = fullstate_value
-        hypot = math.hypot
-        # (distance from the ball, distance from the goalie, x, y, player): the positions first (every opponent's
-        # is needed), each distance computed once for the sort and the tests below
-        ranked = []
-        for o in opponents:
-            x = -fs(o.x)
-            y = -fs(o.y)
-            ranked.append((hypot(x - bx, y - by), hypot(x - px, y - py), x, y, o))
+        # (distance from the ball, distance from the goalie, (x, y, vx, vy, body, freeze), player), each distance
+        # computed once for the sort and the tests below
+        convert = mirrored_players if fullstate_value is _ACCEL_FULLSTATE_VALUE else mirrored_players_python
+        ranked = convert(opponents, None, bx, by, px, py)
         # stable: equal distances keep the server order, as librcsc's sort of its opponent list does
         ranked.sort(key=_first)
         kick_opp = False
-        for opp_ball, opp_self, _, _, o in ranked:
-            if o.tackle_cycles <= 0:
+        for opp_ball, opp_self, other, _ in ranked:
+            if other[5] <= 0:
                 kick_opp = opponent_may_kick(opp_ball, opp_self, d_b)
                 break
-        # the rest of the numbers only for the opponents after the first
-        others = tuple(
-            (x, y, -fs(o.vx), -fs(o.vy), norm_deg(fs(o.body_deg) + 180.0), o.tackle_cycles)
-            for _, _, x, y, o in ranked[1:]
-        )
+        others = tuple(other for _, _, other, _ in ranked[1:])
         opp_self_dist = math.inf
-        for _, opp_self, _, _, _ in ranked:
+        for _, opp_self, _, _ in ranked:
             if opp_self < opp_self_dist:
                 opp_self_dist = opp_self
-        _, _, x, y, first = ranked[0]
-        return first, (x, y), kick_opp, others, opp_self_dist
+        _, _, other, first = ranked[0]
+        return first, (other[0], other[1]), kick_opp, others, opp_self_dist
 
     def _update_last_kicker(self, view: GoalieView, has_attacker: bool) -> None:
         """WorldModel::updateLastKicker, reduced to HFO 1v1: ours after the goalie's own tackle (or kick), theirs

@@ -29,6 +29,7 @@ import math
 from bisect import bisect_left
 from collections.abc import Iterable
 
+from hfo2d import accel as _accel
 from hfo2d.physics import ServerParams
 
 from . import common as _common
@@ -50,6 +51,7 @@ _ceil = math.ceil
 _floor = math.floor
 _fmod = math.fmod
 
+_ACCEL = _accel.ACCEL  # hfo2d._accel, or None for the pure-Python code (hfo2d.accel)
 _D2R = math.pi / 180.0  # librcsc AngleDeg::DEG2RAD
 _R2D = 180.0 / math.pi  # librcsc AngleDeg::RAD2DEG
 
@@ -155,6 +157,39 @@ def _bind(sp: ServerParams) -> None:
     _ONE_DASH_RATES = tuple(_dash_dir_rate(d) for d in _ONE_DASH_DIRS)
     # predictOmniDashShort: the same grid (step max(15, 45)) without 0
     _OMNI_DIRS = tuple((d, r) for d, r in zip(_ONE_DASH_DIRS, _ONE_DASH_RATES, strict=True) if abs(d) >= 1.0)
+    if _ACCEL is not None:  # the compiled kernels read the same constants
+        _ACCEL.bind_intercept(_KICKABLE_AREA, _REAL_SPEED_MAX, _TACKLE_CYCLES, _PF, _DASH_TABLE)
+        _ACCEL.bind_self_final(tuple(globals()[name] for name in _SELF_FINAL_NAMES), _BF, _PD, _FT_DEN)
+
+
+# the constants of hfo2d._accel's self-intercept kernels (final_entry, turn_short, dash_short), in the order its C
+# enum lists them
+_SELF_FINAL_NAMES = (
+    "_PEN_LINE_X",
+    "_PEN_HALF_W",
+    "_CATCHABLE_AREA",
+    "_MIN_TURN_THR",
+    "_MAX_MOMENT",
+    "_INERTIA_MOMENT",
+    "_PLAYER_DECAY",
+    "_STAMINA_INC_MAX",
+    "_EFFORT_MAX",
+    "_MAX_POWER",
+    "_RECOVER_DEC_THR_VALUE",
+    "_STAMINA_MAX",
+    "_RECOVER_MIN",
+    "_RECOVER_DEC",
+    "_EFFORT_DEC_THR_VALUE",
+    "_EFFORT_MIN",
+    "_EFFORT_DEC",
+    "_EFFORT_INC_THR_VALUE",
+    "_EFFORT_INC",
+    "_CONTROL_AREA_BUF",
+    "_ONE_MINUS_PD",
+    "_DASH_POWER_RATE",
+    "_SAFE_STAMINA",
+    "_MIN_DASH_POWER",
+)
 
 
 def _norm(a: float) -> float:
@@ -316,6 +351,24 @@ def full_self_cache(table: InterceptTable) -> list[InterceptEntry]:
 
 
 def _ball_part(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float, float]:
+    """:func:`_ball_part_python`, computed by hfo2d._accel's kernel when it is in use (the same points)."""
+    if _ACCEL is None:
+        return _ball_part_python(view)
+    return _ACCEL.ball_part(
+        view.bx,
+        view.by,
+        view.wx,
+        view.wy,
+        view.self_kickable,
+        _RESTING_SHORTCUTS,
+        _BALL_DECAY,
+        _CACHE_X_MAX,
+        _CACHE_Y_MAX,
+        _MAX_CYCLE,
+    )
+
+
+def _ball_part_python(view: GoalieView) -> tuple[list[tuple[float, float]], bool, float, float]:
     """createBallCache (empty past B for a kickable goalie), whether the ball rests, and sin, cos of -angle(W):
     the frame along the ball's velocity that the short-step, long-step and opponent predictions share."""
     bx = view.bx
@@ -856,7 +909,7 @@ def _short_step(
             return
 
 
-def _turn_short(
+def _turn_short_python(
     target_angle: float, target_dist: float, body_angle: float, speed: float, turn_area: float
 ) -> tuple[int, float]:
     """predictTurnCycleShort (full max moment, no player_rand): turns and the resulting dash angle.
@@ -884,6 +937,48 @@ def _turn_short(
 
 
 def _dash_short(
+    me: tuple,
+    wt: list,
+    cycle: int,
+    n_turn: int,
+    dash_angle: float,
+    back: bool,
+    xbx: float,
+    xby: float,
+    ca: float,
+    ix: float,
+    iy: float,
+    target_angle: float,
+    tmp: list[tuple],
+) -> None:
+    """:func:`_dash_short_python`, computed by hfo2d._accel's kernel when it is in use (the same candidates; the
+    kernel simulates the waits from ``wt[0]`` instead of reading and extending the memo ``wt``)."""
+    if _ACCEL is None:
+        _dash_short_python(me, wt, cycle, n_turn, dash_angle, back, xbx, xby, ca, ix, iy, target_angle, tmp)
+        return
+    stamina, effort, recovery = wt[0]
+    tmp += _ACCEL.dash_short(
+        me[0],
+        me[1],
+        me[2],
+        me[3],
+        stamina,
+        effort,
+        recovery,
+        cycle,
+        n_turn,
+        dash_angle,
+        back,
+        xbx,
+        xby,
+        ca,
+        ix,
+        iy,
+        target_angle,
+    )
+
+
+def _dash_short_python(
     me: tuple,
     wt: list,
     cycle: int,
@@ -1464,6 +1559,35 @@ def _final_entry(
     max_cycle: int,
     player_rand: float,
 ) -> InterceptEntry:
+    """:func:`_final_entry_python`, computed by hfo2d._accel's kernel when it is in use (the same entry; the
+    kernel simulates the waits from ``wt[0]`` instead of reading and extending the memo ``wt``)."""
+    if _ACCEL is None:
+        return _final_entry_python(
+            px, py, vx, vy, body, speed, lk, bx, by, wx, wy, wt, max_cycle, player_rand
+        )
+    stamina, effort, recovery = wt[0]
+    n_turn, n_dash, xfx, xfy, stamina = _ACCEL.final_entry(
+        px, py, vx, vy, body, speed, lk, bx, by, wx, wy, stamina, effort, recovery, max_cycle, player_rand
+    )
+    return InterceptEntry(NORMAL, n_turn, n_dash, _MAX_POWER, 0.0, xfx, xfy, 0.0, stamina)
+
+
+def _final_entry_python(
+    px: float,
+    py: float,
+    vx: float,
+    vy: float,
+    body: float,
+    speed: float,
+    lk: bool,
+    bx: float,
+    by: float,
+    wx: float,
+    wy: float,
+    wt: list,
+    max_cycle: int,
+    player_rand: float,
+) -> InterceptEntry:
     """predictFinal's entry (``body`` normalised, ``speed`` = |V|, ``wt`` the stamina states after 0, 1, ... waits)."""
     f = _PF[100]
     qx = px + vx * f
@@ -1607,8 +1731,35 @@ def fastest_reach(
     best: int = 1000,
 ) -> int:
     """``min(best, predict_player_reach(view, cache, p, teammate) for p in players)`` on a ball part of ``view``
-    (:func:`_ball_part`'s (cache, resting, sin, cos)): the ball's frame is the ball part's, not computed again
-    for every player (the same numbers: both come from the view's W by the same operations)."""
+    (:func:`_ball_part`'s (cache, resting, sin, cos)): :func:`fastest_reach_python`, computed by hfo2d._accel's
+    kernel when it is in use (the same cycles)."""
+    if _ACCEL is None:
+        return fastest_reach_python(view, ball, players, teammate, best)
+    cache, _, sin_a, cos_a = ball
+    return _ACCEL.fastest_reach(
+        players,
+        cache,
+        view.bx,
+        view.by,
+        view.px,
+        view.py,
+        view.wx == 0.0 and view.wy == 0.0 and _RESTING_SHORTCUTS,
+        sin_a,
+        cos_a,
+        teammate,
+        best,
+    )
+
+
+def fastest_reach_python(
+    view: GoalieView,
+    ball: tuple,
+    players: Iterable[tuple[float, float, float, float, float, int]],
+    teammate: bool,
+    best: int = 1000,
+) -> int:
+    """:func:`fastest_reach` in pure Python (the reference): the ball's frame is the ball part's, not computed
+    again for every player (the same numbers: both come from the view's W by the same operations)."""
     cache, _, sin_a, cos_a = ball
     bx = view.bx
     by = view.by
@@ -1617,13 +1768,33 @@ def fastest_reach(
         x, y, vx, vy, body, frozen = player
         rel_y = (x - bx) * sin_a + (y - by) * cos_a
         self_dist = 0.0 if teammate else _sqrt((x - view.px) * (x - view.px) + (y - view.py) * (y - view.py))
-        reach = _predict_player(x, y, vx, vy, body, frozen, resting, self_dist, cache, rel_y)
+        reach = _predict_player_python(x, y, vx, vy, body, frozen, resting, self_dist, cache, rel_y)
         if reach < best:
             best = reach
     return best
 
 
 def _predict_player(
+    ox: float,
+    oy: float,
+    ux: float,
+    uy: float,
+    obody: float,
+    frozen: int,
+    resting: bool,
+    self_dist: float,
+    cache: list[tuple[float, float]],
+    rel_y: float,
+) -> int:
+    """:func:`_predict_player_python`, computed by hfo2d._accel's kernel when it is in use (the same cycle)."""
+    if _ACCEL is None:
+        return _predict_player_python(ox, oy, ux, uy, obody, frozen, resting, self_dist, cache, rel_y)
+    return _ACCEL.predict_player(
+        ox, oy, ux, uy, obody, frozen, resting and _RESTING_SHORTCUTS, self_dist, cache, rel_y
+    )
+
+
+def _predict_player_python(
     ox: float,
     oy: float,
     ux: float,
@@ -1683,3 +1854,7 @@ def _predict_player(
         return n_cache
     n_dash = max(1, cycles_to_reach_distance(dash_dist))
     return max(n_cache, n_turn + n_dash)
+
+
+#: :func:`_turn_short_python`, computed by hfo2d._accel's kernel when it is in use (the same turns and angle)
+_turn_short = _turn_short_python if _ACCEL is None else _ACCEL.turn_short
