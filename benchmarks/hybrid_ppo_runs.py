@@ -4,7 +4,9 @@ A training run of :class:`sb3_hfo.hybrid_ppo.HybridPPO` on ``n_envs`` games of o
 (:func:`sb3_hfo.vec_env.make_hfo_vec_env`), with what the experiments need and rl-zoo3 does not give:
 
 * a wall-clock budget (``--minutes``) besides the step budget (``--steps``), and the wall clock and load average
-  recorded with every row;
+  recorded with every row; ``--stop-at N`` ends a run at N steps while its learning-rate schedule still runs
+  over ``--steps`` (a leg cut at the same step count as an earlier leg that ``--minutes`` cut, whatever the
+  machine's load: ``--steps 4000000`` instead would decay the rate to 0 by 4M);
 * periodic greedy evaluations against the *evaluation* env (``--eval-every`` steps, ``--eval-episodes``
   episodes; for E6 the full-strength goalie whatever the training curriculum says), written to ``curve.jsonl``
   with the end-status counts, and a checkpoint of each evaluated model, so curves show where a run stalls;
@@ -189,18 +191,22 @@ class RunRecorder(BaseCallback):
         eval_every: int,
         evaluate: Any,
         curricula: list[BaseCallback] | None = None,
+        stop_at: int | None = None,
     ) -> None:
         super().__init__()
         self.curricula = (
             curricula or []
         )  # their training settings (keeper_skill, start_shift) go into every row
         self.out, self.budget_s, self.eval_every, self.evaluate = out, minutes * 60.0, eval_every, evaluate
+        self.stop_at = stop_at  # a step cap that leaves the schedules over the step budget
         self.started = time.time()
         self.next_eval = eval_every
         self.train_seconds = 0.0  # wall clock without the periodic evaluations
         self._eval_seconds = 0.0
 
     def _on_step(self) -> bool:
+        if self.stop_at is not None and self.num_timesteps >= self.stop_at:
+            return False  # like the wall-clock cap: the unfinished rollout is not trained on
         return self.train_seconds_now() < self.budget_s
 
     def train_seconds_now(self) -> float:
@@ -250,6 +256,13 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--steps", type=int, default=None, help="step budget (default: the preset's)")
     parser.add_argument("--minutes", type=float, default=600.0, help="wall-clock budget of training")
+    parser.add_argument(
+        "--stop-at",
+        type=int,
+        default=None,
+        help="end the run once it has taken this many steps; the learning-rate schedule still runs over the step "
+        "budget (--steps or the preset's)",
+    )
     parser.add_argument("--eval-every", type=int, default=1_000_000)
     parser.add_argument("--eval-episodes", type=int, default=100)
     parser.add_argument("--hp", default="{}", help="JSON: hyperparameters over the preset's")
@@ -309,6 +322,8 @@ def main(argv: list[str] | None = None) -> None:
             parser.error(
                 f"--paced-start takes SHIFT:STEP:THRESHOLD:WINDOW (e.g. 30:5:0.7:200), got {args.paced_start!r}"
             )
+    if args.stop_at is not None and not 0 < args.stop_at <= steps:
+        parser.error(f"--stop-at must lie in (0, {steps}] (the step budget), got {args.stop_at}")
     if (args.out / "curve.jsonl").exists():
         parser.error(f"{args.out} already holds a run (curve.jsonl); choose another --out")
     args.out.mkdir(parents=True, exist_ok=True)
@@ -322,6 +337,7 @@ def main(argv: list[str] | None = None) -> None:
         "seed": args.seed,
         "steps": steps,
         "minutes": args.minutes,
+        "stop_at": args.stop_at,
         "curriculum": curriculum,
         "paced_curriculum": paced,
         "paced_start_curriculum": paced_start,
@@ -376,7 +392,9 @@ def main(argv: list[str] | None = None) -> None:
                 shift, 0.0, step, threshold=threshold, window=window, verbose=1, wait_for=keeper
             )
         )
-    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate, curricula=list(callbacks))
+    recorder = RunRecorder(
+        args.out, args.minutes, eval_every, evaluate, curricula=list(callbacks), stop_at=args.stop_at
+    )
     callbacks.insert(0, recorder)
     model.learn(steps, callback=CallbackList(callbacks), progress_bar=False)
     recorder.row(final=True)
