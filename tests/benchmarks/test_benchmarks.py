@@ -234,3 +234,40 @@ def test_hybrid_ppo_runs_e6_carry_is_e6_with_the_carry_reward_and_the_full_goali
     assert record["env_kwargs"] == {"reward": "carry"} and record["curriculum"] is None
     rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
     assert rows[-1]["final"] and "keeper_skill" not in rows[-1]
+
+
+def test_hybrid_ppo_runs_stop_at_cuts_the_run_but_keeps_the_schedule_over_the_step_budget(
+    tmp_path: Path,
+) -> None:
+    """``--stop-at`` ends a leg at a step count while the learning rate still decays over the step budget: the
+    smoke budget is 2,048 steps in rollouts of 1,024, so a run stopped at 1,536 has trained once, at
+    progress_remaining 1 - 1024 / 2048 = 0.5 (a run whose budget were 1,536 would be at 1 - 1024 / 1536)."""
+    from sb3_hfo.hybrid_ppo import HybridPPO
+
+    out = tmp_path / "stopped"
+    command = [sys.executable, str(REPO / "benchmarks" / "hybrid_ppo_runs.py"), "e6_carry", "--smoke"]
+    completed = subprocess.run(
+        [*command, "--out", str(out), "--stop-at", "1536"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=tmp_path,
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
+    assert [(row["steps"], row["final"]) for row in rows] == [(1024, False), (1536, True)]
+    record = json.loads((out / "run.json").read_text())
+    assert record["steps"] == 2048 and record["stop_at"] == 1536
+    model = HybridPPO.load(out / "final.zip", device="cpu")
+    assert model.num_timesteps == 1536 and model._current_progress_remaining == 0.5
+    # a cap beyond the step budget is refused before anything is written
+    refused = tmp_path / "refused"
+    completed = subprocess.run(
+        [*command, "--out", str(refused), "--stop-at", "4096"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=tmp_path,
+    )
+    assert completed.returncode == 2 and "--stop-at must lie in (0, 2048]" in completed.stderr
+    assert not refused.exists()
