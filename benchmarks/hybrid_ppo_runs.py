@@ -24,7 +24,9 @@ A training run of :class:`sb3_hfo.hybrid_ppo.HybridPPO` on ``n_envs`` games of o
 
 ``--init RUN/model_N.zip`` starts a run from an earlier run's policy weights (its optimizers and reward
 normaliser start afresh): a run continued with other settings, e.g. a shorter curriculum; its wall clock adds to
-the earlier run's.
+the earlier run's. ``--reset-log-std V`` (with ``--init``) sets every parameter head's log standard deviation to V
+after loading: the continued run explores the parameters again (research/e6_from_reward.md Part D, seed 1: its
+kick-power deviation had shrunk to ~2 power units before it ever kicked hard near the goal).
 
 How the model is made: from reward alone. No demonstrations, no scripted labels, no imitation term.
 
@@ -249,6 +251,22 @@ class RunRecorder(BaseCallback):
         return row
 
 
+def reset_log_std(model: HybridPPO, value: float) -> int:
+    """Set every parameter head's state-independent log standard deviation (normalised scale) to ``value``; the
+    number of heads changed. The means, the categoricals and the critic are untouched."""
+    if not np.isfinite(value):
+        raise ValueError(f"reset_log_std: value must be finite, got {value!r}")
+    changed = 0
+    with th.no_grad():
+        for name, parameter in model.policy.named_parameters():
+            if name.endswith("log_std"):
+                parameter.fill_(value)
+                changed += 1
+    if changed == 0:
+        raise ValueError("reset_log_std: the policy has no log_std parameter")
+    return changed
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("preset", choices=sorted(PRESETS))
@@ -288,6 +306,12 @@ def main(argv: list[str] | None = None) -> None:
         default=None,
         help="start from this HybridPPO zip's policy weights (a run continued)",
     )
+    parser.add_argument(
+        "--reset-log-std",
+        type=float,
+        default=None,
+        help="with --init: set the loaded policy's parameter log standard deviations to this value (explore again)",
+    )
     parser.add_argument("--smoke", action="store_true", help="a few seconds: tiny budget and evaluation")
     args = parser.parse_args(argv)
 
@@ -324,6 +348,8 @@ def main(argv: list[str] | None = None) -> None:
             )
     if args.stop_at is not None and not 0 < args.stop_at <= steps:
         parser.error(f"--stop-at must lie in (0, {steps}] (the step budget), got {args.stop_at}")
+    if args.reset_log_std is not None and args.init is None:
+        parser.error("--reset-log-std resets a loaded policy: it needs --init")
     if (args.out / "curve.jsonl").exists():
         parser.error(f"{args.out} already holds a run (curve.jsonl); choose another --out")
     args.out.mkdir(parents=True, exist_ok=True)
@@ -346,6 +372,7 @@ def main(argv: list[str] | None = None) -> None:
         "load1_at_start": load_average(),
         "method": "reinforcement learning from reward (no demonstrations, no imitation)",
         "init": None if args.init is None else str(args.init),
+        "reset_log_std": args.reset_log_std,
     }
     (args.out / "run.json").write_text(json.dumps(record, indent=1))
 
@@ -365,6 +392,8 @@ def main(argv: list[str] | None = None) -> None:
         args.init is not None
     ):  # the weights of an earlier run of the same architecture (its optimizers start afresh)
         model.policy.load_state_dict(HybridPPO.load(args.init, device="cpu").policy.state_dict())
+        if args.reset_log_std is not None:
+            reset_log_std(model, args.reset_log_std)
 
     def evaluate(policy_model: HybridPPO) -> dict:
         # the evaluation env has the id's own goalie strength (the full goalie for Keeper-v1)
