@@ -4,7 +4,9 @@ A training run of :class:`sb3_hfo.hybrid_ppo.HybridPPO` on ``n_envs`` games of o
 (:func:`sb3_hfo.vec_env.make_hfo_vec_env`), with what the experiments need and rl-zoo3 does not give:
 
 * a wall-clock budget (``--minutes``) besides the step budget (``--steps``), and the wall clock and load average
-  recorded with every row;
+  recorded with every row; ``--stop-at N`` ends a run at N steps while its learning-rate schedule still runs
+  over ``--steps`` (a leg cut at the same step count as an earlier leg that ``--minutes`` cut, whatever the
+  machine's load: ``--steps 4000000`` instead would decay the rate to 0 by 4M);
 * periodic greedy evaluations against the *evaluation* env (``--eval-every`` steps, ``--eval-episodes``
   episodes; for E6 the full-strength goalie whatever the training curriculum says), written to ``curve.jsonl``
   with the end-status counts, and a checkpoint of each evaluated model, so curves show where a run stalls;
@@ -22,7 +24,9 @@ A training run of :class:`sb3_hfo.hybrid_ppo.HybridPPO` on ``n_envs`` games of o
 
 ``--init RUN/model_N.zip`` starts a run from an earlier run's policy weights (its optimizers and reward
 normaliser start afresh): a run continued with other settings, e.g. a shorter curriculum; its wall clock adds to
-the earlier run's.
+the earlier run's. ``--reset-log-std V`` (with ``--init``) sets every parameter head's log standard deviation to V
+after loading: the continued run explores the parameters again (research/e6_from_reward.md Part D, seed 1: its
+kick-power deviation had shrunk to ~2 power units before it ever kicked hard near the goal).
 
 How the model is made: from reward alone. No demonstrations, no scripted labels, no imitation term.
 
@@ -189,18 +193,22 @@ class RunRecorder(BaseCallback):
         eval_every: int,
         evaluate: Any,
         curricula: list[BaseCallback] | None = None,
+        stop_at: int | None = None,
     ) -> None:
         super().__init__()
         self.curricula = (
             curricula or []
         )  # their training settings (keeper_skill, start_shift) go into every row
         self.out, self.budget_s, self.eval_every, self.evaluate = out, minutes * 60.0, eval_every, evaluate
+        self.stop_at = stop_at  # a step cap that leaves the schedules over the step budget
         self.started = time.time()
         self.next_eval = eval_every
         self.train_seconds = 0.0  # wall clock without the periodic evaluations
         self._eval_seconds = 0.0
 
     def _on_step(self) -> bool:
+        if self.stop_at is not None and self.num_timesteps >= self.stop_at:
+            return False  # like the wall-clock cap: the unfinished rollout is not trained on
         return self.train_seconds_now() < self.budget_s
 
     def train_seconds_now(self) -> float:
@@ -243,6 +251,22 @@ class RunRecorder(BaseCallback):
         return row
 
 
+def reset_log_std(model: HybridPPO, value: float) -> int:
+    """Set every parameter head's state-independent log standard deviation (normalised scale) to ``value``; the
+    number of heads changed. The means, the categoricals and the critic are untouched."""
+    if not np.isfinite(value):
+        raise ValueError(f"reset_log_std: value must be finite, got {value!r}")
+    changed = 0
+    with th.no_grad():
+        for name, parameter in model.policy.named_parameters():
+            if name.endswith("log_std"):
+                parameter.fill_(value)
+                changed += 1
+    if changed == 0:
+        raise ValueError("reset_log_std: the policy has no log_std parameter")
+    return changed
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("preset", choices=sorted(PRESETS))
@@ -250,6 +274,13 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--steps", type=int, default=None, help="step budget (default: the preset's)")
     parser.add_argument("--minutes", type=float, default=600.0, help="wall-clock budget of training")
+    parser.add_argument(
+        "--stop-at",
+        type=int,
+        default=None,
+        help="end the run once it has taken this many steps; the learning-rate schedule still runs over the step "
+        "budget (--steps or the preset's)",
+    )
     parser.add_argument("--eval-every", type=int, default=1_000_000)
     parser.add_argument("--eval-episodes", type=int, default=100)
     parser.add_argument("--hp", default="{}", help="JSON: hyperparameters over the preset's")
@@ -274,6 +305,12 @@ def main(argv: list[str] | None = None) -> None:
         type=Path,
         default=None,
         help="start from this HybridPPO zip's policy weights (a run continued)",
+    )
+    parser.add_argument(
+        "--reset-log-std",
+        type=float,
+        default=None,
+        help="with --init: set the loaded policy's parameter log standard deviations to this value (explore again)",
     )
     parser.add_argument("--smoke", action="store_true", help="a few seconds: tiny budget and evaluation")
     args = parser.parse_args(argv)
@@ -309,6 +346,10 @@ def main(argv: list[str] | None = None) -> None:
             parser.error(
                 f"--paced-start takes SHIFT:STEP:THRESHOLD:WINDOW (e.g. 30:5:0.7:200), got {args.paced_start!r}"
             )
+    if args.stop_at is not None and not 0 < args.stop_at <= steps:
+        parser.error(f"--stop-at must lie in (0, {steps}] (the step budget), got {args.stop_at}")
+    if args.reset_log_std is not None and args.init is None:
+        parser.error("--reset-log-std resets a loaded policy: it needs --init")
     if (args.out / "curve.jsonl").exists():
         parser.error(f"{args.out} already holds a run (curve.jsonl); choose another --out")
     args.out.mkdir(parents=True, exist_ok=True)
@@ -322,6 +363,7 @@ def main(argv: list[str] | None = None) -> None:
         "seed": args.seed,
         "steps": steps,
         "minutes": args.minutes,
+        "stop_at": args.stop_at,
         "curriculum": curriculum,
         "paced_curriculum": paced,
         "paced_start_curriculum": paced_start,
@@ -330,6 +372,7 @@ def main(argv: list[str] | None = None) -> None:
         "load1_at_start": load_average(),
         "method": "reinforcement learning from reward (no demonstrations, no imitation)",
         "init": None if args.init is None else str(args.init),
+        "reset_log_std": args.reset_log_std,
     }
     (args.out / "run.json").write_text(json.dumps(record, indent=1))
 
@@ -349,6 +392,8 @@ def main(argv: list[str] | None = None) -> None:
         args.init is not None
     ):  # the weights of an earlier run of the same architecture (its optimizers start afresh)
         model.policy.load_state_dict(HybridPPO.load(args.init, device="cpu").policy.state_dict())
+        if args.reset_log_std is not None:
+            reset_log_std(model, args.reset_log_std)
 
     def evaluate(policy_model: HybridPPO) -> dict:
         # the evaluation env has the id's own goalie strength (the full goalie for Keeper-v1)
@@ -376,7 +421,9 @@ def main(argv: list[str] | None = None) -> None:
                 shift, 0.0, step, threshold=threshold, window=window, verbose=1, wait_for=keeper
             )
         )
-    recorder = RunRecorder(args.out, args.minutes, eval_every, evaluate, curricula=list(callbacks))
+    recorder = RunRecorder(
+        args.out, args.minutes, eval_every, evaluate, curricula=list(callbacks), stop_at=args.stop_at
+    )
     callbacks.insert(0, recorder)
     model.learn(steps, callback=CallbackList(callbacks), progress_bar=False)
     recorder.row(final=True)

@@ -234,3 +234,139 @@ def test_hybrid_ppo_runs_e6_carry_is_e6_with_the_carry_reward_and_the_full_goali
     assert record["env_kwargs"] == {"reward": "carry"} and record["curriculum"] is None
     rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
     assert rows[-1]["final"] and "keeper_skill" not in rows[-1]
+
+
+def test_hybrid_ppo_runs_stop_at_cuts_the_run_but_keeps_the_schedule_over_the_step_budget(
+    tmp_path: Path,
+) -> None:
+    """``--stop-at`` ends a leg at a step count while the learning rate still decays over the step budget: the
+    smoke budget is 2,048 steps in rollouts of 1,024, so a run stopped at 1,536 has trained once, at
+    progress_remaining 1 - 1024 / 2048 = 0.5 (a run whose budget were 1,536 would be at 1 - 1024 / 1536)."""
+    from sb3_hfo.hybrid_ppo import HybridPPO
+
+    out = tmp_path / "stopped"
+    command = [sys.executable, str(REPO / "benchmarks" / "hybrid_ppo_runs.py"), "e6_carry", "--smoke"]
+    completed = subprocess.run(
+        [*command, "--out", str(out), "--stop-at", "1536"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=tmp_path,
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    rows = [json.loads(line) for line in (out / "curve.jsonl").read_text().splitlines()]
+    assert [(row["steps"], row["final"]) for row in rows] == [(1024, False), (1536, True)]
+    record = json.loads((out / "run.json").read_text())
+    assert record["steps"] == 2048 and record["stop_at"] == 1536
+    model = HybridPPO.load(out / "final.zip", device="cpu")
+    assert model.num_timesteps == 1536 and model._current_progress_remaining == 0.5
+    # a cap beyond the step budget is refused before anything is written
+    refused = tmp_path / "refused"
+    completed = subprocess.run(
+        [*command, "--out", str(refused), "--stop-at", "4096"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        cwd=tmp_path,
+    )
+    assert completed.returncode == 2 and "--stop-at must lie in (0, 2048]" in completed.stderr
+    assert not refused.exists()
+
+
+def test_hybrid_ppo_runs_reset_log_std_reopens_exploration_of_a_continued_policy(tmp_path: Path) -> None:
+    """``--reset-log-std V`` with ``--init`` sets the loaded heads' log standard deviations to V and keeps the means;
+    without ``--init`` it is refused."""
+    from sb3_hfo.hybrid_ppo import HybridPPO
+
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        import hybrid_ppo_runs
+    finally:
+        sys.path.remove(str(REPO / "benchmarks"))
+    command = [sys.executable, str(REPO / "benchmarks" / "hybrid_ppo_runs.py"), "e6_carry", "--smoke"]
+    first = tmp_path / "first"
+    completed = subprocess.run(
+        [*command, "--out", str(first), "--stop-at", "1024"], capture_output=True, text=True, timeout=300
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    trained = HybridPPO.load(first / "final.zip", device="cpu")
+    before = {name: value.clone() for name, value in trained.policy.state_dict().items()}
+    assert hybrid_ppo_runs.reset_log_std(trained, -2.0) == 1
+    for name, value in trained.policy.state_dict().items():
+        if name.endswith("log_std"):
+            assert (value == -2.0).all() and not (before[name] == -2.0).all()
+        else:
+            assert (value == before[name]).all(), name
+    # through the command line: the continued run starts from the loaded means with the new deviations
+    continued = tmp_path / "continued"
+    completed = subprocess.run(
+        [*command, "--out", str(continued), "--init", str(first / "final.zip"), "--reset-log-std", "-2.0"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    assert json.loads((continued / "run.json").read_text())["reset_log_std"] == -2.0
+    log_std = HybridPPO.load(continued / "final.zip", device="cpu").policy.heads[0].log_std
+    # two smoke updates move it by at most ~0.04 (80 Adam steps of 5e-4); the preset starts at -0.5
+    assert (log_std - (-2.0)).abs().max() < 0.1
+    refused = subprocess.run(
+        [*command, "--out", str(tmp_path / "refused"), "--reset-log-std", "-2.0"],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert refused.returncode == 2 and "needs --init" in refused.stderr
+
+
+def test_capture_split_tells_a_carry_into_the_goalie_from_a_saved_shot(tmp_path: Path) -> None:
+    """benchmarks/capture_split.py: the split's rule on hand-made episodes, and a short run end to end."""
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        import capture_split
+    finally:
+        sys.path.remove(str(REPO / "benchmarks"))
+    touch = {"power": 10.0, "distance_m": 6.0, "ball_speed": 0.5, "step": 40, "cycles_before_end": 2}
+    shot = {**touch, "power": 90.0, "ball_speed": 2.2}
+    carried = {"status": "CAPTURED_BY_DEFENSE", "agent_ball_m": 1.1, "ball_goal_m": 5.0, "last_kick": touch}
+    saved = {"status": "CAPTURED_BY_DEFENSE", "agent_ball_m": 3.5, "ball_goal_m": 3.0, "last_kick": shot}
+    near_shot = {**saved, "agent_ball_m": 1.5}  # still within the carry radius: on the ball
+    goal = {"status": "GOAL", "agent_ball_m": 5.0, "ball_goal_m": 0.0, "last_kick": shot}
+    assert capture_split.capture_kind(carried) == "on_the_ball"
+    assert capture_split.capture_kind(saved) == "after_a_shot"
+    assert capture_split.capture_kind(near_shot) == "on_the_ball"
+    summary = capture_split.summarize([carried, saved, near_shot, goal])
+    assert summary["goals"] == 1 and summary["status"] == {"CAPTURED_BY_DEFENSE": 3, "GOAL": 1}
+    assert {name: kind["episodes"] for name, kind in summary["by_kind"].items()} == {
+        "goal": 1,
+        "on_the_ball": 2,
+        "after_a_shot": 1,
+    }
+    assert summary["by_kind"]["after_a_shot"]["last_kick_ball_speed_bins"] == {"1.8-2.4": 1}
+    # end to end on an untrained model: every episode is played and counted once
+    from sb3_hfo.hybrid_ppo import HybridPPO
+    from sb3_hfo.vec_env import make_hfo_vec_env
+
+    env = make_hfo_vec_env("HFO/Keeper-v1", 2, seed=0)
+    HybridPPO("MlpPolicy", env, n_steps=64, batch_size=64, seed=0).save(tmp_path / "untrained.zip")
+    env.close()
+    out = tmp_path / "split.json"
+    completed = subprocess.run(
+        [
+            sys.executable,
+            str(REPO / "benchmarks" / "capture_split.py"),
+            str(tmp_path / "untrained.zip"),
+            "--episodes",
+            "6",
+            "--env-kwargs",
+            '{"frames_per_trial": 40}',
+            "--json",
+            str(out),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert completed.returncode == 0, completed.stderr[-2000:]
+    result = json.loads(out.read_text())
+    assert result["episodes"] == 6 and sum(result["status"].values()) == 6
