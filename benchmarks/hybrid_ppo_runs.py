@@ -46,6 +46,8 @@ Presets (``--hp JSON`` overrides any hyperparameter; ``--env-kwargs JSON`` the e
   only as new records set with the ball within 2 m of the agent, 0.002 a cycle, 5 a goal) and the full goalie from
   HFO's own starts from the first step (no curriculum: a weak goalie pays long shots); research/e6_from_reward.md
   Part D.
+* ``e6_carry_shot``: ``e6_carry`` with the reward ``"carry_shot"`` (the carry reward plus a record of the shot
+  speed at the goal mouth, paid for kicks within 12 m of the goal centre); research/e6_from_reward.md Part E.
 """
 
 from __future__ import annotations
@@ -120,6 +122,9 @@ PRESETS: dict[str, dict[str, Any]] = {
 PRESETS["e6_carry"] = json.loads(json.dumps(PRESETS["e6"]))  # a deep copy
 PRESETS["e6_carry"]["env_kwargs"] = {"reward": "carry"}
 PRESETS["e6_carry"]["curriculum"] = None
+# E6 with the carry reward and its shot record (research/e6_from_reward.md Part E): ``e6_carry`` otherwise.
+PRESETS["e6_carry_shot"] = json.loads(json.dumps(PRESETS["e6_carry"]))
+PRESETS["e6_carry_shot"]["env_kwargs"] = {"reward": "carry_shot"}
 
 # E2 (issue 33, item 4: the learned router against the hand-coded one): E1's recipe with the paper's two skills (one
 # actor head and one Adam each); ``field_half`` routes by the ball's field half (the paper's rule), ``learned`` adds

@@ -65,6 +65,24 @@ pays how far the ball-to-goal distance then lies below the record (and lowers th
 
 The terms are ``move_to_ball``, ``kick_bonus``, ``ball_to_goal`` (the carry record), ``goal`` and ``cycle_cost``.
 
+Carry and shoot (``"carry_shot"``; not HFO's, an option of this package, research/e6_from_reward.md Part E)::
+
+    r_t = carry's r_t + 1 · shot_record_t
+
+``"carry"`` plus a ``shot`` term, its twin for the last kick: 1 per m/cycle of the ball's *new record* speed on a
+step that follows one where the ball was kickable, when the kick was taken within ``SHOT_RANGE`` (12 m) of the
+goal centre and the ball's path (a straight line from the ball along its velocity) crosses the goal line between
+the posts. Why: under ``"carry"`` two seeds of three carried the ball to 5-6 m from the goal and lost it to the
+goalie for millions of steps without ever shooting; their kick-power deviation (one per head, the same in every
+state) had shrunk to ~3 power units for the dribbling touches, so a shot (power 50-100) was a 10-30-sigma draw and
+nothing near the goal paid a harder kick. Here a slightly harder kick at the goal pays at once (about 0.03 per
+power unit), whether or not it scores. Records only: it sums to at most the fastest shot's speed (~3 per episode,
+below the goal's 5), and a kick fast toward the goal pays once; ``soft_dribble``'s touches near the goal pay their
+speed (~0.6) once, and its shot from 10-11 m ~2.6. The goalie's block is not read: a saved shot pays like a scored one, and the goal's 5 tells
+them apart.
+
+The terms are ``"carry"``'s and ``shot``.
+
 Sparse: 1 on GOAL, else 0 (gym-soccer's Soccer-v0, hfo_reference §6.3).
 """
 
@@ -78,6 +96,10 @@ from hfo2d.features import (
     BALL_ANGLE_COS,
     BALL_ANGLE_SIN,
     BALL_PROXIMITY,
+    BALL_SPEED,
+    BALL_SPEED_MAX,
+    BALL_VEL_ANGLE_COS,
+    BALL_VEL_ANGLE_SIN,
     GOAL_CENTER_COS,
     GOAL_CENTER_PROXIMITY,
     GOAL_CENTER_SIN,
@@ -93,10 +115,12 @@ from hfo2d.features import (
     GOALIE_PROXIMITY,
     KICKABLE,
     MAX_HFO_DIST,
+    SELF_BODY_COS,
+    SELF_BODY_SIN,
     landmark_position,
 )
 
-REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "carry", "sparse")
+REWARD_NAMES: tuple[str, ...] = ("shaped", "shaped_gap", "shaped_gap_refund", "carry", "carry_shot", "sparse")
 #: The rewards that read the goalie's block (:func:`gap_target`: features 58-65, where HFO/Keeper-v1's layout has the
 #: goalie). A team's layout puts the nearest teammate there, so a team env gives these rewards the 1v1 view of the
 #: same state (the 58 basic features, then the goalie's block alone).
@@ -121,6 +145,14 @@ POSSESSION_RADIUS = 2.0
 CARRY_WEIGHT = BALL_TO_GOAL_WEIGHT  # per feature unit of the ball-to-goal record (0.096 per metre)
 CYCLE_COST = 0.002  # taken every step
 CARRY_TERM_NAMES: tuple[str, ...] = (*REWARD_TERM_NAMES, "cycle_cost")
+# The carry-and-shoot reward (module docstring): a kick counts as a shot when taken with the ball within this many
+# metres of the goal centre. The stalled carry runs lost the ball at 5-6 m; seed 0's scoring shots left from ~5-6 m;
+# the scripted soft_dribble (hfo2d.strikers; 93.8 % against agent2d's goalie) shoots from 9.5-11.5 m.
+SHOT_RANGE = 12.0
+SHOT_WEIGHT = (
+    1.0  # per m/cycle of the record shot speed: a full-power kick (~2.7 m/cycle) pays ~2.7, the goal 5
+)
+CARRY_SHOT_TERM_NAMES: tuple[str, ...] = (*CARRY_TERM_NAMES, "shot")
 
 
 class RewardFunction(Protocol):
@@ -335,6 +367,83 @@ class CarryReward:
         return sum(terms.values()), terms
 
 
+def shot_speed_at_goal(features: Sequence[float]) -> float:
+    """The ball's speed (m/cycle) when its straight path crosses the goal line between the posts, else 0.
+
+    From the features alone: the ball's body-frame position (features 51-53), its speed (55) and global heading
+    (56, 57) turned into the body frame by the global body angle (5, 6), and the posts (16-21).
+    """
+    scaled_speed = float(features[BALL_SPEED])
+    speed = BALL_SPEED_MAX if scaled_speed >= 1.0 else (scaled_speed + 1.0) * 0.5 * BALL_SPEED_MAX
+    if speed <= 0.0:
+        return 0.0
+    ball_x, ball_y = landmark_position(features, BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
+    # heading relative to the body: sin/cos of (velocity heading - body angle)
+    vel_sin, vel_cos = float(features[BALL_VEL_ANGLE_SIN]), float(features[BALL_VEL_ANGLE_COS])
+    body_sin, body_cos = float(features[SELF_BODY_SIN]), float(features[SELF_BODY_COS])
+    direction_x = vel_cos * body_cos + vel_sin * body_sin
+    direction_y = vel_sin * body_cos - vel_cos * body_sin
+    top_x, top_y = landmark_position(features, GOAL_POST_TOP_SIN, GOAL_POST_TOP_COS, GOAL_POST_TOP_PROXIMITY)
+    bottom_x, bottom_y = landmark_position(
+        features, GOAL_POST_BOTTOM_SIN, GOAL_POST_BOTTOM_COS, GOAL_POST_BOTTOM_PROXIMITY
+    )
+    # ball + t * direction = top + s * (bottom - top), solved for t (ahead: t > 0) and s (between the posts)
+    post_x, post_y = bottom_x - top_x, bottom_y - top_y
+    determinant = direction_x * (-post_y) + direction_y * post_x
+    if abs(determinant) < 1e-9:  # parallel to the goal line
+        return 0.0
+    offset_x, offset_y = top_x - ball_x, top_y - ball_y
+    ahead = (offset_x * (-post_y) + offset_y * post_x) / determinant
+    along = (direction_x * offset_y - direction_y * offset_x) / determinant
+    return speed if ahead > 0.0 and 0.0 <= along <= 1.0 else 0.0
+
+
+class CarryShotReward(CarryReward):
+    """``carry`` plus a record of the shot speed at the goal mouth, for kicks taken near the goal (docstring)."""
+
+    term_names = CARRY_SHOT_TERM_NAMES
+
+    def __init__(self) -> None:
+        super().__init__()
+        self._shot_record = 0.0  # fastest qualifying shot of the episode, m/cycle
+        self._previous_kickable = False
+        self._previous_ball_to_goal_m = math.inf
+
+    def reset(self, features: Sequence[float] | None = None) -> None:
+        """Start a new episode: no carry or shot record, the kick bonus available again."""
+        super().reset(features)
+        self._shot_record = 0.0
+        self._previous_kickable = features is not None and float(features[KICKABLE]) > 0.0
+        self._previous_ball_to_goal_m = (
+            math.inf if features is None else ball_to_goal_distance(features) * 0.5 * MAX_HFO_DIST
+        )
+
+    def __call__(
+        self, features: Sequence[float], status: str, terminated: bool | None = None
+    ) -> tuple[float, dict[str, float]]:
+        """Reward of the step that produced ``features`` and ended with ``status``.
+
+        Returns:
+            (reward, terms) with the terms of CARRY_SHOT_TERM_NAMES; they sum to reward.
+        """
+        _, terms = super().__call__(features, status, terminated)
+        shot = 0.0
+        # a kick of the last step: the ball was kickable before it, and close enough to the goal to be a shot
+        if (
+            status == STATUS_IN_GAME
+            and self._previous_kickable
+            and self._previous_ball_to_goal_m <= SHOT_RANGE
+        ):
+            speed = shot_speed_at_goal(features)
+            if speed > self._shot_record:
+                shot = SHOT_WEIGHT * (speed - self._shot_record)
+                self._shot_record = speed
+        self._previous_kickable = float(features[KICKABLE]) > 0.0
+        self._previous_ball_to_goal_m = ball_to_goal_distance(features) * 0.5 * MAX_HFO_DIST
+        terms["shot"] = shot
+        return sum(terms.values()), terms
+
+
 class SparseReward:
     """1 on GOAL, 0 otherwise."""
 
@@ -361,6 +470,8 @@ def make_reward(name: str) -> RewardFunction:
         return RefundedGapShapedReward()
     if name == "carry":
         return CarryReward()
+    if name == "carry_shot":
+        return CarryShotReward()
     if name == "sparse":
         return SparseReward()
     raise ValueError(f"unknown reward {name!r}; choose one of {REWARD_NAMES}")
