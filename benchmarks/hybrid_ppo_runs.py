@@ -48,6 +48,8 @@ Presets (``--hp JSON`` overrides any hyperparameter; ``--env-kwargs JSON`` the e
   Part D.
 * ``e6_carry_shot``: ``e6_carry`` with the reward ``"carry_shot"`` (the carry reward plus a record of the shot
   speed at the goal mouth, paid for kicks within 12 m of the goal centre); research/e6_from_reward.md Part E.
+* ``e6_carry_sd``: ``e6_carry`` with state-dependent parameter deviations (``policy_kwargs``
+  ``state_dependent_std=True``: a dribble's touches and a shot need not share one kick-power spread); Part E.
 """
 
 from __future__ import annotations
@@ -125,6 +127,9 @@ PRESETS["e6_carry"]["curriculum"] = None
 # E6 with the carry reward and its shot record (research/e6_from_reward.md Part E): ``e6_carry`` otherwise.
 PRESETS["e6_carry_shot"] = json.loads(json.dumps(PRESETS["e6_carry"]))
 PRESETS["e6_carry_shot"]["env_kwargs"] = {"reward": "carry_shot"}
+# ... and with state-dependent parameter deviations (sb3_hfo.hybrid_ppo.policies.SkillHead), Part E.
+PRESETS["e6_carry_sd"] = json.loads(json.dumps(PRESETS["e6_carry"]))
+PRESETS["e6_carry_sd"]["hp"]["policy_kwargs"]["state_dependent_std"] = True
 
 # E2 (issue 33, item 4: the learned router against the hand-coded one): E1's recipe with the paper's two skills (one
 # actor head and one Adam each); ``field_half`` routes by the ball's field half (the paper's rule), ``learned`` adds
@@ -272,6 +277,20 @@ def reset_log_std(model: HybridPPO, value: float) -> int:
     return changed
 
 
+def load_policy_weights(model: HybridPPO, path: Path) -> None:
+    """Copy the policy weights of the model saved at ``path`` into ``model`` (same architecture). A policy with
+    ``state_dependent_std`` may start from one without: its state-dependent layers keep their zero start, so it
+    first acts exactly as the loaded policy. Any other mismatch is an error."""
+    missing, unexpected = model.policy.load_state_dict(
+        HybridPPO.load(path, device="cpu").policy.state_dict(), strict=False
+    )
+    missing = [key for key in missing if ".std_linear." not in key]
+    if missing or unexpected:
+        raise ValueError(
+            f"--init {path}: not the same policy architecture (missing {missing}, unexpected {unexpected})"
+        )
+
+
 def main(argv: list[str] | None = None) -> None:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("preset", choices=sorted(PRESETS))
@@ -395,8 +414,8 @@ def main(argv: list[str] | None = None) -> None:
     model = HybridPPO("MlpPolicy", env, seed=args.seed, tensorboard_log=str(args.out / "tb"), **hp)
     if (
         args.init is not None
-    ):  # the weights of an earlier run of the same architecture (its optimizers start afresh)
-        model.policy.load_state_dict(HybridPPO.load(args.init, device="cpu").policy.state_dict())
+    ):  # the weights of an earlier run of the same architecture (optimizers start afresh)
+        load_policy_weights(model, args.init)
         if args.reset_log_std is not None:
             reset_log_std(model, args.reset_log_std)
 

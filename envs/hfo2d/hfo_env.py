@@ -217,6 +217,8 @@ class HFOEnv(gym.Env):
         takes back the progress paid since the ball was last kickable by the agent (a lost shot pays nothing).
         ``"carry"`` (not HFO's): the shaped reward whose ball-to-goal term pays only new records of the ball's
         closeness to the goal set with the ball within 2 m of the agent, less 0.002 a cycle (``cycle_cost``).
+        ``"carry_shot"`` (not HFO's): ``"carry"`` plus a record of the ball's speed after a kick within 12 m of
+        the goal centre whose path crosses the goal mouth (``shot``).
         ``"sparse"``: 1 for a goal, else 0.
         ``info["reward_terms"]`` holds each term.
 
@@ -249,7 +251,7 @@ class HFOEnv(gym.Env):
         action_format: "flat" or "parameterized".
         feature_set: "paper" (default, the table above), "hfo" (HFO master's 59 / 68 features) or "high_level"
             (HFO's high-level features, 12 / 15).
-        reward: "shaped", "shaped_gap", "shaped_gap_refund", "carry" or "sparse".
+        reward: "shaped", "shaped_gap", "shaped_gap_refund", "carry", "carry_shot" or "sparse".
         noise: False turns off player, ball and kick noise (HFO's --deterministic); a bool.
         server_params: rcssserver parameter overrides by name, e.g. ``{"player_rand": 0.0}`` (a mapping; each
             value range-checked, :data:`hfo2d.physics.SERVER_PARAM_RANGES`).

@@ -5,7 +5,9 @@ Networks (``net_arch=dict(pi=[...], vf=[...])``, SB3's convention; a list is use
 * a features extractor (SB3's; ``FlattenExtractor`` by default), shared by actor and critic;
 * the actor trunk (an MLP), shared by all skills;
 * one *head* per skill: a linear layer to the ``K`` discrete logits and the ``P`` parameter means, and its own
-  state-independent log standard deviations (SB3's PPO keeps one ``log_std`` vector the same way);
+  state-independent log standard deviations (SB3's PPO keeps one ``log_std`` vector the same way); with
+  ``state_dependent_std=True`` a second linear layer from the actor trunk adds a state-dependent part to them
+  (zero at the start, so a new policy acts as the state-independent one);
 * the critic: an MLP and a linear value output;
 * with ``router="learned"``: a linear layer from the actor trunk to one logit per skill.
 
@@ -42,6 +44,10 @@ from sb3_hfo.hybrid_ppo.layout import ActionAdapter
 __all__ = ["HybridActorCriticPolicy", "LearnedRouterView", "SkillHead"]
 
 LEARNED_ROUTER = "learned"
+# Bounds of a state-dependent log standard deviation (normalised scale, where 0 is half a parameter's range): below
+# exp(-5) (0.3 % of the half range) a Gaussian no longer explores and its log-probabilities grow steep; above exp(1)
+# most samples fall outside the bounds and are clipped.
+LOG_STD_MIN, LOG_STD_MAX = -5.0, 1.0
 
 
 def mlp(input_size: int, sizes: Sequence[int], activation_fn: type[nn.Module]) -> tuple[nn.Sequential, int]:
@@ -55,7 +61,14 @@ def mlp(input_size: int, sizes: Sequence[int], activation_fn: type[nn.Module]) -
 
 class SkillHead(nn.Module):
     """One skill's output layer: ``K`` discrete logits, ``P`` parameter means and its ``P`` log standard deviations.
-    With ``squash_mean`` the means are ``tanh`` of the linear output (inside the env's bounds, ``[-1, 1]``)."""
+    With ``squash_mean`` the means are ``tanh`` of the linear output (inside the env's bounds, ``[-1, 1]``).
+
+    With ``state_dependent_std`` the log standard deviations are ``log_std + std_linear(latent)``, clipped to
+    ``[LOG_STD_MIN, LOG_STD_MAX]``: ``log_std`` stays the state-independent part (what ``log_std_init`` sets and what
+    a noise schedule or a reset writes), and ``std_linear`` starts at zero. Why: one deviation per parameter for all
+    states must serve both a dribble's soft touches and a shot's hard kick with the same kick-power spread
+    (research/e6_from_reward.md Part D).
+    """
 
     def __init__(
         self,
@@ -64,12 +77,23 @@ class SkillHead(nn.Module):
         n_parameters: int,
         log_std_init: float,
         squash_mean: bool = False,
+        state_dependent_std: bool = False,
     ) -> None:
         super().__init__()
         self.n_discrete = n_discrete
         self.squash_mean = squash_mean
         self.linear = nn.Linear(latent_size, n_discrete + n_parameters)
         self.log_std = nn.Parameter(th.full((n_parameters,), float(log_std_init)))
+        self.std_linear = nn.Linear(latent_size, n_parameters) if state_dependent_std else None
+        if self.std_linear is not None:
+            nn.init.zeros_(self.std_linear.weight)
+            nn.init.zeros_(self.std_linear.bias)
+
+    def log_std_of(self, latent: th.Tensor) -> th.Tensor:
+        """``(B, P)`` (state-dependent) or ``(P,)`` log standard deviations for a batch of trunk outputs."""
+        if self.std_linear is None:
+            return self.log_std
+        return th.clamp(self.log_std + self.std_linear(latent), LOG_STD_MIN, LOG_STD_MAX)
 
     def forward(self, latent: th.Tensor) -> tuple[th.Tensor, th.Tensor]:
         out = self.linear(latent)
@@ -111,6 +135,8 @@ class HybridActorCriticPolicy(BasePolicy):
     :param squash_mean: the parameter means are ``tanh`` of the heads' outputs, so inside the env's bounds (as a
         DDPG actor's squashed output, e.g. SkillDDPG's: such an actor's layers can be copied into this policy and act
         the same); the samples are still Gaussian around them, clipped to the bounds by the adapter.
+    :param state_dependent_std: each head's parameter log standard deviations get a state-dependent part, a linear
+        layer from the actor trunk that starts at zero (:class:`SkillHead`).
     :param use_sde: accepted for SB3's call signature; must be False.
     """
 
@@ -128,6 +154,7 @@ class HybridActorCriticPolicy(BasePolicy):
         parameter_sizes: Sequence[int] | None = None,
         domain: Any = None,
         squash_mean: bool = False,
+        state_dependent_std: bool = False,
         use_sde: bool = False,
         features_extractor_class: type[BaseFeaturesExtractor] = FlattenExtractor,
         features_extractor_kwargs: dict[str, Any] | None = None,
@@ -179,6 +206,7 @@ class HybridActorCriticPolicy(BasePolicy):
         self.log_std_init = float(log_std_init)
         self.ortho_init = ortho_init
         self.squash_mean = bool(squash_mean)
+        self.state_dependent_std = bool(state_dependent_std)
 
         self.features_extractor = self.make_features_extractor()
         features = self.features_extractor.features_dim
@@ -187,7 +215,12 @@ class HybridActorCriticPolicy(BasePolicy):
         self.value_net = nn.Linear(latent_vf, 1)
         self.heads = nn.ModuleList(
             SkillHead(
-                latent_pi, self.adapter.n_discrete, self.adapter.n_parameters, log_std_init, self.squash_mean
+                latent_pi,
+                self.adapter.n_discrete,
+                self.adapter.n_parameters,
+                log_std_init,
+                self.squash_mean,
+                self.state_dependent_std,
             )
             for _ in range(self.n_skills)
         )
@@ -243,6 +276,7 @@ class HybridActorCriticPolicy(BasePolicy):
             parameter_sizes=self.parameter_sizes,
             domain=self.domain,
             squash_mean=self.squash_mean,
+            state_dependent_std=self.state_dependent_std,
             lr_schedule=self._dummy_schedule,
             features_extractor_class=self.features_extractor_class,
             features_extractor_kwargs=self.features_extractor_kwargs,
@@ -270,13 +304,16 @@ class HybridActorCriticPolicy(BasePolicy):
         """The hybrid distribution of each row's own skill head."""
         if self.n_skills == 1:
             logits, mean = self.heads[0](latent)
-            log_std = self.heads[0].log_std
+            log_std = self.heads[0].log_std_of(latent)
         else:
             outputs = [head(latent) for head in self.heads]
             rows = th.arange(latent.shape[0], device=latent.device)
             logits = th.stack([o[0] for o in outputs], dim=1)[rows, skills]
             mean = th.stack([o[1] for o in outputs], dim=1)[rows, skills]
-            log_std = th.stack([head.log_std for head in self.heads])[skills]
+            if self.state_dependent_std:
+                log_std = th.stack([head.log_std_of(latent) for head in self.heads], dim=1)[rows, skills]
+            else:
+                log_std = th.stack([head.log_std for head in self.heads])[skills]
         return HybridDistribution(logits, mean, log_std, self.parameter_mask)
 
     def forward(self, obs: PyTorchObs, deterministic: bool = False) -> tuple[th.Tensor, th.Tensor, th.Tensor]:

@@ -474,3 +474,71 @@ def test_hybrid_ppo_modules_do_not_import_hfo2d() -> None:
             else:
                 continue
             assert not any(name.split(".")[0] == "hfo2d" for name in names), (path.name, names)
+
+
+# --------------------------------------------------------------------------------------------------------------
+# State-dependent parameter deviations
+
+
+def _toy_model(**policy_kwargs: Any) -> HybridPPO:
+    return HybridPPO(
+        "MlpPolicy",
+        make_vec_env(_FarHalfToy, n_envs=2, seed=0),
+        n_steps=32,
+        batch_size=32,
+        n_epochs=2,
+        seed=0,
+        policy_kwargs={"net_arch": [16], **policy_kwargs},
+    )
+
+
+def _random_batch(model: HybridPPO, rows: int = 12) -> tuple[th.Tensor, th.Tensor]:
+    generator = np.random.default_rng(0)
+    obs = th.as_tensor(np.stack([model.observation_space.sample() for _ in range(rows)]), dtype=th.float32)
+    internal = generator.uniform(-1.0, 1.0, (rows, model.policy.action_vector_size))
+    internal[:, 0] = generator.integers(0, model.policy.adapter.n_discrete, rows)
+    return obs, th.as_tensor(internal, dtype=th.float32)
+
+
+@pytest.mark.parametrize("skills", [1, 2])
+def test_state_dependent_std_starts_as_the_fixed_one_and_then_varies_by_state(skills: int) -> None:
+    kwargs: dict[str, Any] = {"skills": 2, "router": "field_half", "domain": "hfo"} if skills == 2 else {}
+    fixed, varying = _toy_model(**kwargs), _toy_model(state_dependent_std=True, **kwargs)
+    missing, unexpected = varying.policy.load_state_dict(fixed.policy.state_dict(), strict=False)
+    assert not unexpected and missing and all(".std_linear." in key for key in missing)
+    obs, actions = _random_batch(fixed)
+    with th.no_grad():
+        _, fixed_log_prob, fixed_entropy = fixed.policy.evaluate_actions(obs, actions)
+        _, log_prob, entropy = varying.policy.evaluate_actions(obs, actions)
+    assert th.allclose(log_prob, fixed_log_prob) and th.allclose(entropy, fixed_entropy)
+
+    # a non-zero layer: each state gets its own deviations, and the log-probability is torch's Normal's with them
+    with th.no_grad():
+        for head in varying.policy.heads:
+            head.std_linear.weight.normal_(0.0, 1.0)
+        distribution = varying.policy.action_distribution(obs)
+        _, log_prob, _ = varying.policy.evaluate_actions(obs, actions)
+    std = distribution.log_std.exp()
+    assert std.shape == distribution.mean.shape and not th.allclose(std[0], std[1])
+    assert float(distribution.log_std.min()) >= -5.0 and float(distribution.log_std.max()) <= 1.0
+    parameters = actions[:, 1 : varying.policy.adapter.internal_size]
+    discrete = actions[:, 0].long()
+    gaussian = th.distributions.Normal(distribution.mean, std).log_prob(parameters)
+    expected = (gaussian * varying.policy.parameter_mask[discrete]).sum(-1)
+    expected = expected + distribution.log_pi.gather(-1, discrete.unsqueeze(-1)).squeeze(-1)
+    assert th.allclose(log_prob, expected, atol=1e-5)
+
+
+def test_state_dependent_std_trains_and_round_trips(tmp_path: Any) -> None:
+    model = _toy_model(state_dependent_std=True)
+    before = model.policy.heads[0].std_linear.weight.detach().clone()
+    model.learn(64)
+    assert not th.equal(model.policy.heads[0].std_linear.weight, before)  # PPO's gradient reaches it
+    model.save(tmp_path / "model.zip")
+    loaded = HybridPPO.load(tmp_path / "model.zip", device="cpu")
+    assert loaded.policy.state_dependent_std
+    obs, _ = _random_batch(model)
+    with th.no_grad():
+        want = model.policy.action_distribution(obs).log_std
+        got = loaded.policy.action_distribution(obs).log_std
+    assert th.equal(got, want)
