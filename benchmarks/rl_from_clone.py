@@ -74,8 +74,9 @@ from sb3_hfo.vec_env import make_hfo_vec_env  # noqa: E402
 ENV_ID = "HFO/Keeper-v1"
 REWARD = "shaped_gap_refund"
 #: the training rewards offered (hfo2d.reward): the default, or HFO's sparse goal reward (1 per goal), whose
-#: discounted return is the goal probability (times the discount of the time to the goal) that the evaluation counts
-REWARDS = (REWARD, "sparse")
+#: discounted return is the goal probability (times the discount of the time to the goal) that the evaluation counts,
+#: or the carry-and-shoot reward that E6 from reward alone learns with (research/e6_from_reward.md Part E)
+REWARDS = (REWARD, "sparse", "carry_shot")
 METHOD = "reinforcement learning from reward, started from the imitation clone"
 
 #: HybridPPO's settings (a fine-tuning recipe: small steps, clipped at 0.1, stopped early on a large KL).

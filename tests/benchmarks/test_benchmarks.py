@@ -370,3 +370,51 @@ def test_capture_split_tells_a_carry_into_the_goalie_from_a_saved_shot(tmp_path:
     assert completed.returncode == 0, completed.stderr[-2000:]
     result = json.loads(out.read_text())
     assert result["episodes"] == 6 and sum(result["status"].values()) == 6
+
+
+def test_hybrid_ppo_runs_part_e_presets_change_one_thing_each(tmp_path: Path) -> None:
+    """``e6_carry_shot`` changes only ``e6_carry``'s reward, ``e6_carry_sd`` only its policy's deviations
+    (research/e6_from_reward.md Part E); a state-dependent policy may start from a state-independent one's weights
+    (``--init``), acting as it did, while any other architecture mismatch is refused."""
+    import pytest
+    import torch as th
+
+    from sb3_hfo.hybrid_ppo import HybridPPO
+    from sb3_hfo.vec_env import make_hfo_vec_env
+
+    sys.path.insert(0, str(REPO / "benchmarks"))
+    try:
+        import hybrid_ppo_runs
+    finally:
+        sys.path.remove(str(REPO / "benchmarks"))
+    carry, shot, sd = (hybrid_ppo_runs.PRESETS[name] for name in ("e6_carry", "e6_carry_shot", "e6_carry_sd"))
+    assert shot["env_kwargs"] == {"reward": "carry_shot"}
+    assert {k: v for k, v in shot.items() if k != "env_kwargs"} == {
+        k: v for k, v in carry.items() if k != "env_kwargs"
+    }
+    assert sd["hp"]["policy_kwargs"] == {**carry["hp"]["policy_kwargs"], "state_dependent_std": True}
+    assert {k: v for k, v in sd.items() if k != "hp"} == {k: v for k, v in carry.items() if k != "hp"}
+
+    env = make_hfo_vec_env("HFO/Keeper-v1", 2, seed=0)
+    fixed = HybridPPO("MlpPolicy", env, n_steps=16, batch_size=32, seed=0, policy_kwargs={"net_arch": [16]})
+    fixed.save(tmp_path / "fixed.zip")
+    varying = HybridPPO(
+        "MlpPolicy",
+        env,
+        n_steps=16,
+        batch_size=32,
+        seed=1,
+        policy_kwargs={"net_arch": [16], "state_dependent_std": True},
+    )
+    hybrid_ppo_runs.load_policy_weights(varying, tmp_path / "fixed.zip")
+    obs = env.reset()
+    for model in (fixed, varying):
+        model.policy.set_training_mode(False)
+    with th.no_grad():
+        want = fixed.policy.action_distribution(th.as_tensor(obs))
+        got = varying.policy.action_distribution(th.as_tensor(obs))
+    assert th.equal(got.mean, want.mean) and th.equal(got.log_std, want.log_std)
+    wider = HybridPPO("MlpPolicy", env, n_steps=16, batch_size=32, seed=0, policy_kwargs={"net_arch": [32]})
+    with pytest.raises((ValueError, RuntimeError)):
+        hybrid_ppo_runs.load_policy_weights(wider, tmp_path / "fixed.zip")
+    env.close()
