@@ -75,7 +75,7 @@ STRIKER_HP: dict[str, Any] = {
     "target_kl": 0.02,
 }
 STRIKER_REWARD = "shaped_gap_refund"
-DEFAULT_STRIKER = "e6"  # the RL-from-clone model (benchmarks/rl_from_clone.py seed 0), committed as e6
+DEFAULT_STRIKER = "e6_from_clone"  # the RL-from-clone model (benchmarks/rl_from_clone.py seed 0); named e6 when these runs ran
 SMOKE_HP: dict[str, Any] = {"n_steps": 16, "batch_size": 32, "n_epochs": 1}
 
 
@@ -122,7 +122,7 @@ def pool_assignment(n_games: int, n_policies: int) -> list[int]:
 
 
 def load_striker(path: str) -> Any:
-    """A striker by a committed name (``e6``, ``e6_imitation``) or a zip path (``~`` expanded), on the CPU."""
+    """A striker by a committed name (``e6_from_clone``, ``e6_imitation``) or a zip path (``~`` expanded), on the CPU."""
     expanded = os.path.expanduser(path)
     return load_model(expanded if Path(expanded).is_file() else path, device="cpu")
 

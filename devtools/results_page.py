@@ -45,9 +45,13 @@ TASKS: tuple[Task, ...] = (
     Task("e2", "E2 empty goal, skills", "95.7 %"),
     Task("e3", "E3 static keeper", "~95 %"),
     Task("e4", "E4 static keeper, skills", "~95 %"),
-    Task("e6", "E6 moving keeper, skills: HFO's goalie (`HFO/Keeper-v1`)", "not solved"),
-    Task("e6_imitation", "E6, the imitation clone that `e6` starts from (`HFO/Keeper-v1`)", "not solved"),
-    Task("e6_from_reward", "E6 from reward alone (`HFO/Keeper-v1`)", "not solved"),
+    Task("e6", "E6 moving keeper: HFO's goalie (`HFO/Keeper-v1`), HybridPPO from reward alone", "not solved"),
+    Task("e6_from_clone", "E6, HybridPPO started from the imitation clone (`HFO/Keeper-v1`)", "not solved"),
+    Task(
+        "e6_imitation",
+        "E6, the imitation clone that `e6_from_clone` starts from (`HFO/Keeper-v1`)",
+        "not solved",
+    ),
     Task("e6_keeper_v0", "E6 against hfo2d's earlier goalie (`HFO/Keeper-v0`)", "not solved"),
 )
 
