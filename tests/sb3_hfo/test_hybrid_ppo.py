@@ -389,16 +389,21 @@ def test_field_half_skills_route_to_their_head() -> None:
     assert not np.array_equal(after[[1, 3]], before[[1, 3]])
 
 
-def test_each_skill_optimizer_updates_only_its_head() -> None:
-    model = HybridPPO(
+def _toy_model(**policy_kwargs: Any) -> HybridPPO:
+    """HybridPPO on two far-half toy games (``field_half`` routes every state to skill 0), tiny rollouts."""
+    return HybridPPO(
         "MlpPolicy",
         make_vec_env(_FarHalfToy, n_envs=2, seed=0),
         n_steps=32,
         batch_size=32,
         n_epochs=2,
         seed=0,
-        policy_kwargs={"skills": 2, "router": "field_half", "domain": "hfo"},
+        policy_kwargs=policy_kwargs,
     )
+
+
+def test_each_skill_optimizer_updates_only_its_head() -> None:
+    model = _toy_model(skills=2, router="field_half", domain="hfo")
     policy = model.policy
     assert {id(p) for g in policy.skill_1_optimizer.param_groups for p in g["params"]} == {
         id(p) for p in policy.heads[1].parameters()
@@ -480,18 +485,6 @@ def test_hybrid_ppo_modules_do_not_import_hfo2d() -> None:
 # State-dependent parameter deviations
 
 
-def _toy_model(**policy_kwargs: Any) -> HybridPPO:
-    return HybridPPO(
-        "MlpPolicy",
-        make_vec_env(_FarHalfToy, n_envs=2, seed=0),
-        n_steps=32,
-        batch_size=32,
-        n_epochs=2,
-        seed=0,
-        policy_kwargs={"net_arch": [16], **policy_kwargs},
-    )
-
-
 def _random_batch(model: HybridPPO, rows: int = 12) -> tuple[th.Tensor, th.Tensor]:
     generator = np.random.default_rng(0)
     obs = th.as_tensor(np.stack([model.observation_space.sample() for _ in range(rows)]), dtype=th.float32)
@@ -503,7 +496,8 @@ def _random_batch(model: HybridPPO, rows: int = 12) -> tuple[th.Tensor, th.Tenso
 @pytest.mark.parametrize("skills", [1, 2])
 def test_state_dependent_std_starts_as_the_fixed_one_and_then_varies_by_state(skills: int) -> None:
     kwargs: dict[str, Any] = {"skills": 2, "router": "field_half", "domain": "hfo"} if skills == 2 else {}
-    fixed, varying = _toy_model(**kwargs), _toy_model(state_dependent_std=True, **kwargs)
+    fixed = _toy_model(net_arch=[16], **kwargs)
+    varying = _toy_model(net_arch=[16], state_dependent_std=True, **kwargs)
     missing, unexpected = varying.policy.load_state_dict(fixed.policy.state_dict(), strict=False)
     assert not unexpected and missing and all(".std_linear." in key for key in missing)
     obs, actions = _random_batch(fixed)
@@ -530,7 +524,7 @@ def test_state_dependent_std_starts_as_the_fixed_one_and_then_varies_by_state(sk
 
 
 def test_state_dependent_std_trains_and_round_trips(tmp_path: Any) -> None:
-    model = _toy_model(state_dependent_std=True)
+    model = _toy_model(net_arch=[16], state_dependent_std=True)
     before = model.policy.heads[0].std_linear.weight.detach().clone()
     model.learn(64)
     assert not th.equal(model.policy.heads[0].std_linear.weight, before)  # PPO's gradient reaches it
