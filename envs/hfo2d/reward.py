@@ -149,9 +149,8 @@ CARRY_TERM_NAMES: tuple[str, ...] = (*REWARD_TERM_NAMES, "cycle_cost")
 # metres of the goal centre. The stalled carry runs lost the ball at 5-6 m; seed 0's scoring shots left from ~5-6 m;
 # the scripted soft_dribble (hfo2d.strikers; 93.8 % against agent2d's goalie) shoots from 9.5-11.5 m.
 SHOT_RANGE = 12.0
-SHOT_WEIGHT = (
-    1.0  # per m/cycle of the record shot speed: a full-power kick (~2.7 m/cycle) pays ~2.7, the goal 5
-)
+# per m/cycle of the record shot speed: a full-power kick (~2.7 m/cycle) pays ~2.7, the goal 5
+SHOT_WEIGHT = 1.0
 CARRY_SHOT_TERM_NAMES: tuple[str, ...] = (*CARRY_TERM_NAMES, "shot")
 
 
