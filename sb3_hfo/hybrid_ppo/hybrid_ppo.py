@@ -364,7 +364,13 @@ class HybridPPO(OnPolicyAlgorithm):
             self._n_updates += 1
             if not continue_training:
                 break
-        log_std = th.cat([head.log_std for head in self.policy.heads])
+        if getattr(self.policy, "state_dependent_std", False):
+            # the deviations differ by state: their mean over the last minibatch's states, not the offset alone
+            with th.no_grad():
+                latent = self.policy.actor_outputs(batch.observations)[0]
+                log_std = th.cat([head.log_std_of(latent).flatten() for head in self.policy.heads])
+        else:
+            log_std = th.cat([head.log_std for head in self.policy.heads])
         self.logger.record("train/entropy_loss", np.mean(entropy_losses))
         self.logger.record("train/policy_gradient_loss", np.mean(pg_losses))
         self.logger.record("train/value_loss", np.mean(value_losses))

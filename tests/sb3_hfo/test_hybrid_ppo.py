@@ -536,3 +536,24 @@ def test_state_dependent_std_trains_and_round_trips(tmp_path: Any) -> None:
         want = model.policy.action_distribution(obs).log_std
         got = loaded.policy.action_distribution(obs).log_std
     assert th.equal(got, want)
+
+
+def test_state_dependent_std_logs_the_deviations_of_the_states_not_the_offset() -> None:
+    from stable_baselines3.common.logger import configure
+
+    model = _toy_model(net_arch=[16], state_dependent_std=True)
+    with th.no_grad():
+        model.policy.heads[0].std_linear.weight.normal_(0.0, 2.0)
+    logger = configure(None, [""])
+    recorded: dict[str, float] = {}
+    record = logger.record
+
+    def keep(key: str, value: Any, exclude: Any = None) -> None:
+        recorded[key] = value
+        record(key, value, exclude)
+
+    logger.record = keep  # type: ignore[method-assign]
+    model.set_logger(logger)
+    model.learn(64)
+    offset_only = float(model.policy.heads[0].log_std.exp().mean())
+    assert recorded["train/std"] != pytest.approx(offset_only, rel=0.05)
