@@ -37,6 +37,10 @@ the learned arm distils longer and faster (``--distill-epochs 40 --distill-lr 3e
 Method: reinforcement learning from reward, started from the imitation clone (the pull decays to zero).
 
     python benchmarks/rl_from_clone.py --seed 0 --out ~/runs/fromclone/s0 --steps 4000000 --minutes 30
+    # the recipe of e6_from_clone_shot (>= 93 % in real HFO on three seeds of three; benchmarks/README.md)
+    python benchmarks/rl_from_clone.py --seed 0 --out ~/runs/fromclone5/A_s0 --steps 8000000 --minutes 50 \
+        --pull-fraction 0.25 --eval-every 500000 --critic-warmup 200000 --distill-eval-episodes 0 \
+        --hp '{"learning_rate": 2e-4}' --log-std -2.5 --lr-schedule linear --reward carry_shot
     python benchmarks/rl_from_clone.py --smoke --out /tmp/smoke   # seconds: what the test runs
 
 Figures that count come from ``final.zip``:

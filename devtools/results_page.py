@@ -46,10 +46,19 @@ TASKS: tuple[Task, ...] = (
     Task("e3", "E3 static keeper", "~95 %"),
     Task("e4", "E4 static keeper, skills", "~95 %"),
     Task("e6", "E6 moving keeper: HFO's goalie (`HFO/Keeper-v1`), HybridPPO from reward alone", "not solved"),
-    Task("e6_from_clone", "E6, HybridPPO started from the imitation clone (`HFO/Keeper-v1`)", "not solved"),
+    Task(
+        "e6_from_clone_shot",
+        "E6, HybridPPO started from the imitation clone, carry-and-shot reward (`HFO/Keeper-v1`)",
+        "not solved",
+    ),
+    Task(
+        "e6_from_clone",
+        "E6, the same from the clone, shaped reward and 2M steps (`HFO/Keeper-v1`)",
+        "not solved",
+    ),
     Task(
         "e6_imitation",
-        "E6, the imitation clone that `e6_from_clone` starts from (`HFO/Keeper-v1`)",
+        "E6, the imitation clone that both start from (`HFO/Keeper-v1`)",
         "not solved",
     ),
     Task("e6_keeper_v0", "E6 against hfo2d's earlier goalie (`HFO/Keeper-v0`)", "not solved"),

@@ -182,7 +182,7 @@ def test_a_benchmark_script_s_model_names_its_script_and_command() -> None:
 # --- continuing to train a committed model ------------------------------------------------------------------
 
 #: The committed HybridPPO models, each with the env it was trained on (its manifest entry's).
-HYBRID_PPO_MODELS = ("e1", "e6", "e6_from_clone")
+HYBRID_PPO_MODELS = ("e1", "e6", "e6_from_clone", "e6_from_clone_shot")
 
 
 @pytest.mark.parametrize("n_envs", [1, 3])
