@@ -419,6 +419,9 @@ def roles(args: argparse.Namespace) -> dict[str, Any]:
     teams: dict[str, Any] = {
         f"nearer plays, other {idle}{suffix}": RoleSplitTeam(policy, idle, args.margin) for idle in args.idle
     }
+    if args.own_features:
+        for idle in args.idle:
+            teams[f"each judges from its own features, other {idle}"] = OwnFeaturesRoleSplitTeam(policy, idle)
     if args.zero_shot:
         teams["both play (zero-shot)"] = RoleSplitTeamBoth(policy)
     if args.zero_shot:
@@ -447,6 +450,38 @@ class RoleSplitTeamBoth(RoleSplitTeam):
 
     def nearer(self, observations: np.ndarray) -> np.ndarray:
         return np.ones(observations.shape[0], dtype=bool)
+
+
+def judges_itself_nearer(observations: np.ndarray, teammate_block: int) -> np.ndarray:
+    """Whether each striker is nearer the ball than its teammate, from its **own** features only (paper layout):
+    the ball and the teammate are given by bearing (sin, cos, in the striker's body frame) and proximity
+    (``1 - 2 d / MAX_HFO_DIST``), so the teammate's distance to the ball is ``|ball - teammate|`` in that frame.
+    A tie counts as nearer (both play), so the rule errs toward the zero-shot team rather than both idling. A
+    teammate that HFO does not list (outside the HFO half, x <= 0: an all-zero block, whose bearing is no unit
+    vector) counts as farther: without this, its zeros read as a teammate 'MAX_HFO_DIST / 2' ahead, and both
+    strikers could judge the other nearer and idle until the time runs out."""
+    observations = np.asarray(observations, dtype=np.float64)
+
+    def relative(sin: int, cos: int, proximity: int) -> tuple[np.ndarray, np.ndarray]:
+        distance = (1.0 - observations[:, proximity]) * MAX_HFO_DIST / 2.0
+        angle = np.arctan2(observations[:, sin], observations[:, cos])
+        return distance * np.cos(angle), distance * np.sin(angle)
+
+    ball_x, ball_y = relative(BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
+    mate_x, mate_y = relative(teammate_block, teammate_block + 1, teammate_block + 2)
+    own_distance = np.hypot(ball_x, ball_y)
+    teammate_distance = np.hypot(ball_x - mate_x, ball_y - mate_y)
+    listed = np.hypot(observations[:, teammate_block], observations[:, teammate_block + 1]) > 0.5
+    return (own_distance <= teammate_distance) | ~listed
+
+
+class OwnFeaturesRoleSplitTeam(RoleSplitTeam):
+    """:class:`RoleSplitTeam` decided per striker from its own features (:func:`judges_itself_nearer`), as a
+    decentralised rule (a hand-coded router, like the paper's ``field_half``) would decide, instead of comparing
+    the two strikers' ball proximities across the pair."""
+
+    def nearer(self, observations: np.ndarray) -> np.ndarray:
+        return judges_itself_nearer(observations, int(self.teammate_block[0]))
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -510,6 +545,11 @@ def main(argv: list[str] | None = None) -> None:
     role_split.add_argument("--games", type=int, default=16, help="hfo2d games played at once")
     role_split.add_argument("--idle", nargs="+", choices=IDLE_BEHAVIOURS, default=list(IDLE_BEHAVIOURS))
     role_split.add_argument("--no-zero-shot", dest="zero_shot", action="store_false")
+    role_split.add_argument(
+        "--own-features",
+        action="store_true",
+        help="also the split decided by each striker from its own features (OwnFeaturesRoleSplitTeam)",
+    )
     role_split.add_argument(
         "--margin", type=float, default=0.0, help="m: both play within it (RoleSplitTeam)"
     )

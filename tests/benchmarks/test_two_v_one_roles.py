@@ -125,3 +125,55 @@ def test_a_taught_start_is_distilled_before_rl_and_named_so(tmp_path: Path) -> N
         [*command[:4], "1v1", *command[5:]], capture_output=True, text=True, timeout=300, cwd=tmp_path
     )
     assert refused.returncode != 0 and "--start-rule" in refused.stderr
+
+
+def with_teammate(observation: np.ndarray, proximity: float, bearing_deg: float) -> np.ndarray:
+    observation = observation.copy()
+    observation[58:66] = 0.0
+    observation[58] = np.sin(np.radians(bearing_deg))
+    observation[59] = np.cos(np.radians(bearing_deg))
+    observation[60] = proximity
+    return observation
+
+
+def test_a_striker_judges_from_its_own_features_whether_it_is_nearer_the_ball() -> None:
+    """The decentralised rule of OwnFeaturesRoleSplitTeam: the teammate's distance to the ball from the two
+    bearings and proximities in the striker's own frame; an unlisted teammate (an all-zero block) is farther."""
+    module = load_script()
+
+    def proximity(metres: float) -> float:
+        return 1.0 - 2.0 * metres / module.MAX_HFO_DIST
+
+    ball_5m_ahead = striker(proximity(5.0), 0.0, 0.0)
+    cases = [
+        (
+            with_teammate(ball_5m_ahead, proximity(5.0), 90.0),
+            True,
+        ),  # the teammate is sqrt(50) m from the ball
+        (with_teammate(ball_5m_ahead, proximity(8.0), 0.0), False),  # 3 m beyond the ball
+        (with_teammate(ball_5m_ahead, proximity(7.0), 10.0), False),  # ~2.1 m from the ball
+        (with_teammate(ball_5m_ahead, proximity(2.0), 0.0), False),  # 3 m short of it
+        (with_teammate(ball_5m_ahead, proximity(9.0), 180.0), True),  # behind the striker: 14 m from the ball
+    ]
+    # a ball 1 m short of MAX_HFO_DIST / 2 ahead, where an unlisted teammate's zeros (proximity 0, no bearing)
+    # would read as a teammate 1 m from the ball
+    unlisted = striker(proximity(module.MAX_HFO_DIST / 2.0 - 1.0), 0.0, 0.0)
+    unlisted[58:66] = 0.0
+    cases.append((unlisted, True))
+    observations = np.stack([observation for observation, _ in cases])
+    judged = module.judges_itself_nearer(observations, 58)
+    assert judged.tolist() == [expected for _, expected in cases]
+
+
+def test_the_own_features_rule_agrees_with_the_pair_comparison_on_played_states() -> None:
+    """On the states of 2v1 hfo2d games (from HFO's starts; the ball player only kicks), the decentralised rule
+    picks the same ball player as comparing the two strikers' ball proximities wherever the teammate is listed,
+    and never lets both strikers idle (an unlisted teammate, behind the halfway line, makes both play)."""
+    module = load_script()
+    team = module.RoleSplitTeam(RecordingPolicy(), "noop")
+    observations = module.play_pairs(team, 16, 0, 8)
+    own = module.judges_itself_nearer(observations, 58)
+    listed = np.hypot(observations[:, 58], observations[:, 59]) > 0.5
+    assert len(observations) > 500 and 0.5 < listed.mean() < 1.0  # both kinds of state are checked
+    assert (own == team.nearer(observations))[listed].mean() > 0.99
+    assert not (~own.reshape(-1, 2).any(axis=1)).any()  # never both idle
