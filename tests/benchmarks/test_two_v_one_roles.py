@@ -156,7 +156,7 @@ def test_a_striker_judges_from_its_own_features_whether_it_is_nearer_the_ball() 
         (with_teammate(ball_5m_ahead, proximity(9.0), 180.0), True),  # behind the striker: 14 m from the ball
     ]
     # a ball 1 m short of MAX_HFO_DIST / 2 ahead, where an unlisted teammate's zeros (proximity 0, no bearing)
-    # would read as a teammate 1 m from the ball
+    # read as an angle of 0 would put the teammate 1 m from the ball
     unlisted = striker(proximity(module.MAX_HFO_DIST / 2.0 - 1.0), 0.0, 0.0)
     unlisted[58:66] = 0.0
     cases.append((unlisted, True))
