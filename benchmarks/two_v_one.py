@@ -65,6 +65,8 @@ from hybrid_ppo_runs import RunRecorder, load_average  # noqa: E402
 import hfo2d  # noqa: E402
 from hfo2d.features import BALL_ANGLE_COS, BALL_ANGLE_SIN, BALL_PROXIMITY, MAX_HFO_DIST  # noqa: E402
 from hfo2d.team import TeamGame  # noqa: E402
+from sb3_hfo.common.routers import BallPlayerRouter, SingleSkillRouter  # noqa: E402
+from sb3_hfo.hfo import hfo_ball_player_router  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
 from sb3_hfo.multi_agent import (  # noqa: E402
@@ -266,7 +268,8 @@ def fresh_start_model(env: Any, seed: int) -> HybridPPO:
 def build_arm_model(start: HybridPPO, env: Any, strikers: int, args: argparse.Namespace) -> HybridPPO:
     """A HybridPPO on ``env`` with ``start``'s networks, widened for ``strikers - 1`` teammates (zero weights); a
     ``start`` that already reads this team's features (an arm's ``final.zip``, to continue it) is copied as it is,
-    with a fresh optimizer, reward normaliser and critic warm-up."""
+    with a fresh optimizer, reward normaliser and critic warm-up. With ``--router ball_player`` a two-skill start
+    gets the hand-coded role router and a third head (:func:`add_support_skill`)."""
     start_features = start.observation_space.shape[0]
     position, count = teammate_block_insertion(0, strikers - 1)
     if (
@@ -279,17 +282,71 @@ def build_arm_model(start: HybridPPO, env: Any, strikers: int, args: argparse.Na
             f"{env.observation_space.shape[0]}, not {start_features} + {count}: is it a 1v1 policy against the goalie "
             "(or this arm's own model, to continue it)?"
         )
-    model = HybridPPO(
-        "MlpPolicy",
-        env,
-        seed=args.seed,
-        policy_kwargs=start.policy_kwargs,
-        tensorboard_log=None if args.smoke else str(args.out / f"arm_{args.arm}" / "tb"),
-        critic_warmup_steps=args.critic_warmup,
-        **args.hp,
-    )
+
+    def new_model(policy_kwargs: dict[str, Any]) -> HybridPPO:
+        return HybridPPO(
+            "MlpPolicy",
+            env,
+            seed=args.seed,
+            policy_kwargs=policy_kwargs,
+            tensorboard_log=None if args.smoke else str(args.out / f"arm_{args.arm}" / "tb"),
+            critic_warmup_steps=args.critic_warmup,
+            **args.hp,
+        )
+
+    model = new_model(start.policy_kwargs)
     widen_policy_inputs(start.policy, model.policy, position)
+    if args.router == "ball_player" and model.policy.n_skills == 2:
+        router = hfo_ball_player_router(strikers - 1)
+        routed = new_model({**start.policy_kwargs, "skills": router.n_skills, "router": router})
+        add_support_skill(model.policy, routed.policy)
+        return routed
+    if args.router == "ball_player" and not isinstance(model.policy.skill_router, BallPlayerRouter):
+        raise ValueError(
+            f"--router ball_player adds a support skill to a two-skill field-half start; this start has "
+            f"{model.policy.n_skills} skill(s) routed by {model.policy.skill_router!r}"
+        )
     return model
+
+
+#: the support head's start (``--router ball_player``): a near-certain TURN (logit SUPPORT_TURN_LOGIT against 0)
+#: by 0 degrees, which leaves the striker where it stands, as the scripted role split's NOOP idle does; its
+#: parameter means are tanh(bias) on the policy's [-1, 1] scale: DASH power at -3 (a soft dash, about 0.25 of 100,
+#: if a DASH is drawn), every direction at 0 (0 degrees), KICK power at 0
+SUPPORT_TURN_LOGIT = 6.0
+SUPPORT_BIAS = {"DASH": 0.0, "TURN": SUPPORT_TURN_LOGIT, "KICK": 0.0}
+SUPPORT_DASH_POWER_BIAS = -3.0
+
+
+def add_support_skill(source: Any, target: Any) -> None:
+    """Copy ``source`` (a widened two-skill field-half policy) into ``target`` (the same networks with three skills,
+    routed by a :class:`~sb3_hfo.common.routers.BallPlayerRouter`): the trunks, critic and skill heads 0 and 1 as
+    they are, so the striker that judges itself nearest the ball plays exactly as ``source`` does; the support head
+    (skill 2) starts at zero weights and :data:`SUPPORT_BIAS` (stand still) with ``source``'s skill-0 log standard
+    deviations. PPO then trains all three heads.
+
+    :raises ValueError: networks that differ elsewhere, or a layout without DASH, TURN and KICK.
+    """
+    support = target.skill_router.support_skill
+    source_state, target_state = source.state_dict(), target.state_dict()
+    extra = {key for key in target_state if key.startswith(f"heads.{support}.")}
+    if source_state.keys() != target_state.keys() - extra:
+        raise ValueError(
+            f"the policies differ beyond the support head: {sorted(source_state.keys() ^ (target_state.keys() - extra))}"
+        )
+    names = list(target.adapter.names)
+    if names != list(SUPPORT_BIAS):
+        raise ValueError(f"the support head's start is for HFO's DASH, TURN, KICK; this layout is {names}")
+    state = dict(source_state)
+    linear_bias = th.zeros_like(target_state[f"heads.{support}.linear.bias"])
+    linear_bias[: len(names)] = th.tensor(list(SUPPORT_BIAS.values()))
+    linear_bias[len(names)] = SUPPORT_DASH_POWER_BIAS  # DASH's power comes first among the parameters
+    state[f"heads.{support}.linear.bias"] = linear_bias
+    state[f"heads.{support}.linear.weight"] = th.zeros_like(target_state[f"heads.{support}.linear.weight"])
+    state[f"heads.{support}.log_std"] = source_state["heads.0.log_std"].clone()
+    for key in extra - set(state):  # e.g. a state-dependent std layer: zero, as a new head's is
+        state[key] = th.zeros_like(target_state[key])
+    target.load_state_dict(state)
 
 
 def train(args: argparse.Namespace) -> Path:
@@ -298,6 +355,10 @@ def train(args: argparse.Namespace) -> Path:
     folder = args.out / f"arm_{args.arm}"
     if args.start_rule is not None and strikers != 2:
         raise SystemExit("error: --start-rule teaches the 2v1 role split; the 1v1 arm has no teammate")
+    if args.router is not None and strikers < 2:
+        raise SystemExit("error: --router splits roles between teammates; the 1v1 arm has none")
+    if args.router is not None and args.start_rule is not None:
+        raise SystemExit("error: --router and --start-rule are two ways to the role split; choose one")
     if (folder / "curve.jsonl").exists():
         raise SystemExit(f"error: {folder} already holds a run (curve.jsonl); choose another --out")
     folder.mkdir(parents=True, exist_ok=True)
@@ -328,6 +389,8 @@ def train(args: argparse.Namespace) -> Path:
         "reward": args.reward,
         "start": str(args.start) if args.start else "untrained (smoke)",
         "start_rule": args.start_rule,
+        "router": args.router,
+        "skills": model.policy.n_skills,
         "hp": args.hp,
         "critic_warmup": args.critic_warmup,
         "steps": args.steps,
@@ -367,12 +430,11 @@ def evaluate(args: argparse.Namespace) -> dict[str, Any]:
             continue
         model = HybridPPO.load(model_path, device="cpu")
         run_record = args.out / f"arm_{arm}" / "run.json"
-        if (
-            name == "zero_shot_2v1"
-            and run_record.exists()
-            and json.loads(run_record.read_text()).get("start_rule")
-        ):
+        run = json.loads(run_record.read_text()) if run_record.exists() else {}
+        if name == "zero_shot_2v1" and run.get("start_rule"):
             name = "taught_start_2v1"  # the 2v1 start of a --start-rule run is the taught one, not zero-shot
+        elif name == "zero_shot_2v1" and run.get("router"):
+            name = "routed_start_2v1"  # the start of a --router run splits roles by its hand-coded router
         started = time.time()
         if args.backend == "hfo2d" and args.games > 1:  # many games per predict call: the same statistics
             games = [TeamGame(strikers, 0, 1) for _ in range(args.games)]
@@ -453,27 +515,21 @@ class RoleSplitTeamBoth(RoleSplitTeam):
 
 
 def judges_itself_nearer(observations: np.ndarray, teammate_block: int) -> np.ndarray:
-    """Whether each striker is nearer the ball than its teammate, from its **own** features only (paper layout):
-    the ball and the teammate are given by bearing (sin, cos, in the striker's body frame) and proximity
-    (``1 - 2 d / MAX_HFO_DIST``), so the teammate's distance to the ball is ``|ball - teammate|`` in that frame.
-    A tie counts as nearer (both play), so the rule errs toward the zero-shot team rather than both idling. A
-    teammate that HFO does not list (outside the HFO half, x <= 0: an all-zero block, whose bearing is no unit
-    vector) counts as farther, said outright rather than left to what its zeros happen to compute (a first version
-    that read the bearing as an angle put such a teammate 'MAX_HFO_DIST / 2' straight ahead, and both strikers
-    judged the other nearer and idled until the time ran out in 73 of 1,000 games)."""
-    observations = np.asarray(observations, dtype=np.float64)
-
-    def relative(sin: int, cos: int, proximity: int) -> tuple[np.ndarray, np.ndarray]:
-        # a listed bearing is a unit vector, so the position is the distance times (cos, sin)
-        distance = (1.0 - observations[:, proximity]) * MAX_HFO_DIST / 2.0
-        return distance * observations[:, cos], distance * observations[:, sin]
-
-    ball_x, ball_y = relative(BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY)
-    mate_x, mate_y = relative(teammate_block, teammate_block + 1, teammate_block + 2)
-    own_distance = np.hypot(ball_x, ball_y)
-    teammate_distance = np.hypot(ball_x - mate_x, ball_y - mate_y)
-    listed = np.hypot(observations[:, teammate_block], observations[:, teammate_block + 1]) > 0.5
-    return (own_distance <= teammate_distance) | ~listed
+    """Whether each striker is nearer the ball than its teammate, from its **own** features only (paper layout;
+    the teammate's block starts at ``teammate_block``): :meth:`sb3_hfo.common.routers.BallPlayerRouter.nearest`,
+    the rule the hand-coded role router of ``train --router ball_player`` applies. A tie counts as nearer (both
+    play), so the rule errs toward the zero-shot team rather than both idling. A teammate that HFO does not list
+    (outside the HFO half, x <= 0: an all-zero block, whose bearing is no unit vector) counts as farther, said
+    outright rather than left to what its zeros happen to compute (a first version that read the bearing as an
+    angle put such a teammate 'MAX_HFO_DIST / 2' straight ahead, and both strikers judged the other nearer and
+    idled until the time ran out in 73 of 1,000 games)."""
+    router = BallPlayerRouter(
+        SingleSkillRouter(),
+        (BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY),
+        ((teammate_block, teammate_block + 1, teammate_block + 2),),
+        MAX_HFO_DIST / 2.0,
+    )
+    return np.asarray(router.nearest(np.asarray(observations, dtype=np.float64)))
 
 
 class OwnFeaturesRoleSplitTeam(RoleSplitTeam):
@@ -515,6 +571,14 @@ def main(argv: list[str] | None = None) -> None:
             default=None,
             help="2v1: before RL, distil the scripted role split (the nearer striker plays the start policy, the "
             "other this idle behaviour) into the widened policy: a taught start",
+        )
+        sub.add_argument(
+            "--router",
+            choices=("ball_player",),
+            default=None,
+            help="2v1: the hand-coded role router (sb3_hfo.hfo.hfo_ball_player_router): the striker that judges "
+            "itself nearer the ball from its own features plays the start's two field-half heads, the other a "
+            "third, support head that starts standing still; PPO trains all three",
         )
         sub.add_argument("--teach-episodes", type=int, default=400, help="episodes per distillation round")
         sub.add_argument("--teach-epochs", type=int, default=10)
@@ -573,10 +637,11 @@ def main(argv: list[str] | None = None) -> None:
         )
         args.hp["batch_size"] = 256
         args.teach_episodes, args.teach_epochs, args.teach_eval_episodes, args.games = 4, 1, 4, 2
-        start_rule = args.start_rule
+        start_rule, router = args.start_rule, args.router
         for arm in ARMS:
             args.arm = arm
             args.start_rule = start_rule if ARMS[arm] == 2 else None  # the taught start is the 2v1 arm's
+            args.router = router if ARMS[arm] == 2 else None  # as is the routed one
             train(args)
         evaluate(
             argparse.Namespace(

@@ -11,6 +11,10 @@ from __future__ import annotations
 
 from hfo2d.action_layout import DASH, HFO_FLAT_ACTION_LAYOUT, KICK, hfo_flat_action_space
 from hfo2d.features import (
+    BALL_ANGLE_COS,
+    BALL_ANGLE_SIN,
+    BALL_PROXIMITY,
+    FEATURES_PER_PLAYER,
     GOAL_CENTER_COS,
     GOAL_CENTER_SIN,
     GOAL_POST_BOTTOM_COS,
@@ -20,10 +24,16 @@ from hfo2d.features import (
     GOALIE_ANGLE_COS,
     GOALIE_ANGLE_SIN,
     KICKABLE,
+    MAX_HFO_DIST,
+    NUM_BASIC_FEATURES,
+    PLAYER_ANGLE_COS,
+    PLAYER_ANGLE_SIN,
+    PLAYER_PROXIMITY,
     SELF_X,
 )
 from hfo2d.symmetry import feature_mirror, flat_action_mirror_signs
 from sb3_hfo.common.domain import DomainAdapter
+from sb3_hfo.common.routers import BallPlayerRouter, field_half_router
 
 __all__ = [
     "DASH",
@@ -35,6 +45,7 @@ __all__ = [
     "HFO_N_DISCRETE_ACTIONS",
     "KICK",
     "KICK_REFERENCE_BEARINGS",
+    "hfo_ball_player_router",
     "hfo_flat_action_space",
 ]
 
@@ -74,3 +85,23 @@ HFO_DOMAIN = DomainAdapter(
     mirror_parameter_sizes=HFO_FLAT_ACTION_LAYOUT.parameter_sizes,
     flat_action_space=hfo_flat_action_space(),
 )
+
+
+def hfo_ball_player_router(teammates: int) -> BallPlayerRouter:
+    """The role split of ``teammates + 1`` strikers on HFO's paper-era features (hfo2d's layout: 58 basic features,
+    then one 8-feature block per teammate, then the opponents'): a striker that judges itself nearest the ball plays
+    the paper's two field-half skills (0: approach and dribble, 1: shoot), the others skill 2 (support). The ball's
+    landmark is features 51-53 and each teammate's the first three of its block (bearing sin, cos, proximity);
+    proximities are ``1 - 2 d / MAX_HFO_DIST`` (hfo2d.features), so the distance scale is ``MAX_HFO_DIST / 2``.
+
+    :raises ValueError: ``teammates`` < 1.
+    """
+    if isinstance(teammates, bool) or not isinstance(teammates, int) or teammates < 1:
+        raise ValueError(f"teammates must be an integer >= 1 (the router splits a team), got {teammates!r}")
+    blocks = [NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * index for index in range(teammates)]
+    return BallPlayerRouter(
+        field_half_router(HFO_DOMAIN),
+        (BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY),
+        tuple((b + PLAYER_ANGLE_SIN, b + PLAYER_ANGLE_COS, b + PLAYER_PROXIMITY) for b in blocks),
+        MAX_HFO_DIST / 2.0,
+    )

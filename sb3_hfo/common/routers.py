@@ -29,6 +29,7 @@ from sb3_hfo.common.domain import DomainAdapter, DomainSpec, resolve_domain
 
 __all__ = [
     "ROUTERS",
+    "BallPlayerRouter",
     "FieldHalfRouter",
     "SingleSkillRouter",
     "SkillRouter",
@@ -117,6 +118,97 @@ class FieldHalfRouter(SkillRouter):
         if isinstance(x_feature, th.Tensor):
             return (x_feature <= self.threshold).long()
         return (np.asarray(x_feature) <= self.threshold).astype(np.int64)
+
+
+class BallPlayerRouter(SkillRouter):
+    """A team's role split as a hand-coded router: an agent that judges itself nearest the ball among its teammates
+    plays ``ball_router``'s skills, the others play one more skill, the *support* skill (index
+    ``ball_router.n_skills``). Each agent judges from its own observation alone (a decentralised rule, like the
+    paper's field half), so two agents may both judge themselves nearest.
+
+    Positions come from bearings and proximities, the way HFO's low-level features give the ball and each
+    teammate: a bearing as ``(sin, cos)`` in the agent's frame and a proximity ``1 - distance / distance_scale``,
+    so an object's position relative to the agent is ``distance * (cos, sin)`` and a teammate's distance to the
+    ball is the distance between the two positions. A tie counts as nearest (both play the ball rather than both
+    waiting). A teammate whose bearing is not a unit vector (its block all zero: the observation does not list it,
+    e.g. HFO's features of a player outside the half field) counts as farther.
+
+    :param ball_router: the skills of the agent nearest the ball (e.g. :class:`FieldHalfRouter`).
+    :param ball_columns: ``(sin, cos, proximity)`` columns of the ball's bearing and proximity.
+    :param teammate_columns: one ``(sin, cos, proximity)`` triple per teammate.
+    :param distance_scale: the distance at proximity 0 (proximity ``1 - d / distance_scale``).
+    """
+
+    def __init__(
+        self,
+        ball_router: SkillRouter,
+        ball_columns: tuple[int, int, int],
+        teammate_columns: tuple[tuple[int, int, int], ...],
+        distance_scale: float,
+    ) -> None:
+        if not callable(ball_router) or getattr(ball_router, "n_skills", None) is None:
+            raise ValueError(f"ball_router must be a SkillRouter (n_skills, __call__), got {ball_router!r}")
+        triples = (tuple(ball_columns), *(tuple(triple) for triple in teammate_columns))
+        for triple in triples:
+            if len(triple) != 3 or any(
+                isinstance(c, bool) or not isinstance(c, (int, np.integer)) or c < 0 for c in triple
+            ):
+                raise ValueError(
+                    f"columns must be (sin, cos, proximity) triples of non-negative ints, got {triple!r}"
+                )
+        if not teammate_columns:
+            raise ValueError(
+                "BallPlayerRouter needs at least one teammate (with none every agent plays the ball)"
+            )
+        if not float(distance_scale) > 0.0:
+            raise ValueError(f"distance_scale must be > 0, got {distance_scale!r}")
+        self.ball_router = ball_router
+        self.ball_columns = tuple(int(c) for c in ball_columns)
+        self.teammate_columns = tuple(tuple(int(c) for c in triple) for triple in teammate_columns)
+        self.distance_scale = float(distance_scale)
+        self.n_skills = int(ball_router.n_skills) + 1
+
+    @property
+    def support_skill(self) -> int:
+        """The skill index of the agents that are not nearest the ball."""
+        return self.n_skills - 1
+
+    def _position(self, obs: Any, columns: tuple[int, ...]) -> tuple[Any, Any]:
+        sin, cos, proximity = columns
+        distance = (1.0 - obs[:, proximity]) * self.distance_scale
+        return distance * obs[:, cos], distance * obs[:, sin]
+
+    def nearest(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        """Whether each row's agent judges itself nearest the ball: ``(batch,)`` bool (numpy or torch)."""
+        needed = 1 + max(max(triple) for triple in (self.ball_columns, *self.teammate_columns))
+        if obs.shape[-1] < needed:
+            raise ValueError(
+                f"BallPlayerRouter reads columns up to {needed - 1} but the observation has only "
+                f"{obs.shape[-1]} features (is this a team of {len(self.teammate_columns) + 1}?)"
+            )
+        hypot = th.hypot if isinstance(obs, th.Tensor) else np.hypot
+        ball_x, ball_y = self._position(obs, self.ball_columns)
+        own_distance = hypot(ball_x, ball_y)
+        nearest = (
+            th.ones_like(own_distance, dtype=th.bool)
+            if isinstance(obs, th.Tensor)
+            else np.ones(own_distance.shape, dtype=bool)
+        )
+        for triple in self.teammate_columns:
+            mate_x, mate_y = self._position(obs, triple)
+            listed = hypot(obs[:, triple[0]], obs[:, triple[1]]) > 0.5  # a unit vector, not an all-zero block
+            nearest = nearest & ((own_distance <= hypot(ball_x - mate_x, ball_y - mate_y)) | ~listed)
+        return nearest
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        nearest = self.nearest(obs)
+        ball_skills = self.ball_router(obs)
+        if isinstance(obs, th.Tensor):
+            return th.where(nearest, ball_skills, th.full_like(ball_skills, self.support_skill))
+        return np.where(nearest, ball_skills, self.support_skill).astype(np.int64)
+
+    def __hash__(self) -> int:
+        return hash((type(self).__name__, self.ball_columns, self.teammate_columns, self.distance_scale))
 
 
 #: Routers selectable by name (``skill_router="field_half"`` in policy_kwargs / YAML).
