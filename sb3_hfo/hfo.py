@@ -87,21 +87,25 @@ HFO_DOMAIN = DomainAdapter(
 )
 
 
-def hfo_ball_player_router(teammates: int) -> BallPlayerRouter:
+def hfo_ball_player_router(teammates: int, opponents: int = 1) -> BallPlayerRouter:
     """The role split of ``teammates + 1`` strikers on HFO's paper-era features (hfo2d's layout: 58 basic features,
     then one 8-feature block per teammate, then the opponents'): a striker that judges itself nearest the ball plays
     the paper's two field-half skills (0: approach and dribble, 1: shoot), the others skill 2 (support). The ball's
     landmark is features 51-53 and each teammate's the first three of its block (bearing sin, cos, proximity);
     proximities are ``1 - 2 d / MAX_HFO_DIST`` (hfo2d.features), so the distance scale is ``MAX_HFO_DIST / 2``.
+    The router checks the observation's size, ``58 + 8 * (teammates + opponents)``.
 
-    :raises ValueError: ``teammates`` < 1.
+    :raises ValueError: ``teammates`` < 1 or ``opponents`` < 0.
     """
     if isinstance(teammates, bool) or not isinstance(teammates, int) or teammates < 1:
         raise ValueError(f"teammates must be an integer >= 1 (the router splits a team), got {teammates!r}")
+    if isinstance(opponents, bool) or not isinstance(opponents, int) or opponents < 0:
+        raise ValueError(f"opponents must be an integer >= 0, got {opponents!r}")
     blocks = [NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * index for index in range(teammates)]
     return BallPlayerRouter(
         field_half_router(HFO_DOMAIN),
         (BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY),
         tuple((b + PLAYER_ANGLE_SIN, b + PLAYER_ANGLE_COS, b + PLAYER_PROXIMITY) for b in blocks),
         MAX_HFO_DIST / 2.0,
+        n_features=NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (teammates + opponents),
     )

@@ -137,6 +137,8 @@ class BallPlayerRouter(SkillRouter):
     :param ball_columns: ``(sin, cos, proximity)`` columns of the ball's bearing and proximity.
     :param teammate_columns: one ``(sin, cos, proximity)`` triple per teammate.
     :param distance_scale: the distance at proximity 0 (proximity ``1 - d / distance_scale``).
+    :param n_features: the observation's size, checked on every call when given (a team of another size puts
+        other players' features in the teammate columns, e.g. HFO's 1v1 the goalie's).
     """
 
     def __init__(
@@ -145,6 +147,7 @@ class BallPlayerRouter(SkillRouter):
         ball_columns: tuple[int, int, int],
         teammate_columns: tuple[tuple[int, int, int], ...],
         distance_scale: float,
+        n_features: int | None = None,
     ) -> None:
         if not callable(ball_router) or getattr(ball_router, "n_skills", None) is None:
             raise ValueError(f"ball_router must be a SkillRouter (n_skills, __call__), got {ball_router!r}")
@@ -166,6 +169,7 @@ class BallPlayerRouter(SkillRouter):
         self.ball_columns = tuple(int(c) for c in ball_columns)
         self.teammate_columns = tuple(tuple(int(c) for c in triple) for triple in teammate_columns)
         self.distance_scale = float(distance_scale)
+        self.n_features = None if n_features is None else int(n_features)
         self.n_skills = int(ball_router.n_skills) + 1
 
     @property
@@ -180,6 +184,11 @@ class BallPlayerRouter(SkillRouter):
 
     def nearest(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
         """Whether each row's agent judges itself nearest the ball: ``(batch,)`` bool (numpy or torch)."""
+        if self.n_features is not None and obs.shape[-1] != self.n_features:
+            raise ValueError(
+                f"BallPlayerRouter is for observations of {self.n_features} features, got {obs.shape[-1]} (a team "
+                "of another size puts other players in the teammate columns)"
+            )
         needed = 1 + max(max(triple) for triple in (self.ball_columns, *self.teammate_columns))
         if obs.shape[-1] < needed:
             raise ValueError(
@@ -208,7 +217,15 @@ class BallPlayerRouter(SkillRouter):
         return np.where(nearest, ball_skills, self.support_skill).astype(np.int64)
 
     def __hash__(self) -> int:
-        return hash((type(self).__name__, self.ball_columns, self.teammate_columns, self.distance_scale))
+        return hash(
+            (
+                type(self).__name__,
+                self.ball_columns,
+                self.teammate_columns,
+                self.distance_scale,
+                self.n_features,
+            )
+        )
 
 
 #: Routers selectable by name (``skill_router="field_half"`` in policy_kwargs / YAML).

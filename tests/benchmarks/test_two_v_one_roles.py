@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import argparse
 import importlib.util
 import json
 import subprocess
@@ -177,3 +178,34 @@ def test_the_own_features_rule_agrees_with_the_pair_comparison_on_played_states(
     assert len(observations) > 500 and 0.5 < listed.mean() < 1.0  # both kinds of state are checked
     assert (own == team.nearer(observations))[listed].mean() > 0.99
     assert not (~own.reshape(-1, 2).any(axis=1)).any()  # never both idle
+
+
+def test_the_routed_start_plays_the_ball_as_the_start_and_its_support_head_stands(tmp_path: Path) -> None:
+    """train --router ball_player: the striker that judges itself nearer plays exactly the widened start (heads 0
+    and 1 copied), the other one the new support head, whose greedy action is a TURN by 0 degrees."""
+    module = load_script()
+    start_env = module.make_team_vec_env(1, offense_agents=1, defense_npcs=1)
+    start = module.fresh_start_model(start_env, seed=3)
+    env = module.make_team_vec_env(2, offense_agents=2, defense_npcs=1, seed=0)
+    arguments = {"seed": 0, "smoke": True, "out": tmp_path, "arm": "2v1", "critic_warmup": 0, "hp": module.HP}
+    plain = module.build_arm_model(start, env, 2, argparse.Namespace(**arguments, router=None))
+    routed = module.build_arm_model(start, env, 2, argparse.Namespace(**arguments, router="ball_player"))
+    assert (plain.policy.n_skills, routed.policy.n_skills) == (2, 3)
+    observations = module.play_pairs(module.RoleSplitTeamBoth(start), 8, 0, 4)
+    nearer = module.judges_itself_nearer(observations, 58)
+    assert 0.2 < nearer.mean() < 0.8  # both roles occur
+    routed_actions, _ = routed.predict(observations, deterministic=True)
+    plain_actions, _ = plain.predict(observations, deterministic=True)
+    np.testing.assert_array_equal(routed_actions[nearer], plain_actions[nearer])
+    support = routed_actions[~nearer]
+    assert (support[:, :3].argmax(axis=1) == 1).all()  # TURN
+    np.testing.assert_allclose(support[:, 5], 0.5, atol=1e-6)  # by 0 degrees
+    # the values are the widened start's too (the critic is copied)
+    tensor = th.as_tensor(observations)
+    np.testing.assert_allclose(
+        routed.policy.predict_values(tensor).detach(), plain.policy.predict_values(tensor).detach(), atol=1e-6
+    )
+    with pytest.raises(SystemExit, match="1v1 arm has none"):
+        module.main(["train", "--arm", "1v1", "--router", "ball_player", "--out", str(tmp_path / "x")])
+    env.close()
+    start_env.close()
