@@ -581,8 +581,10 @@ def _restore_callbacks(callbacks: Sequence[BaseCallback], saved: list[dict[str, 
 def _format_name(output: Any) -> str | None:
     if isinstance(output, HumanOutputFormat):
         return "stdout" if output.file is sys.stdout else "log"
+    # isinstance, not type(): a resumed run logs through _ResumedTensorBoardOutput, and a checkpoint written by it
+    # must name TensorBoard too (an exact-type lookup dropped it, so a run resumed twice logged no more curves)
     names = {CSVOutputFormat: "csv", JSONOutputFormat: "json", TensorBoardOutputFormat: "tensorboard"}
-    return names.get(type(output))
+    return next((name for kind, name in names.items() if isinstance(output, kind)), None)
 
 
 def _logger_state(model: BaseAlgorithm) -> dict[str, Any] | None:

@@ -227,6 +227,12 @@ def test_a_resumed_run_in_a_fresh_process_equals_an_unbroken_one(
     # TensorBoard continued in the same run folder.
     assert sorted(path.name for path in tensorboard_log.iterdir()) == ["SkillDDPG_1"]
     assert len(list((tensorboard_log / "SkillDDPG_1").iterdir())) == event_files + 1  # the resumed process's
+    # and a checkpoint written by the resumed process resumes TensorBoard again (a run resumed twice once lost it)
+    assert (
+        _read(tmp_path / "resumed.pkl")["logger"]["formats"]
+        == _read(stopped_run / "checkpoint.pkl")["logger"]["formats"]
+    )
+    assert "tensorboard" in _read(tmp_path / "resumed.pkl")["logger"]["formats"]
 
 
 def test_resuming_restores_counters_into_a_fresh_model(tmp_path: Path) -> None:
