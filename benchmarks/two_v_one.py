@@ -80,8 +80,9 @@ from sb3_hfo.multi_agent import (  # noqa: E402
 REWARD = "shaped_gap_refund"
 #: the offense rewards a run may choose (--reward): the default; hfo2d's sparse goal reward (1 to every striker on a
 #: goal), a team reward that pays no striker for going to the ball itself; or the role-aware team reward
-#: (hfo2d.team.NEAREST_PULL_REWARDS: the ball-pull terms to the striker nearest the ball alone; in 1v1 the default)
-REWARDS: tuple[str, ...] = (REWARD, "sparse", "shaped_gap_refund_nearest")
+#: (hfo2d.team.NEAREST_PULL_REWARDS: the ball-pull terms to the striker nearest the ball alone; in 1v1 the default);
+#: the carry-and-shot reward e6_from_clone_shot was trained with (hfo2d.reward), per striker or role-aware
+REWARDS: tuple[str, ...] = (REWARD, "sparse", "shaped_gap_refund_nearest", "carry_shot", "carry_shot_nearest")
 #: learning strikers per game in each arm; the goalie is agent2d's (defense_npcs=1) in both
 ARMS: dict[str, int] = {"1v1": 1, "2v1": 2}
 #: rl_from_clone.py's fine-tuning settings (its s0 run's learning rate)

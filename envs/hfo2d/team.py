@@ -62,8 +62,11 @@ Rewards (this project's choice; HFO itself gives none):
   agent's own features (:class:`hfo2d.reward.ShapedReward`: its own move-to-ball and first-kickable bonus, the
   ball's progress to the goal, +5 on a goal, whoever scored); ``"shaped_gap"`` and ``"shaped_gap_refund"``
   (:mod:`hfo2d.reward`: the ball's progress measured to the gap beside the goalie, lost shots refunded), which
-  read the goalie where ``HFO/Keeper-v1`` has it (:meth:`TeamGame._reward_features`); ``"sparse"``: 1 on a goal.
-  Role-aware (``"shaped_gap_refund_nearest"``, this project's): ``"shaped_gap_refund"``, except that the ball-pull
+  read the goalie where ``HFO/Keeper-v1`` has it (:meth:`TeamGame._reward_features`); ``"carry"`` and
+  ``"carry_shot"`` (:mod:`hfo2d.reward`: the ball's record closeness to the goal while within 2 m of the striker,
+  and the shot's record speed; they read the basic features only, so each striker's own); ``"sparse"``: 1 on a goal.
+  Role-aware (``"shaped_gap_refund_nearest"`` and ``"carry_shot_nearest"``, this project's): the reward they are
+  named after, except that the ball-pull
   terms (move to the ball, first-kickable bonus) are paid only to the learning striker nearest the ball after the
   cycle (world distances; a tie goes to the lower agent index), while the progress and goal terms stay each
   striker's. Why: with every striker paid for its own move to the ball, all of them chase it and the goalie
@@ -205,11 +208,16 @@ TEAM_ACTION_FORMATS: tuple[str, ...] = ("flat", "parameterized")
 TEAM_FEATURE_SETS: tuple[str, ...] = ("paper", "hfo", "high_level")
 #: Team rewards that pay the ball-pull terms (BALL_PULL_TERMS) only to the striker nearest the ball: name -> the
 #: per-striker reward whose other terms they keep (see the module docstring, "role-aware").
-NEAREST_PULL_REWARDS: dict[str, str] = {"shaped_gap_refund_nearest": "shaped_gap_refund"}
+NEAREST_PULL_REWARDS: dict[str, str] = {
+    "shaped_gap_refund_nearest": "shaped_gap_refund",
+    "carry_shot_nearest": "carry_shot",
+}
 TEAM_OFFENSE_REWARDS: tuple[str, ...] = (
     "shaped",
     "shaped_gap",
     "shaped_gap_refund",
+    "carry",
+    "carry_shot",
     "sparse",
     *NEAREST_PULL_REWARDS,
 )
@@ -1104,8 +1112,9 @@ class HalfFieldOffenseEnv(gym.Env):
     A striker (``reward``): ``"shaped"`` (default), Hausknecht & Stone's shaping from its own features (move to
     the ball, +1 the first time kickable, 3 x the ball's progress to the goal, +5 on a goal), ``"shaped_gap"`` /
     ``"shaped_gap_refund"`` (the progress measured to the gap beside the goalie, lost shots refunded:
-    :mod:`hfo2d.reward`), ``"shaped_gap_refund_nearest"`` (the same, with the move-to-ball and kick terms paid
-    only to the striker nearest the ball), or ``"sparse"`` (1 on a goal). A defender (``defense_reward``): ``"sparse"`` (default) +1 when the episode ends in
+    :mod:`hfo2d.reward`), ``"carry"`` / ``"carry_shot"`` (the carry and shot records of :mod:`hfo2d.reward`),
+    ``"shaped_gap_refund_nearest"`` / ``"carry_shot_nearest"`` (the same, with the move-to-ball and kick terms
+    paid only to the striker nearest the ball), or ``"sparse"`` (1 on a goal). A defender (``defense_reward``): ``"sparse"`` (default) +1 when the episode ends in
     CAPTURED_BY_DEFENSE, OUT_OF_BOUNDS or OUT_OF_TIME, -1 on a GOAL; ``"shaped"`` adds its move-to-ball term.
 
     ## Starting State
@@ -1136,7 +1145,8 @@ class HalfFieldOffenseEnv(gym.Env):
 
     ## Version History
 
-    * v0: initial version (HFO's team sizes; agent2d's goalie as the first defense NPC).
+    * v0: initial version (HFO's team sizes; agent2d's goalie as the first defense NPC). Later additions that
+      change no existing setting: the rewards ``"carry"``, ``"carry_shot"`` and ``"carry_shot_nearest"``.
     """
 
     metadata = {"render_modes": ["human", "rgb_array"], "render_fps": 10}

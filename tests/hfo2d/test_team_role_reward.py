@@ -8,6 +8,7 @@ from collections.abc import Callable
 import numpy as np
 import pytest
 
+from hfo2d.reward import make_reward
 from hfo2d.team import BALL_PULL_TERMS, NEAREST_PULL_REWARDS, TEAM_OFFENSE_REWARDS, TeamGame
 
 #: the conftest fixture chase_actions
@@ -76,3 +77,48 @@ def test_only_the_striker_nearest_the_ball_is_paid_the_ball_pull(strikers: int, 
                     withheld += plain_terms[term] != 0.0
             assert rewards[name] == pytest.approx(sum(terms.values()), abs=1e-12)
     assert withheld > 0  # the plain reward did pay a striker that was not the nearest
+
+
+@pytest.mark.parametrize("strikers", [1, 2])
+def test_carry_shot_pays_each_striker_its_own_and_the_role_variant_only_the_nearest_pulls(
+    strikers: int, chase_actions: Chase
+) -> None:
+    """``"carry_shot"`` in a team is hfo2d.reward's carry_shot on each striker's own features (it reads the basic
+    58 only, so a teammate's block changes nothing); ``"carry_shot_nearest"`` zeroes the ball-pull terms of every
+    striker but the nearest and keeps the rest."""
+    assert {"carry", "carry_shot", "carry_shot_nearest"} <= set(TEAM_OFFENSE_REWARDS)
+    role = TeamGame(strikers, 0, 1, reward="carry_shot_nearest", seed=5)
+    plain = TeamGame(strikers, 0, 1, reward="carry_shot", seed=5)
+    own = {name: make_reward("carry_shot") for name in plain.agent_names}
+    observations, _ = role.reset(seed=5)
+    plain_observations, _ = plain.reset(seed=5)
+    for name, obs in plain_observations.items():
+        own[name].reset(obs)
+    zeroed = paid = 0
+    for step in range(400):
+        actions = chase_actions(observations, step % 3 == 0)
+        observations, rewards, terminated, truncated, infos = role.step(actions)
+        plain_observations, plain_rewards, _, _, plain_infos = plain.step(actions)
+        ball = role.world.ball
+        distances = [math.hypot(agent.player.x - ball.x, agent.player.y - ball.y) for agent in role.agents]
+        nearest = role.agent_names[int(np.argmin(distances))]
+        for name, obs in plain_observations.items():
+            expected, _ = own[name](obs, plain.status, terminated)
+            assert plain_rewards[name] == pytest.approx(expected, abs=1e-5)  # float32 observations
+            terms, plain_terms = infos[name]["reward_terms"], plain_infos[name]["reward_terms"]
+            if name == nearest or strikers == 1:
+                assert terms == plain_terms
+            else:
+                assert all(terms[term] == 0.0 for term in BALL_PULL_TERMS)
+                assert {k: v for k, v in terms.items() if k not in BALL_PULL_TERMS} == {
+                    k: v for k, v in plain_terms.items() if k not in BALL_PULL_TERMS
+                }
+                zeroed += any(plain_terms[term] != 0.0 for term in BALL_PULL_TERMS)
+            paid += plain_terms["ball_to_goal"] != 0.0
+        if terminated or truncated:
+            observations, _ = role.reset()
+            plain_observations, _ = plain.reset()
+            for name, obs in plain_observations.items():
+                own[name].reset(obs)
+    assert paid > 0  # the carry record was paid
+    assert zeroed > 0 or strikers == 1  # the check can tell: a non-nearest striker's pull was withheld
