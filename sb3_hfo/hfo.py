@@ -30,6 +30,7 @@ from hfo2d.features import (
     PLAYER_ANGLE_SIN,
     PLAYER_PROXIMITY,
     SELF_X,
+    num_features,
 )
 from hfo2d.symmetry import feature_mirror, flat_action_mirror_signs
 from sb3_hfo.common.domain import DomainAdapter
@@ -107,5 +108,5 @@ def hfo_ball_player_router(teammates: int, opponents: int = 1) -> BallPlayerRout
         (BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY),
         tuple((b + PLAYER_ANGLE_SIN, b + PLAYER_ANGLE_COS, b + PLAYER_PROXIMITY) for b in blocks),
         MAX_HFO_DIST / 2.0,
-        n_features=NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (teammates + opponents),
+        n_features=num_features(teammates, opponents),
     )

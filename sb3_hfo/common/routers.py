@@ -216,17 +216,6 @@ class BallPlayerRouter(SkillRouter):
             return th.where(nearest, ball_skills, th.full_like(ball_skills, self.support_skill))
         return np.where(nearest, ball_skills, self.support_skill).astype(np.int64)
 
-    def __hash__(self) -> int:
-        return hash(
-            (
-                type(self).__name__,
-                self.ball_columns,
-                self.teammate_columns,
-                self.distance_scale,
-                self.n_features,
-            )
-        )
-
 
 #: Routers selectable by name (``skill_router="field_half"`` in policy_kwargs / YAML).
 ROUTERS: dict[str, type[SkillRouter]] = {
