@@ -45,6 +45,23 @@ def test_the_build_script_parses_and_lists_its_sources_and_pins() -> None:
         assert default in shown, default
 
 
+def test_the_build_script_installs_flex_s_cxx_header_and_lists_what_it_installs() -> None:
+    """rcssserver's coach-language lexer includes <FlexLexer.h>, which Debian ships in libfl-dev; ``flex`` only
+    recommends that package, so ``apt-get --no-install-recommends flex`` left it out and the build failed on a fresh
+    machine. The packages the script installs, its --help and docs/real_hfo.md must name the same list."""
+    text = BUILD_SCRIPT.read_text()
+    install = text.split("apt-get install -y -q --no-install-recommends", 1)[1].split("\nfi", 1)[0]
+    installed = install.replace("\\", " ").split()
+    assert "libfl-dev" in installed and "flex" in installed
+    listed = text.split("installed with apt-get unless --skip-apt (root or sudo needed):", 1)[1]
+    listed_packages = " ".join(
+        line.lstrip("#").split("(the last two")[0] for line in listed.splitlines()[1:3]
+    ).split()
+    assert listed_packages == installed
+    documented = (ROOT / "docs" / "real_hfo.md").read_text().replace("\n", " ")
+    assert f"`{' '.join(installed)}`" in " ".join(documented.split())
+
+
 @pytest.mark.parametrize(
     "args, message",
     [

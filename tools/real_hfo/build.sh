@@ -17,7 +17,7 @@
 #
 # SRC is anything `git clone` takes: a URL, a local clone or a bare git directory (for machines without GitHub).
 # Debian/Ubuntu packages installed with apt-get unless --skip-apt (root or sudo needed):
-#   build-essential cmake git flex bison libboost-system-dev libboost-filesystem-dev zlib1g-dev
+#   build-essential cmake git flex libfl-dev bison libboost-system-dev libboost-filesystem-dev zlib1g-dev
 #   python3 iproute2 util-linux   (the last two: `ip` and `unshare` for tools/real_hfo/loopback.sh)
 #
 # Result (checked at the end): DEST/HFO/bin/HFO (HFO's launcher), DEST/HFO/bin/rcssserver, the agent2d NPCs in
@@ -73,12 +73,16 @@ if [ "$skip_apt" = 0 ]; then
   echo "== apt-get: build tools and libraries (skip with --skip-apt)"
   $sudo apt-get update -q
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends \
-    build-essential cmake git flex bison libboost-system-dev libboost-filesystem-dev zlib1g-dev \
+    build-essential cmake git flex libfl-dev bison libboost-system-dev libboost-filesystem-dev zlib1g-dev \
     python3 iproute2 util-linux
 fi
 for tool in git cmake make g++ flex bison python3; do
   command -v "$tool" >/dev/null || die "$tool not found; install the packages listed in --help"
 done
+# rcssserver's coach-language lexer includes flex's C++ header, which Debian ships in libfl-dev, a package that
+# `flex` only recommends (so --no-install-recommends, or a minimal image, leaves it out)
+echo '#include <FlexLexer.h>' | g++ -x c++ -fsyntax-only - 2>/dev/null \
+  || die "FlexLexer.h not found (rcssserver needs flex's C++ header); install libfl-dev"
 
 # clone SRC into DEST/NAME (or reuse an existing clone) and check out REV; prints the full commit id
 checkout() {
