@@ -16,7 +16,10 @@ the end statuses. Teams (``--teams``; in every two-striker team the striker near
 * ``pass``: ``support``, and the ball player passes to the supporter when the goalie is within ``PASS_GOALIE_RANGE``
   of the ball, the passing lane is clear of it by ``PASS_LANE_CLEARANCE`` and the supporter is within
   ``PASS_RECEIVER_RANGE`` of the goal centre; the receiver, now nearer the ball, plays ``soft_dribble`` (a shot from
-  there).
+  there);
+* ``screen``: the other striker screens the goalie: it runs to a point ``SCREEN_GAP`` from the goalie on the line
+  toward the post the ball player aims at, then keeps dashing into the goalie, so that rcssserver's player-player
+  collisions (both pushed apart, both velocities times -0.1) hold the goalie back from that post.
 
 The strikers read their own paper features with the teammate's block removed (what ``soft_dribble`` reads alone);
 the team picks the ball player from both strikers' estimates of their distance to the ball, as a shared team
@@ -26,6 +29,8 @@ memory would. How the figures are used: benchmarks/README.md, "Two strikers agai
     HOME=/root HFO_DIR=/root/real_hfo/HFO tools/real_hfo/loopback.sh \\
         python benchmarks/two_v_one_scripted.py --backend real --teams alone tap_in --out ~/runs/twovone3/real.json
     python benchmarks/two_v_one_scripted.py --episodes 3 --out /tmp/scripted.json   # seconds: what the test runs
+    python benchmarks/two_v_one_scripted.py --teams pass --pass-goalie-range 4.5 --pass-lane-clearance 1.5 \
+        --support-spot 46 4 --out ~/runs/twovone6/pass_sweep/g4.5_l1.5_46_4.json       # one point of the pass sweep
 """
 
 from __future__ import annotations
@@ -45,7 +50,7 @@ from hfo2d import strikers
 from hfo2d.features import FEATURES_PER_PLAYER, NUM_BASIC_FEATURES
 from hfo2d.team import TeamGame
 
-TEAMS: tuple[str, ...] = ("alone", "both", "support", "tap_in", "pass")
+TEAMS: tuple[str, ...] = ("alone", "both", "support", "tap_in", "pass", "screen")
 #: m; where the supporter waits: (x, |y|), y on the side of the post soft_dribble aims at (the far post from the
 #: goalie); 2 m in front of the goal line and 1.5 m outside the post (HFO's goal half-width is 7.01 m)
 SUPPORT_SPOT = (50.5, 8.5)
@@ -62,6 +67,10 @@ PASS_RECEIVER_RANGE = 16.0  # m from the goal centre
 PASS_ZONE = 22.0  # m; passes only with the ball this close to the goal centre
 #: a pass's speed: enough to arrive (rcssserver's ball decay 0.94 takes 6 % a cycle), at most 2.7 m/cycle
 PASS_SPEED_PER_METRE, PASS_BASE_SPEED, PASS_MAX_SPEED = 0.06, 0.6, 2.7
+#: m; where the screen stands: this far from the goalie toward the far post (two players' radii of 0.3 m plus a
+#: little, so that its dash into the goalie collides at once)
+SCREEN_GAP = 0.7
+SCREEN_TOLERANCE = 0.4  # m; nearer than this to its point the screen dashes into the goalie
 TEAMMATE_BLOCK = np.arange(NUM_BASIC_FEATURES, NUM_BASIC_FEATURES + FEATURES_PER_PLAYER)
 
 
@@ -77,10 +86,18 @@ def _segment_distance(px: float, py: float, ax: float, ay: float, bx: float, by:
 class ScriptedTeam:
     """One of :data:`TEAMS` for one game: :meth:`act` maps the strikers' observations to their flat actions."""
 
-    def __init__(self, team: str) -> None:
+    def __init__(
+        self,
+        team: str,
+        pass_goalie_range: float = PASS_GOALIE_RANGE,
+        pass_lane_clearance: float = PASS_LANE_CLEARANCE,
+        support_spot: tuple[float, float] = SUPPORT_SPOT,
+    ) -> None:
         if team not in TEAMS:
             raise ValueError(f"unknown team {team!r}; choose one of {TEAMS}")
         self.team = team
+        self.pass_goalie_range, self.pass_lane_clearance = pass_goalie_range, pass_lane_clearance
+        self.support_spot = support_spot
         self.striker = strikers.make_striker("soft_dribble")
         self.shooter: int | None = None  # the striker whose kick is in flight
         self.passes = 0
@@ -109,7 +126,7 @@ class ScriptedTeam:
         if self.team == "both":
             return [self.striker.decide(percept) for percept in percepts]
         player, mate = percepts[ball_player], percepts[1 - ball_player]
-        spot = self._spot(player)
+        spot = self._spot(player, self.support_spot)
         in_flight = math.hypot(player.ball_vx, player.ball_vy) > SHOT_IN_FLIGHT_SPEED
         if self.team == "tap_in":
             for index, percept in enumerate(percepts):
@@ -129,20 +146,40 @@ class ScriptedTeam:
             command = self._pass_or(command, player, mate)
         commands = [strikers.idle(), strikers.idle()]
         commands[ball_player] = command
-        commands[1 - ball_player] = self._hold(mate, spot)
+        if self.team == "screen" and mate.goalie is not None:
+            commands[1 - ball_player] = self._screen(player, mate)
+        else:
+            commands[1 - ball_player] = self._hold(mate, spot)
         return commands
+
+    @staticmethod
+    def _screen(player: strikers.Percept, mate: strikers.Percept) -> strikers.Command:
+        """Stand ``SCREEN_GAP`` from the goalie toward the post the ball player aims at, then push into the goalie."""
+        assert mate.goalie is not None
+        goalie_x, goalie_y = mate.goalie
+        post_x, post_y = strikers.far_post(player, 0.0)
+        length = math.hypot(post_x - goalie_x, post_y - goalie_y) or 1.0
+        point = (
+            goalie_x + (post_x - goalie_x) / length * SCREEN_GAP,
+            goalie_y + (post_y - goalie_y) / length * SCREEN_GAP,
+        )
+        if math.hypot(mate.x - point[0], mate.y - point[1]) > SCREEN_TOLERANCE:
+            return strikers.move_to(mate, *point)
+        return strikers.move_to(mate, goalie_x, goalie_y)
 
     def _supporter(self) -> int | None:
         return None if self.shooter is None else 1 - self.shooter
 
     @staticmethod
-    def _spot(player: strikers.Percept) -> tuple[float, float]:
+    def _spot(
+        player: strikers.Percept, support_spot: tuple[float, float] = SUPPORT_SPOT
+    ) -> tuple[float, float]:
         """The supporter's spot, on the side of the post the ball player aims at."""
         if player.goalie is not None:
             side = 1.0 if strikers.far_post(player, 0.0)[1] > 0.0 else -1.0
         else:
             side = -1.0 if player.ball_y > 0.0 else 1.0
-        return SUPPORT_SPOT[0], side * SUPPORT_SPOT[1]
+        return support_spot[0], side * support_spot[1]
 
     @staticmethod
     def _hold(percept: strikers.Percept, spot: tuple[float, float]) -> strikers.Command:
@@ -174,12 +211,12 @@ class ScriptedTeam:
             return command
         goalie_x, goalie_y = player.goalie
         if (
-            math.hypot(goalie_x - player.ball_x, goalie_y - player.ball_y) < PASS_GOALIE_RANGE
+            math.hypot(goalie_x - player.ball_x, goalie_y - player.ball_y) < self.pass_goalie_range
             and player.ball_goal_dist < PASS_ZONE
             and math.hypot(strikers.GOAL_CENTRE[0] - mate.x, strikers.GOAL_CENTRE[1] - mate.y)
             < PASS_RECEIVER_RANGE
             and _segment_distance(goalie_x, goalie_y, player.ball_x, player.ball_y, mate.x, mate.y)
-            > PASS_LANE_CLEARANCE
+            > self.pass_lane_clearance
             and not strikers.kick_blocked(player, mate.x, mate.y)
         ):
             distance = math.hypot(mate.x - player.ball_x, mate.y - player.ball_y)
@@ -189,12 +226,13 @@ class ScriptedTeam:
         return command
 
 
-def play(team_name: str, episodes: int, seed: int, backend: str = "hfo2d") -> dict[str, Any]:
+def play(team_name: str, episodes: int, seed: int, backend: str = "hfo2d", **settings: Any) -> dict[str, Any]:
     """``episodes`` episodes of one scripted team from HFO's starts: in hfo2d (the game seeded once with ``seed``)
-    or in a real HFO build (``backend="real"``: ``hfo2d.parallel_env``, HFO's ``--seed`` from ``seed``)."""
+    or in a real HFO build (``backend="real"``: ``hfo2d.parallel_env``, HFO's ``--seed`` from ``seed``);
+    ``settings`` go to :class:`ScriptedTeam` (the pass and the supporter's spot)."""
     from sb3_hfo.evaluation import goal_rate_summary  # as the other benchmarks report
 
-    team = ScriptedTeam(team_name)
+    team = ScriptedTeam(team_name, **settings)
     if backend == "hfo2d":
         game: Any = TeamGame(team.striker_count, 0, 1, seed=seed)
     else:
@@ -251,18 +289,50 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
         "--backend", default="hfo2d", choices=("hfo2d", "real"), help="real: HFO_DIR's HFO build"
     )
     parser.add_argument("--out", type=Path, required=True, help="the JSON file to write")
+    parser.add_argument(
+        "--pass-goalie-range",
+        type=float,
+        default=PASS_GOALIE_RANGE,
+        help="m; pass: the goalie this near the ball",
+    )
+    parser.add_argument(
+        "--pass-lane-clearance",
+        type=float,
+        default=PASS_LANE_CLEARANCE,
+        help="m; pass: the goalie this far from the lane",
+    )
+    parser.add_argument(
+        "--support-spot",
+        type=float,
+        nargs=2,
+        default=SUPPORT_SPOT,
+        metavar=("X", "ABS_Y"),
+        help="m; where the supporter waits (support, tap_in, pass)",
+    )
     args = parser.parse_args(argv)
     if args.episodes < 1:
         parser.error(f"--episodes must be >= 1, got {args.episodes}")
+    if args.pass_goalie_range <= 0 or args.pass_lane_clearance < 0:
+        parser.error("--pass-goalie-range must be > 0 and --pass-lane-clearance >= 0")
+    if not (0.0 < args.support_spot[0] <= GOAL_LINE_X and 0.0 <= args.support_spot[1] <= 34.0):
+        parser.error(
+            f"--support-spot X ABS_Y must lie in the offense half (0 < X <= 52.5, 0 <= ABS_Y <= 34), got {args.support_spot}"
+        )
+    settings = {
+        "pass_goalie_range": args.pass_goalie_range,
+        "pass_lane_clearance": args.pass_lane_clearance,
+        "support_spot": (args.support_spot[0], args.support_spot[1]),
+    }
     results = {}
     for name in args.teams:
-        results[name] = play(name, args.episodes, args.seed, args.backend)
+        results[name] = play(name, args.episodes, args.seed, args.backend, **settings)
         print(json.dumps(results[name]), flush=True)
     record = {
         "episodes": args.episodes,
         "seed": args.seed,
         "backend": args.backend,
         "striker": "soft_dribble",
+        **settings,
     }
     record["results"] = results
     args.out.parent.mkdir(parents=True, exist_ok=True)

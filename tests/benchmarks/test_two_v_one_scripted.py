@@ -5,6 +5,7 @@ from __future__ import annotations
 import dataclasses
 import importlib.util
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -76,8 +77,48 @@ def test_the_script_plays_every_team_and_writes_its_figures(tmp_path: Path) -> N
     completed = subprocess.run(command, capture_output=True, text=True, timeout=300, cwd=tmp_path)
     assert completed.returncode == 0, completed.stderr[-2000:]
     results = json.loads(out.read_text())["results"]
-    assert set(results) == {"alone", "both", "support", "tap_in", "pass"}
+    assert set(results) == {"alone", "both", "support", "tap_in", "pass", "screen"}
     for row in results.values():
         assert sum(row["status"].values()) == 2 and row["goals"] == row["status"].get("GOAL", 0)
         assert row["ci95"][0] <= row["rate"] <= row["ci95"][1]
         assert 0 <= row["out_over_goal_line"] <= row["status"].get("OUT_OF_BOUNDS", 0)
+
+
+def test_the_screen_runs_beside_the_goalie_toward_the_far_post_then_pushes_into_it() -> None:
+    script = load_script()
+    team = script.ScriptedTeam("screen")
+    ball = {"ball_x": 38.0, "ball_y": 3.0, "ball_vx": 0.0, "ball_vy": 0.0}
+    goalie = (50.0, 1.0)  # above the centre: soft_dribble aims at the post below, at y -7.01
+    player = Percept(x=37.0, y=3.0, body_deg=0.0, kickable=False, goalie=goalie, **ball)
+    post = strikers.far_post(player, 0.0)
+    assert post[1] < 0
+    length = math.hypot(post[0] - goalie[0], post[1] - goalie[1])
+    point = tuple(g + (q - g) / length * script.SCREEN_GAP for g, q in zip(goalie, post, strict=True))
+    away = Percept(x=30.0, y=-10.0, body_deg=0.0, kickable=False, goalie=goalie, **ball)
+    commands = team.commands([player, away], 0)
+    assert commands[0] == strikers.make_striker("soft_dribble").decide(player)
+    assert commands[1] == strikers.move_to(away, *point)
+    there = dataclasses.replace(away, x=point[0], y=point[1])
+    assert team.commands([player, there], 0)[1] == strikers.move_to(there, *goalie)
+
+
+def test_the_pass_settings_reach_the_team_and_bad_ones_are_refused(tmp_path: Path) -> None:
+    script = load_script()
+    goalie = (47.0, -1.0)  # 5 m from the ball
+    ball = {"ball_x": 42.0, "ball_y": -1.0, "ball_vx": 0.0, "ball_vy": 0.0}
+    player = Percept(x=41.5, y=-1.0, body_deg=0.0, kickable=True, goalie=goalie, **ball)
+    mate = Percept(x=46.0, y=8.0, body_deg=-90.0, kickable=False, goalie=goalie, **ball)
+    dribble = strikers.make_striker("soft_dribble").decide(player)
+    near_only = script.ScriptedTeam("pass", pass_goalie_range=3.0)
+    assert near_only.commands([player, mate], 0)[0] == dribble and near_only.passes == 0
+    wider = script.ScriptedTeam("pass", pass_goalie_range=6.0, pass_lane_clearance=1.0)
+    assert wider.commands([player, mate], 0)[0] != dribble and wider.passes == 1
+    moved = script.ScriptedTeam("support", support_spot=(46.0, 4.0))
+    assert moved.commands([player, mate], 0)[1] == strikers.move_to(mate, 46.0, 4.0)
+    command = [sys.executable, str(SCRIPT), "--support-spot", "60", "4", "--out", str(tmp_path / "x.json")]
+    completed = subprocess.run(command, capture_output=True, text=True, timeout=120, cwd=tmp_path)
+    assert (
+        completed.returncode == 2
+        and "--support-spot X ABS_Y must lie in the offense half" in completed.stderr
+    )
+    assert not (tmp_path / "x.json").exists()
