@@ -63,9 +63,9 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))  # the sibling script's
 from hybrid_ppo_runs import RunRecorder, load_average  # noqa: E402
 
 import hfo2d  # noqa: E402
-from hfo2d.features import BALL_ANGLE_COS, BALL_ANGLE_SIN, BALL_PROXIMITY, MAX_HFO_DIST  # noqa: E402
+from hfo2d.features import BALL_ANGLE_COS, BALL_ANGLE_SIN, BALL_PROXIMITY, proximity_distance  # noqa: E402
 from hfo2d.team import TeamGame  # noqa: E402
-from sb3_hfo.common.routers import BallPlayerRouter, SingleSkillRouter  # noqa: E402
+from sb3_hfo.common.routers import BallPlayerRouter  # noqa: E402
 from sb3_hfo.hfo import hfo_ball_player_router  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
@@ -140,7 +140,7 @@ class RoleSplitTeam:
         """The idle striker's flat action from its own features."""
         action = NOOP_ACTION.copy()
         if self.idle == "clear":
-            distance = (1.0 - float(observation[BALL_PROXIMITY])) * MAX_HFO_DIST / 2.0
+            distance = proximity_distance(float(observation[BALL_PROXIMITY]))
             if distance < CLEAR_DISTANCE:
                 ball_deg = np.degrees(np.arctan2(observation[BALL_ANGLE_SIN], observation[BALL_ANGLE_COS]))
                 away_deg = (
@@ -154,8 +154,10 @@ class RoleSplitTeam:
         proximity = observations[:, BALL_PROXIMITY].reshape(-1, 2)
         first = proximity[:, 0] >= proximity[:, 1]
         nearer = np.stack([first, ~first], axis=1)
-        # proximity is 1 - 2 d / MAX_HFO_DIST: a distance gap below the margin makes both ball players
-        close = np.abs(proximity[:, 0] - proximity[:, 1]) * MAX_HFO_DIST / 2.0 < self.margin
+        # a distance gap below the margin makes both ball players
+        close = (
+            np.abs(proximity_distance(proximity[:, 0]) - proximity_distance(proximity[:, 1])) < self.margin
+        )
         nearer[close] = True
         return nearer.reshape(-1)
 
@@ -515,22 +517,16 @@ class RoleSplitTeamBoth(RoleSplitTeam):
         return np.ones(observations.shape[0], dtype=bool)
 
 
-def judges_itself_nearer(observations: np.ndarray, teammate_block: int) -> np.ndarray:
-    """Whether each striker is nearer the ball than its teammate, from its **own** features only (paper layout;
-    the teammate's block starts at ``teammate_block``): :meth:`sb3_hfo.common.routers.BallPlayerRouter.nearest`,
-    the rule the hand-coded role router of ``train --router ball_player`` applies. A tie counts as nearer (both
-    play), so the rule errs toward the zero-shot team rather than both idling. A teammate that HFO does not list
-    (outside the HFO half, x <= 0: an all-zero block, whose bearing is no unit vector) counts as farther, said
-    outright rather than left to what its zeros happen to compute (a first version that read the bearing as an
+def judges_itself_nearer(observations: np.ndarray) -> np.ndarray:
+    """Whether each striker of a 2v1 game is nearer the ball than its teammate, from its **own** features only
+    (paper layout, 66 features): :meth:`sb3_hfo.common.routers.BallPlayerRouter.nearest` of the very router that
+    ``train --router ball_player`` gives the pair (:func:`sb3_hfo.hfo.hfo_ball_player_router`). A tie counts as
+    nearer (both play), so the rule errs toward the zero-shot team rather than both idling. A teammate that HFO does
+    not list (outside the HFO half, x <= 0: an all-zero block, whose bearing is no unit vector) counts as farther,
+    said outright rather than left to what its zeros happen to compute (a first version that read the bearing as an
     angle put such a teammate 'MAX_HFO_DIST / 2' straight ahead, and both strikers judged the other nearer and
     idled until the time ran out in 73 of 1,000 games)."""
-    router = BallPlayerRouter(
-        SingleSkillRouter(),
-        (BALL_ANGLE_SIN, BALL_ANGLE_COS, BALL_PROXIMITY),
-        ((teammate_block, teammate_block + 1, teammate_block + 2),),
-        MAX_HFO_DIST / 2.0,
-    )
-    return np.asarray(router.nearest(np.asarray(observations, dtype=np.float64)))
+    return np.asarray(hfo_ball_player_router(1).nearest(np.asarray(observations, dtype=np.float64)))
 
 
 class OwnFeaturesRoleSplitTeam(RoleSplitTeam):
@@ -539,7 +535,7 @@ class OwnFeaturesRoleSplitTeam(RoleSplitTeam):
     the two strikers' ball proximities across the pair."""
 
     def nearer(self, observations: np.ndarray) -> np.ndarray:
-        return judges_itself_nearer(observations, int(self.teammate_block[0]))
+        return judges_itself_nearer(observations)
 
 
 def main(argv: list[str] | None = None) -> None:

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 
@@ -795,6 +795,15 @@ def keeper_view_from_hfo(
     return paper[:NUM_BASIC_FEATURES]
 
 
+_FloatOrArray = TypeVar("_FloatOrArray", float, np.ndarray)
+
+
+def proximity_distance(proximity: _FloatOrArray) -> _FloatOrArray:
+    """Metres encoded by a landmark's proximity ``1 - 2 d / MAX_HFO_DIST`` (the inverse, for d < MAX_HFO_DIST);
+    a float or, elementwise, an array."""
+    return (1.0 - proximity) * 0.5 * MAX_HFO_DIST
+
+
 def landmark_position(
     features: Sequence[float], sin_index: int, cos_index: int, proximity_index: int
 ) -> tuple[float, float]:
@@ -804,7 +813,7 @@ def landmark_position(
     of the observation. Used by the scripted striker (hfo2d.heuristic) and the gap reward (hfo2d.reward).
     """
     bearing = math.atan2(float(features[sin_index]), float(features[cos_index]))
-    distance = (1.0 - float(features[proximity_index])) * 0.5 * MAX_HFO_DIST
+    distance = proximity_distance(float(features[proximity_index]))
     return distance * math.cos(bearing), distance * math.sin(bearing)
 
 

@@ -61,7 +61,6 @@ from hfo2d.features import (
     GOALIE_PROXIMITY,
     KICKABLE,
     LANDMARKS,
-    MAX_HFO_DIST,
     NUM_BASIC_FEATURES,
     PITCH_HALF_LENGTH,
     SELF_BODY_COS,
@@ -69,6 +68,7 @@ from hfo2d.features import (
     hfo_num_features,
     landmark_position,
     paper_from_hfo,
+    proximity_distance,
 )
 from hfo2d.heuristic import BALL_DECAY, BODY_CLEARANCE, MAX_POWER, PLAYER_RUN_SPEED, SHOT_SPEED, _kick_command
 
@@ -130,7 +130,7 @@ def perceive(obs: np.ndarray) -> Percept:
     used = 0
     for index, (_, (landmark_x, landmark_y)) in enumerate(LANDMARKS):
         first = FIRST_LANDMARK + 3 * index
-        if (1.0 - float(obs[first + 2])) * 0.5 * MAX_HFO_DIST > LANDMARK_TRUST_DIST:
+        if proximity_distance(float(obs[first + 2])) > LANDMARK_TRUST_DIST:
             continue
         off_x, off_y = _rotate(*landmark_position(obs, first, first + 1, first + 2), body_deg)
         sum_x += landmark_x - off_x

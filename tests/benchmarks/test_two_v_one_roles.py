@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 import torch as th
 
+from hfo2d.features import MAX_HFO_DIST
 from sb3_hfo.hybrid_ppo import HybridPPO
 
 REPO = Path(__file__).resolve().parents[2]
@@ -54,9 +55,9 @@ def test_the_striker_nearer_the_ball_plays_the_policy_alone_and_the_other_idles(
     module = load_script()
     policy = RecordingPolicy()
     team = module.RoleSplitTeam(policy, idle)
-    near = 1.0 - 2.0 * 3.0 / module.MAX_HFO_DIST  # 3 m from the ball
-    far_but_close = 1.0 - 2.0 * 6.0 / module.MAX_HFO_DIST  # 6 m: inside CLEAR_DISTANCE
-    far = 1.0 - 2.0 * 20.0 / module.MAX_HFO_DIST  # 20 m: outside it
+    near = 1.0 - 2.0 * 3.0 / MAX_HFO_DIST  # 3 m from the ball
+    far_but_close = 1.0 - 2.0 * 6.0 / MAX_HFO_DIST  # 6 m: inside CLEAR_DISTANCE
+    far = 1.0 - 2.0 * 20.0 / MAX_HFO_DIST  # 20 m: outside it
     batch = np.stack(
         [
             striker(far_but_close, 90.0, 0.1),  # game 0: the second striker is nearer
@@ -143,7 +144,7 @@ def test_a_striker_judges_from_its_own_features_whether_it_is_nearer_the_ball() 
     module = load_script()
 
     def proximity(metres: float) -> float:
-        return 1.0 - 2.0 * metres / module.MAX_HFO_DIST
+        return 1.0 - 2.0 * metres / MAX_HFO_DIST
 
     ball_5m_ahead = striker(proximity(5.0), 0.0, 0.0)
     cases = [
@@ -158,11 +159,11 @@ def test_a_striker_judges_from_its_own_features_whether_it_is_nearer_the_ball() 
     ]
     # a ball 1 m short of MAX_HFO_DIST / 2 ahead, where an unlisted teammate's zeros (proximity 0, no bearing)
     # read as an angle of 0 would put the teammate 1 m from the ball
-    unlisted = striker(proximity(module.MAX_HFO_DIST / 2.0 - 1.0), 0.0, 0.0)
+    unlisted = striker(proximity(MAX_HFO_DIST / 2.0 - 1.0), 0.0, 0.0)
     unlisted[58:66] = 0.0
     cases.append((unlisted, True))
     observations = np.stack([observation for observation, _ in cases])
-    judged = module.judges_itself_nearer(observations, 58)
+    judged = module.judges_itself_nearer(observations)
     assert judged.tolist() == [expected for _, expected in cases]
 
 
@@ -173,7 +174,7 @@ def test_the_own_features_rule_agrees_with_the_pair_comparison_on_played_states(
     module = load_script()
     team = module.RoleSplitTeam(RecordingPolicy(), "noop")
     observations = module.play_pairs(team, 16, 0, 8)
-    own = module.judges_itself_nearer(observations, 58)
+    own = module.judges_itself_nearer(observations)
     listed = np.hypot(observations[:, 58], observations[:, 59]) > 0.5
     assert len(observations) > 500 and 0.5 < listed.mean() < 1.0  # both kinds of state are checked
     assert (own == team.nearer(observations))[listed].mean() > 0.99
@@ -192,7 +193,7 @@ def test_the_routed_start_plays_the_ball_as_the_start_and_its_support_head_stand
     routed = module.build_arm_model(start, env, 2, argparse.Namespace(**arguments, router="ball_player"))
     assert (plain.policy.n_skills, routed.policy.n_skills) == (2, 3)
     observations = module.play_pairs(module.RoleSplitTeamBoth(start), 8, 0, 4)
-    nearer = module.judges_itself_nearer(observations, 58)
+    nearer = module.judges_itself_nearer(observations)
     assert 0.2 < nearer.mean() < 0.8  # both roles occur
     routed_actions, _ = routed.predict(observations, deterministic=True)
     plain_actions, _ = plain.predict(observations, deterministic=True)

@@ -396,3 +396,11 @@ def test_unrolled_landmarks_equal_the_loop() -> None:
                 y,
                 body,
             )
+
+
+def test_proximity_distance_reads_back_the_metres_of_a_landmark() -> None:
+    # the ball 5 m to the right and the goal centre 26.25 m ahead, as in the state above
+    obs = observe(player=(26.25, 0.0, 0.0), ball=(26.25, 5.0))
+    assert F.proximity_distance(float(obs[F.BALL_PROXIMITY])) == pytest.approx(5.0, abs=1e-4)
+    assert F.proximity_distance(float(obs[15])) == pytest.approx(26.25, abs=1e-4)
+    assert F.proximity_distance(np.array([1.0, -1.0])) == pytest.approx([0.0, MAX_DIST])
