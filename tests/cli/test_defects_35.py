@@ -10,6 +10,9 @@
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any
@@ -288,6 +291,24 @@ def test_enjoy_draws_each_step_once_and_says_when_no_window_shows(
     assert counts["draws"] == counts["steps and resets"]
     notes = [line for line in capsys.readouterr().err.splitlines() if line.startswith("note:")]
     assert len(notes) == 1 and "'dummy'" in notes[0] and "--no-render" in notes[0]
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="X11 / Wayland displays are Linux's")
+def test_without_x11_or_wayland_enjoy_picks_the_offscreen_driver_without_sdl_s_error_line() -> None:
+    """With neither DISPLAY nor WAYLAND_DISPLAY, SDL probed Wayland and printed libwayland's "error:
+    XDG_RUNTIME_DIR is invalid or not set" before falling back to "offscreen", on a run that then played on; the
+    driver is now chosen outright, so the note is the only line."""
+    pytest.importorskip("pygame")
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER")}
+    env.pop("XDG_RUNTIME_DIR", None)
+    code = "from sb3_hfo.cli.enjoy import display_driver; print(display_driver())"
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == "offscreen"
+    assert "error" not in done.stderr.lower(), done.stderr
+    env["SDL_VIDEODRIVER"] = "dummy"  # a driver the user asked for is kept
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    assert done.stdout.strip() == "dummy"
 
 
 # --- 9: the README --------------------------------------------------------------------------------------------------
