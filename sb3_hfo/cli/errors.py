@@ -26,6 +26,7 @@ from typing import Any, NoReturn
 import gymnasium as gym
 
 import hfo2d
+from sb3_hfo.cli.configs import config_names, is_bare_name
 from sb3_hfo.cli.zoo import ALGO_NAME, BATCH_CONFIG_KEYS, ConfigConflictError, algo_classes, batch_options
 
 # The library's errors and checks, also offered here (`as` marks them re-exported) for the command-line tools.
@@ -194,13 +195,20 @@ def _load_yaml(path: Path) -> Any:
         raise UserError(f"--conf-file {path} is not valid YAML: {one_line(error)}") from None
 
 
+def _config_names() -> str:
+    return ", ".join(config_names()) or "none found"
+
+
 def check_train_args(args: Sequence[str]) -> None:
     """The user errors of a ``train`` command line, before rl-zoo3 starts (see the module docstring)."""
     conf = option_value(args, "-conf", "--conf-file")
     if conf is None:
         # rl-zoo3 would otherwise look for hyperparams/skill_ddpg.yml inside its own package.
-        raise UserError("--conf-file is required, e.g. --conf-file zoo_configs/e1_empty_goal_fast.yml")
-    is_path = conf.endswith((".yml", ".yaml", ".py")) or "/" in conf
+        raise UserError(
+            "--conf-file is required: a YAML file, or the name of one that comes with sb3-hfo "
+            f"({_config_names()}), e.g. --conf-file e1_empty_goal_fast"
+        )
+    is_path = not is_bare_name(conf)
     if is_path and not Path(conf).is_file():
         raise UserError(f"--conf-file {conf}: no such file")
     if not is_path:
@@ -209,7 +217,11 @@ def check_train_args(args: Sequence[str]) -> None:
         except (ImportError, ValueError):
             found = False
         if not found:
-            raise UserError(f"--conf-file {conf}: no such file, nor an importable Python module")
+            close = difflib.get_close_matches(conf, config_names(), n=1)
+            raise UserError(
+                f"--conf-file {conf}: no such file, config of sb3-hfo, nor importable Python module; "
+                + (f"did you mean {close[0]}?" if close else f"the configs: {_config_names()}")
+            )
     env_id = check_env_option(args, "--env HFO/EmptyGoal-v0")
     check_seed_option(args, " (leave --seed out for a random one)")
     zoo_dicts = {}

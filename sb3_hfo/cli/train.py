@@ -1,5 +1,8 @@
 """Train with rl-zoo3: ``python -m sb3_hfo.train --algo skill_ddpg --env HFO/EmptyGoal-v0 --conf-file ...``.
 
+``--conf-file`` takes a YAML file, a Python module (as rl-zoo3's does) or the name of a config that comes with
+sb3-hfo (``e1_empty_goal_fast``: :mod:`sb3_hfo.cli.configs`, from any folder).
+
 Every rl-zoo3 ``train.py`` option works (``-n``, ``--seed``, ``--hyperparams``, ``--eval-freq``,
 ``--tensorboard-log``, ``-P``, ``-optimize``, ``--storage``, ``--study-name``, ...; see ``--help``), and two of
 its own: ``--checkpoint-freq N`` writes the whole training state (:mod:`sb3_hfo.resume`) to the run folder's
@@ -17,6 +20,7 @@ from __future__ import annotations
 import sys
 from collections.abc import Sequence
 
+from sb3_hfo.cli.configs import with_named_config
 from sb3_hfo.cli.errors import (
     UserError,
     check_installed,
@@ -48,6 +52,7 @@ def main(argv: Sequence[str] | None = None) -> None:
         check_installed("zoo", ("rl_zoo3", "optuna"), PROG)
     except UserError as error:
         fail(error)
+    args = with_named_config(args)  # --conf-file e1_empty_goal_fast: the config that comes with sb3-hfo
     if not any(arg in ("-h", "--help") for arg in args):
         try:
             check_train_args(args)

@@ -156,7 +156,10 @@ def test_evaluate_exits_2_as_a_process(tmp_path: Path) -> None:
     [
         (["--env", ENV], "--conf-file is required"),
         (["--env", ENV, "--conf-file", "no/such.yml"], "--conf-file no/such.yml: no such file"),
-        (["--env", ENV, "--conf-file", "no_such_module"], "no such file, nor an importable Python module"),
+        (
+            ["--env", ENV, "--conf-file", "no_such_module"],
+            "no such file, config of sb3-hfo, nor importable Python module",
+        ),
         (["--conf-file", CONFIG], "--env is required (rl-zoo3 would fall back to CartPole-v1)"),
         (["--env", "HFO/NoSuchTask-v0", "--conf-file", CONFIG], "unknown env id 'HFO/NoSuchTask-v0'"),
         (["--env", "HFO/Keeper-v0", "--conf-file", CONFIG], "has no hyperparameters for HFO/Keeper-v0"),
