@@ -29,7 +29,7 @@ memory would. How the figures are used: benchmarks/README.md, "Two strikers agai
     HOME=/root HFO_DIR=/root/real_hfo/HFO tools/real_hfo/loopback.sh \\
         python benchmarks/two_v_one_scripted.py --backend real --teams alone tap_in --out ~/runs/twovone3/real.json
     python benchmarks/two_v_one_scripted.py --episodes 3 --out /tmp/scripted.json   # seconds: what the test runs
-    python benchmarks/two_v_one_scripted.py --teams pass --pass-goalie-range 4.5 --pass-lane-clearance 1.5 \
+    python benchmarks/two_v_one_scripted.py --teams pass --pass-goalie-range 4.5 --pass-lane-clearance 1.5 \\
         --support-spot 46 4 --out ~/runs/twovone6/pass_sweep/g4.5_l1.5_46_4.json       # one point of the pass sweep
 """
 
