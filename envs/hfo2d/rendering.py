@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import math
 import os
+import sys
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from gymnasium import logger
 from gymnasium.error import DependencyNotInstalled
 
 from hfo2d.physics import (
@@ -103,6 +105,25 @@ class Overlay:
         return lines
 
 
+def choose_offscreen_without_display() -> bool:
+    """On Linux with neither an X11 (``DISPLAY``) nor a Wayland (``WAYLAND_DISPLAY``) display and no
+    ``SDL_VIDEODRIVER`` of the user's, set SDL's ``offscreen`` driver and return True (else change nothing, False).
+
+    SDL would fall back to that driver by itself, but only after probing Wayland, whose library prints
+    ``error: XDG_RUNTIME_DIR is invalid or not set in the environment.`` on a run that then goes on fine. Call it
+    before ``pygame.display.init()``.
+    """
+    if (
+        sys.platform.startswith("linux")
+        and not os.environ.get("DISPLAY")
+        and not os.environ.get("WAYLAND_DISPLAY")
+        and not os.environ.get("SDL_VIDEODRIVER")
+    ):
+        os.environ["SDL_VIDEODRIVER"] = "offscreen"
+        return True
+    return False
+
+
 def _import_pygame() -> Any:
     try:
         import pygame
@@ -156,6 +177,11 @@ class HFORenderer:
             # SDL would otherwise take over SIGTERM (it has the default handler) and turn it into a QUIT event,
             # which a window that only pumps events ignores: `kill` would leave the program running.
             os.environ.setdefault("SDL_NO_SIGNAL_HANDLERS", "1")
+            if choose_offscreen_without_display():
+                logger.warn(
+                    "hfo2d: no display (neither DISPLAY nor WAYLAND_DISPLAY is set): render_mode='human' draws into "
+                    "no window; render_mode='rgb_array' returns the frames"
+                )
             pygame.display.init()  # display only: pygame.init() would also open an audio device
             pygame.display.set_caption("hfo2d: Half Field Offense")
             self._screen = pygame.display.set_mode((SCREEN_WIDTH, SCREEN_HEIGHT))

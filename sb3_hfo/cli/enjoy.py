@@ -41,18 +41,11 @@ def display_driver() -> str:
 
     :raises UserError: when no video driver starts.
     """
+    from hfo2d.rendering import choose_offscreen_without_display
     from sb3_hfo.errors import UserError, one_line
 
     os.environ.setdefault("SDL_NO_SIGNAL_HANDLERS", "1")  # as hfo2d's renderer: SIGTERM stays the default
-    if (
-        sys.platform.startswith("linux")
-        and not os.environ.get("DISPLAY")
-        and not os.environ.get("WAYLAND_DISPLAY")
-        and not os.environ.get("SDL_VIDEODRIVER")
-    ):
-        # no X11 or Wayland server to open a window on: SDL would probe both, print libwayland's
-        # "error: XDG_RUNTIME_DIR is invalid ..." for a run that then plays fine, and fall back to this driver
-        os.environ["SDL_VIDEODRIVER"] = "offscreen"
+    choose_offscreen_without_display()  # not SDL's own probing, which prints libwayland's error line
     import pygame
 
     try:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import subprocess
 import sys
 
 # Headless: SDL reads these when pygame's display/audio start, so they must be set before any rendering.
@@ -152,3 +153,27 @@ def test_overlay_counts_episodes_cycles_goals_and_shows_the_end(monkeypatch: pyt
     # the overlay sits on a dark strip in the top-left corner
     assert frame[2, 2].tolist() != frame[SCREEN_HEIGHT // 2, 2].tolist()
     env.close()
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="X11 / Wayland displays are Linux's")
+def test_human_mode_without_a_display_warns_once_and_prints_no_sdl_error() -> None:
+    """With neither DISPLAY nor WAYLAND_DISPLAY, SDL probed Wayland and printed libwayland's "error:
+    XDG_RUNTIME_DIR is invalid or not set" before drawing into no window; hfo2d now picks SDL's offscreen driver
+    itself and says so in one warning. A driver the user chose is left alone."""
+    code = (
+        "import gymnasium as gym, hfo2d\n"
+        "env = gym.make('HFO/EmptyGoal-v0', render_mode='human')\n"
+        "env.reset(seed=0)\n"
+        "for _ in range(3): env.step(env.action_space.sample())\n"
+        "import os; print(os.environ['SDL_VIDEODRIVER'])\n"
+    )
+    removed = ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER", "XDG_RUNTIME_DIR")
+    env = {key: value for key, value in os.environ.items() if key not in removed}
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert done.stdout.strip() == "offscreen"
+    assert "XDG_RUNTIME_DIR" not in done.stderr
+    assert done.stderr.count("hfo2d: no display") == 1, done.stderr
+    env["SDL_VIDEODRIVER"] = "dummy"
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=120)
+    assert done.stdout.strip() == "dummy" and "hfo2d: no display" not in done.stderr
