@@ -307,3 +307,16 @@ def check_same_actions(
             steps += 1
         obs, _ = env.reset()
     return steps
+
+
+if __name__ == "__main__":
+    # ``python -m sb3_hfo.models list`` would otherwise run this library module and do nothing. The command line
+    # lives in sb3_hfo.cli.models, which imports this module, so it is named here rather than imported.
+    import sys
+
+    print(
+        "error: sb3_hfo.models is the library; its command line is python -m sb3_hfo.cli.models "
+        "(list, add NAME MODEL ..., real NAME ...)",
+        file=sys.stderr,
+    )
+    raise SystemExit(2)  # a user error, as the command-line tools exit on one

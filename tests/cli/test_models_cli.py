@@ -287,3 +287,15 @@ def test_add_records_a_benchmark_script_s_model_with_the_evaluation_of_its_sourc
     committed = manifest.parent / "scripted.zip"
     assert read_manifest(manifest) == {"scripted": entry}  # the refusals changed nothing
     assert hashlib.sha256(committed.read_bytes()).hexdigest() == entry["sha256"]
+
+
+def test_running_the_library_module_names_the_command_line() -> None:
+    """``python -m sb3_hfo.models list`` ran the library module and printed nothing, exit 0."""
+    done = subprocess.run(
+        [sys.executable, "-m", "sb3_hfo.models", "list"], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 2 and done.stdout == ""
+    assert done.stderr.strip().splitlines() == [
+        "error: sb3_hfo.models is the library; its command line is python -m sb3_hfo.cli.models "
+        "(list, add NAME MODEL ..., real NAME ...)"
+    ]
