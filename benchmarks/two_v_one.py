@@ -47,6 +47,7 @@ that already reads the arm's features (its ``final.zip``) continues the arm.
 from __future__ import annotations
 
 import argparse
+import functools
 import json
 import sys
 import time
@@ -517,6 +518,12 @@ class RoleSplitTeamBoth(RoleSplitTeam):
         return np.ones(observations.shape[0], dtype=bool)
 
 
+@functools.cache
+def _pair_router() -> BallPlayerRouter:
+    """The 2v1 pair's role router, built once (``judges_itself_nearer`` runs every step of a roles evaluation)."""
+    return hfo_ball_player_router(1)
+
+
 def judges_itself_nearer(observations: np.ndarray) -> np.ndarray:
     """Whether each striker of a 2v1 game is nearer the ball than its teammate, from its **own** features only
     (paper layout, 66 features): :meth:`sb3_hfo.common.routers.BallPlayerRouter.nearest` of the very router that
@@ -526,7 +533,7 @@ def judges_itself_nearer(observations: np.ndarray) -> np.ndarray:
     said outright rather than left to what its zeros happen to compute (a first version that read the bearing as an
     angle put such a teammate 'MAX_HFO_DIST / 2' straight ahead, and both strikers judged the other nearer and
     idled until the time ran out in 73 of 1,000 games)."""
-    return np.asarray(hfo_ball_player_router(1).nearest(np.asarray(observations, dtype=np.float64)))
+    return np.asarray(_pair_router().nearest(np.asarray(observations, dtype=np.float64)))
 
 
 class OwnFeaturesRoleSplitTeam(RoleSplitTeam):
