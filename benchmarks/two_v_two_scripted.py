@@ -16,6 +16,10 @@ built from ``soft_dribble`` (:mod:`hfo2d.strikers`):
   the ball is, and no defender (the goalie included) is within ``LANE_CLEARANCE`` of the passing lane. The pass is
   sent to the supporter's feet at ``PASS_BASE_SPEED + PASS_SPEED_PER_METRE * distance``; until the ball is
   nearly still or kickable the receiver chases it and the passer stands; then the nearer striker plays on.
+* ``own_pass``: ``pass`` decided by each striker from its own view alone, with no team memory
+  (:meth:`ScriptedPair.own_command`): a ball seen on its way to it is chased, one on its way to the teammate left
+  alone; otherwise the striker the ball is no farther from than from its teammate plays the ball (and passes by
+  ``pass``'s rule), the other supports. This is the rule a learned pair could be routed by.
 
 Every striker reads HFO master's low-level vector (``feature_set="hfo"``, which both backends give): its own
 position, the ball and the goalie through :func:`hfo2d.strikers.goalie_view_from_hfo` (what ``soft_dribble``
@@ -56,7 +60,7 @@ from hfo2d.features import (
     paper_from_hfo,
 )
 
-TEAMS: tuple[str, ...] = ("alone", "both", "split", "pass")
+TEAMS: tuple[str, ...] = ("alone", "both", "split", "pass", "own_pass")
 DEFENSE_NPCS = 2  # bin/HFO --defense-npcs 2: agent2d's goalie (unum 1) and one agent2d field defender
 PRESS_RANGE = (
     5.0  # m; the nearest field defender this close to the ball makes the ball player look for the pass
@@ -70,6 +74,10 @@ SPOT_TOLERANCE = 1.0  # m; nearer than this to its spot the supporter turns to t
 #: a pass's speed: enough to arrive (rcssserver's ball decay 0.94 takes 6 % a cycle), at most 2.7 m/cycle
 PASS_SPEED_PER_METRE, PASS_BASE_SPEED, PASS_MAX_SPEED = 0.06, 0.8, 2.7
 RECEIVED_BALL_SPEED = 0.2  # m/cycle; a pass slower than this is over, and the nearer striker plays it
+#: ``own_pass``: a ball faster than this (m/cycle) whose heading is within PASS_SEEN_ANGLE degrees of the line to a
+#: striker more than PASS_SEEN_MIN_DISTANCE m away is read as a pass to that striker (passes arrive at about
+#: PASS_BASE_SPEED; soft_dribble's touches go goalward, not across to the supporter)
+PASS_SEEN_SPEED, PASS_SEEN_ANGLE, PASS_SEEN_MIN_DISTANCE = 0.5, 25.0, 1.5
 
 
 @dataclass(frozen=True)
@@ -117,6 +125,15 @@ def _segment_distance(px: float, py: float, ax: float, ay: float, bx: float, by:
     return math.hypot(px - ax - t * dx, py - ay - t * dy)
 
 
+def _ball_heading_to(percept: strikers.Percept, x: float, y: float) -> bool:
+    """Whether the ball moves toward (x, y), more than ``PASS_SEEN_MIN_DISTANCE`` away, within ``PASS_SEEN_ANGLE``."""
+    dx, dy = x - percept.ball_x, y - percept.ball_y
+    if math.hypot(dx, dy) <= PASS_SEEN_MIN_DISTANCE:
+        return False
+    off = math.degrees(math.atan2(percept.ball_vy, percept.ball_vx) - math.atan2(dy, dx))
+    return abs((off + 180.0) % 360.0 - 180.0) < PASS_SEEN_ANGLE
+
+
 def support_spot(percept: strikers.Percept) -> tuple[float, float]:
     """Where the supporter waits: ``SUPPORT_DEPTH`` goalward of the ball, ``SUPPORT_WIDTH`` out on the far side."""
     side = -1.0 if percept.ball_y > 0.0 else 1.0
@@ -135,6 +152,7 @@ class ScriptedPair:
         self.receiver: int | None = None  # the striker a pass in flight is meant for
         self.passes = 0
         self.passed_this_episode = False
+        self.passed_now = False  # whether the last _pass_or passed
 
     @property
     def striker_count(self) -> int:
@@ -148,6 +166,8 @@ class ScriptedPair:
         views = [read_team_view(obs, self.striker_count - 1, DEFENSE_NPCS) for obs in observations]
         if self.team in ("alone", "both"):
             return [strikers.flat_action(self.striker.decide(view.percept)) for view in views]
+        if self.team == "own_pass":
+            return [strikers.flat_action(self.own_command(view)) for view in views]
         return [strikers.flat_action(command) for command in self.commands(views)]
 
     def commands(self, views: Sequence[TeamView]) -> list[strikers.Command]:
@@ -169,7 +189,9 @@ class ScriptedPair:
         self.receiver = None
         command = self.striker.decide(player)
         if self.team == "pass" and player.kickable:
-            command = self._pass_or(command, views[ball_player], mate, ball_player)
+            command = self._pass_or(command, views[ball_player], (mate.x, mate.y))
+            if self.passed_now:
+                self.receiver = 1 - ball_player
         commands[ball_player] = command
         if self.receiver is None:
             spot = support_spot(player)
@@ -179,10 +201,35 @@ class ScriptedPair:
                 commands[1 - ball_player] = strikers.turn_to(mate, player.ball_x, player.ball_y)
         return commands
 
+    def own_command(self, view: TeamView) -> strikers.Command:
+        """``own_pass``: one striker's command from its own view alone, no team memory: a pass seen on its way to
+        it is chased, one on its way to the teammate is left alone; otherwise the striker that the ball is no
+        farther from than from its teammate plays ``pass``'s ball player, the other ``pass``'s supporter."""
+        player = view.percept
+        if not view.teammates:  # HFO does not list the teammate (behind the halfway line): play alone
+            return self.striker.decide(player)
+        mate = view.teammates[0]
+        if not player.kickable and math.hypot(player.ball_vx, player.ball_vy) > PASS_SEEN_SPEED:
+            if _ball_heading_to(player, player.x, player.y):
+                return strikers.chase_ball(player, *strikers.GOAL_CENTRE)
+            if _ball_heading_to(player, *mate):
+                return strikers.idle()
+        mine = math.hypot(player.ball_x - player.x, player.ball_y - player.y)
+        theirs = math.hypot(player.ball_x - mate[0], player.ball_y - mate[1])
+        if mine <= theirs:
+            command = self.striker.decide(player)
+            return self._pass_or(command, view, mate) if player.kickable else command
+        spot = support_spot(player)
+        if math.hypot(player.x - spot[0], player.y - spot[1]) > SPOT_TOLERANCE:
+            return strikers.move_to(player, *spot)
+        return strikers.turn_to(player, player.ball_x, player.ball_y)
+
     def _pass_or(
-        self, command: strikers.Command, view: TeamView, mate: strikers.Percept, ball_player: int
+        self, command: strikers.Command, view: TeamView, mate: tuple[float, float]
     ) -> strikers.Command:
-        """A pass to the supporter when the nearest field defender presses and the supporter is open."""
+        """A pass to the supporter at ``mate`` when the nearest field defender presses and the supporter is open
+        (``passed_now`` says whether it passed)."""
+        self.passed_now = False
         player = view.percept
         if not view.field_defenders:
             return command
@@ -190,24 +237,23 @@ class ScriptedPair:
             view.field_defenders, key=lambda d: math.hypot(d[0] - player.ball_x, d[1] - player.ball_y)
         )
         pressing = math.hypot(defender[0] - player.ball_x, defender[1] - player.ball_y)
-        open_by = math.hypot(defender[0] - mate.x, defender[1] - mate.y) - pressing
+        open_by = math.hypot(defender[0] - mate[0], defender[1] - mate[1]) - pressing
         blockers = list(view.field_defenders) + ([player.goalie] if player.goalie is not None else [])
         lane_clear = all(
-            _segment_distance(bx, by, player.ball_x, player.ball_y, mate.x, mate.y) > LANE_CLEARANCE
+            _segment_distance(bx, by, player.ball_x, player.ball_y, *mate) > LANE_CLEARANCE
             for bx, by in blockers
         )
         if (
             pressing < PRESS_RANGE
             and open_by > OPEN_MARGIN
             and lane_clear
-            and not strikers.kick_blocked(player, mate.x, mate.y)
+            and not strikers.kick_blocked(player, *mate)
         ):
-            distance = math.hypot(mate.x - player.ball_x, mate.y - player.ball_y)
+            distance = math.hypot(mate[0] - player.ball_x, mate[1] - player.ball_y)
             self.passes += 1
-            self.passed_this_episode = True
-            self.receiver = 1 - ball_player
+            self.passed_this_episode = self.passed_now = True
             speed = min(PASS_MAX_SPEED, PASS_BASE_SPEED + PASS_SPEED_PER_METRE * distance)
-            return strikers.kick_to(player, mate.x, mate.y, speed)
+            return strikers.kick_to(player, *mate, speed)
         return command
 
 

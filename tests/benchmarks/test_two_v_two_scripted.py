@@ -130,7 +130,34 @@ def test_the_script_plays_every_team_and_writes_its_figures(tmp_path: Path) -> N
         timeout=120,
     )
     record = json.loads(out.read_text())
-    assert set(record["results"]) == {"alone", "both", "split", "pass"}
+    assert set(record["results"]) == {"alone", "both", "split", "pass", "own_pass"}
     for team, result in record["results"].items():
         assert result["episodes"] == 2 and sum(result["status"].values()) == 2, team
         assert result["backend"] == "hfo2d"
+
+
+def test_own_pass_decides_from_each_striker_s_own_view() -> None:
+    script = load_script()
+    team = script.ScriptedPair("own_pass")
+    pressed = _views(script, defender=(39.0, 6.0))
+    # the ball player (nearer by its own view) passes as the pass team's ball player does
+    ball_player_command = team.own_command(pressed[0])
+    assert ball_player_command == script.ScriptedPair("pass").commands(pressed)[0]
+    assert ball_player_command[0] == strikers.KICK and team.passes == 1
+    # the supporter, farther by its own view, holds its spot facing the ball
+    assert team.own_command(pressed[1]) == strikers.turn_to(pressed[1].percept, 36.3, 5.0)
+    # with the pass on its way (the ball heading from (36.3, 5) to (38, -13) at 1.5 m/cycle), the receiver chases
+    # it and the passer, though still nearer, leaves it alone
+    velocity = {"ball_vx": 1.7 / 18.08 * 1.5, "ball_vy": -18.0 / 18.08 * 1.5, "kickable": False}
+    passer = dataclasses.replace(pressed[0].percept, **velocity)
+    receiver = dataclasses.replace(pressed[1].percept, **velocity)
+    assert team.own_command(dataclasses.replace(pressed[0], percept=passer)) == strikers.idle()
+    assert team.own_command(dataclasses.replace(pressed[1], percept=receiver)) == strikers.chase_ball(
+        receiver, *strikers.GOAL_CENTRE
+    )
+    # a slow ball is no pass: the nearer striker plays it
+    slow = dataclasses.replace(passer, ball_vx=0.1, ball_vy=-0.3)
+    assert team.own_command(dataclasses.replace(pressed[0], percept=slow)) == team.striker.decide(slow)
+    # without a listed teammate a striker plays alone
+    alone = dataclasses.replace(pressed[0], teammates=())
+    assert team.own_command(alone) == team.striker.decide(alone.percept)
