@@ -1,0 +1,69 @@
+"""benchmarks/two_v_two_clone.py: its teacher is the scripted rule, and the script end to end at tiny settings."""
+
+from __future__ import annotations
+
+import importlib.util
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from hfo2d import strikers
+from hfo2d.team import TeamGame
+
+REPO = Path(__file__).resolve().parents[2]
+SCRIPT = REPO / "benchmarks" / "two_v_two_clone.py"
+
+
+def load_script():
+    sys.path.insert(0, str(REPO / "benchmarks"))  # the script imports its sibling, as it does when run
+    try:
+        spec = importlib.util.spec_from_file_location("two_v_two_clone_under_test", SCRIPT)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = module
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(REPO / "benchmarks"))
+    return module
+
+
+def test_the_teacher_labels_each_striker_as_the_scripted_rule_would_from_its_own_view() -> None:
+    script = load_script()
+    game = TeamGame(2, 0, 2, seed=5, feature_set="hfo")
+    observations, _ = game.reset(seed=5)
+    teacher = script.ScriptedPredictor("own_pass", 1)
+    rule = script.ScriptedPair("own_pass")
+    for _ in range(30):
+        batch = np.stack([observations[name] for name in game.agent_names])
+        actions, _ = teacher.predict(batch)
+        for observation, action in zip(batch, actions, strict=True):
+            expected = strikers.flat_action(rule.own_command(script.read_team_view(observation, 1, 2)))
+            np.testing.assert_array_equal(action, expected)
+        observations, _, terminated, truncated, _ = game.step(
+            dict(zip(game.agent_names, actions, strict=True))
+        )
+        if terminated or truncated:
+            observations, _ = game.reset()
+    alone = script.ScriptedPredictor("alone", 0)
+    single, _ = TeamGame(1, 0, 2, seed=5, feature_set="hfo").reset(seed=5)
+    action, _ = alone.predict(single["offense_0"][None])
+    view = script.read_team_view(single["offense_0"], 0, 2)
+    np.testing.assert_array_equal(action[0], strikers.flat_action(rule.striker.decide(view.percept)))
+
+
+def test_the_script_clones_an_arm_and_writes_its_student_and_figures(tmp_path: Path) -> None:
+    subprocess.run(
+        [sys.executable, str(SCRIPT), "--arm", "1v2", "--out", str(tmp_path), "--smoke"],
+        check=True,
+        capture_output=True,
+        cwd=REPO,
+        timeout=120,
+    )
+    record = json.loads((tmp_path / "arm_1v2" / "clone.json").read_text())
+    assert (tmp_path / "arm_1v2" / "student.zip").is_file()
+    assert record["teacher"] == "alone" and len(record["rounds"]) == 2  # the first round and one DAgger round
+    assert record["rounds"][1]["states"] > record["rounds"][0]["states"]
+    for name in ("student", "teacher_eval"):
+        assert record[name]["episodes"] == 2 and sum(record[name]["status"].values()) == 2
