@@ -74,15 +74,6 @@ SCREEN_TOLERANCE = 0.4  # m; nearer than this to its point the screen dashes int
 TEAMMATE_BLOCK = np.arange(NUM_BASIC_FEATURES, NUM_BASIC_FEATURES + FEATURES_PER_PLAYER)
 
 
-def _segment_distance(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> float:
-    """Distance (m) from point p to the segment a-b."""
-    dx, dy = bx - ax, by - ay
-    length_squared = dx * dx + dy * dy
-    t = 0.0 if length_squared == 0.0 else ((px - ax) * dx + (py - ay) * dy) / length_squared
-    t = min(max(t, 0.0), 1.0)
-    return math.hypot(px - ax - t * dx, py - ay - t * dy)
-
-
 class ScriptedTeam:
     """One of :data:`TEAMS` for one game: :meth:`act` maps the strikers' observations to their flat actions."""
 
@@ -215,7 +206,7 @@ class ScriptedTeam:
             and player.ball_goal_dist < PASS_ZONE
             and math.hypot(strikers.GOAL_CENTRE[0] - mate.x, strikers.GOAL_CENTRE[1] - mate.y)
             < PASS_RECEIVER_RANGE
-            and _segment_distance(goalie_x, goalie_y, player.ball_x, player.ball_y, mate.x, mate.y)
+            and strikers.segment_distance(goalie_x, goalie_y, player.ball_x, player.ball_y, mate.x, mate.y)
             > self.pass_lane_clearance
             and not strikers.kick_blocked(player, mate.x, mate.y)
         ):

@@ -116,15 +116,6 @@ def read_team_view(features: Sequence[float], num_teammates: int, num_opponents:
     return TeamView(percept, tuple(teammates), tuple(defenders))
 
 
-def _segment_distance(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> float:
-    """Distance (m) from point p to the segment a-b."""
-    dx, dy = bx - ax, by - ay
-    length_squared = dx * dx + dy * dy
-    t = 0.0 if length_squared == 0.0 else ((px - ax) * dx + (py - ay) * dy) / length_squared
-    t = min(max(t, 0.0), 1.0)
-    return math.hypot(px - ax - t * dx, py - ay - t * dy)
-
-
 def _ball_heading_to(percept: strikers.Percept, x: float, y: float) -> bool:
     """Whether the ball moves toward (x, y), more than ``PASS_SEEN_MIN_DISTANCE`` away, within ``PASS_SEEN_ANGLE``."""
     dx, dy = x - percept.ball_x, y - percept.ball_y
@@ -240,7 +231,7 @@ class ScriptedPair:
         open_by = math.hypot(defender[0] - mate[0], defender[1] - mate[1]) - pressing
         blockers = list(view.field_defenders) + ([player.goalie] if player.goalie is not None else [])
         lane_clear = all(
-            _segment_distance(bx, by, player.ball_x, player.ball_y, *mate) > LANE_CLEARANCE
+            strikers.segment_distance(bx, by, player.ball_x, player.ball_y, *mate) > LANE_CLEARANCE
             for bx, by in blockers
         )
         if (

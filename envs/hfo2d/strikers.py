@@ -241,6 +241,15 @@ def stop_ball(p: Percept) -> Command:
     return KICK, power, direction
 
 
+def segment_distance(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> float:
+    """Distance (m) from the point p to the segment a-b (e.g. a defender from a passing lane)."""
+    dx, dy = bx - ax, by - ay
+    length_squared = dx * dx + dy * dy
+    t = 0.0 if length_squared == 0.0 else ((px - ax) * dx + (py - ay) * dy) / length_squared
+    t = min(max(t, 0.0), 1.0)
+    return math.hypot(px - ax - t * dx, py - ay - t * dy)
+
+
 def kick_blocked(p: Percept, gx: float, gy: float) -> bool:
     """True when a kick toward (gx, gy) would send the ball through the kicker's own body."""
     ball_x, ball_y = p.to_body(p.ball_x, p.ball_y)
