@@ -10,7 +10,7 @@ This script clones each rule into a HybridPPO policy and compares the clones, ar
   (``TeamGame(2, 0, 2)``: agent2d's goalie and one field defender), reading HFO master's vector (86 features);
 * ``1v2``: the teacher is ``soft_dribble`` alone; the student plays 1v2 games (77 features).
 
-Recipe (both arms): a fresh HybridPPO ``MlpPolicy`` (actor ``[256, 128, 64]``, LeakyReLU, squashed means, as
+Recipe (both arms): a fresh HybridPPO ``MlpPolicy`` (actor ``--actor``, by default ``[256, 128, 64]``, LeakyReLU, squashed means, as
 ``rl_from_clone.py``'s striker); :func:`sb3_hfo.hybrid_ppo.distill.distill` on ``--episodes`` teacher episodes, then
 ``--dagger-rounds`` rounds that add ``--episodes`` episodes of the student's own play, every state labelled by the
 teacher (its discrete action and parameters). The teacher and the final student are then evaluated greedily on the
@@ -92,10 +92,10 @@ def team_games(strikers_per_game: int, games: int) -> list[TeamGame]:
     return [TeamGame(strikers_per_game, 0, DEFENSE_NPCS, feature_set="hfo") for _ in range(games)]
 
 
-def student_model(strikers_per_game: int, seed: int) -> HybridPPO:
+def student_model(strikers_per_game: int, seed: int, actor: list[int]) -> HybridPPO:
     env = make_team_vec_env(1, offense_agents=strikers_per_game, defense_npcs=DEFENSE_NPCS, feature_set="hfo")
     policy_kwargs = {
-        "net_arch": {"pi": ACTOR_ARCH, "vf": [256, 128]},
+        "net_arch": {"pi": actor, "vf": [256, 128]},
         "activation_fn": nn.LeakyReLU,
         "squash_mean": True,
     }
@@ -107,7 +107,7 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
     th.manual_seed(args.seed)
     th.set_num_threads(args.threads)
     teacher = ScriptedPredictor(teacher_team, strikers_per_game - 1)
-    model = student_model(strikers_per_game, args.seed)
+    model = student_model(strikers_per_game, args.seed, args.actor)
     adapter = model.policy.adapter
     games = team_games(strikers_per_game, args.games)
     record: dict[str, Any] = {
@@ -118,6 +118,7 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
         "dagger_rounds": args.dagger_rounds,
         "epochs": args.epochs,
         "lr": args.lr,
+        "actor": args.actor,
         "rounds": [],
     }
     started = time.time()
@@ -170,6 +171,9 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     parser.add_argument("--dagger-rounds", type=int, default=6)
     parser.add_argument("--epochs", type=int, default=20)
     parser.add_argument("--lr", type=float, default=1e-3)
+    parser.add_argument(
+        "--actor", type=int, nargs="+", default=ACTOR_ARCH, help="the actor's hidden layer sizes"
+    )
     parser.add_argument("--eval-episodes", type=int, default=1000)
     parser.add_argument("--games", type=int, default=16, help="hfo2d games played at once")
     parser.add_argument("--threads", type=int, default=1, help="torch threads")
@@ -180,6 +184,8 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     for name in ("episodes", "epochs", "eval_episodes", "games"):
         if getattr(args, name) < 1:
             parser.error(f"--{name.replace('_', '-')} must be >= 1, got {getattr(args, name)}")
+    if min(args.actor) < 1:
+        parser.error(f"--actor sizes must be >= 1, got {args.actor}")
     if args.dagger_rounds < 0:
         parser.error(f"--dagger-rounds must be >= 0, got {args.dagger_rounds}")
     return clone(args)
