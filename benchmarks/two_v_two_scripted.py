@@ -132,6 +132,15 @@ def support_spot(percept: strikers.Percept) -> tuple[float, float]:
     return min(max(percept.ball_x + SUPPORT_DEPTH, low), high), side * SUPPORT_WIDTH
 
 
+def _support(
+    supporter: strikers.Percept, spot: tuple[float, float], ball: tuple[float, float]
+) -> strikers.Command:
+    """Run to ``spot``; once there, face ``ball`` (the ball where the striker that decides sees it)."""
+    if math.hypot(supporter.x - spot[0], supporter.y - spot[1]) > SPOT_TOLERANCE:
+        return strikers.move_to(supporter, *spot)
+    return strikers.turn_to(supporter, *ball)
+
+
 class ScriptedPair:
     """One of :data:`TEAMS` for one game: :meth:`act` maps the strikers' HFO-master vectors to flat actions."""
 
@@ -185,11 +194,7 @@ class ScriptedPair:
                 self.receiver = 1 - ball_player
         commands[ball_player] = command
         if self.receiver is None:
-            spot = support_spot(player)
-            if math.hypot(mate.x - spot[0], mate.y - spot[1]) > SPOT_TOLERANCE:
-                commands[1 - ball_player] = strikers.move_to(mate, *spot)
-            else:
-                commands[1 - ball_player] = strikers.turn_to(mate, player.ball_x, player.ball_y)
+            commands[1 - ball_player] = _support(mate, support_spot(player), (player.ball_x, player.ball_y))
         return commands
 
     def own_command(self, view: TeamView) -> strikers.Command:
@@ -210,10 +215,7 @@ class ScriptedPair:
         if mine <= theirs:
             command = self.striker.decide(player)
             return self._pass_or(command, view, mate) if player.kickable else command
-        spot = support_spot(player)
-        if math.hypot(player.x - spot[0], player.y - spot[1]) > SPOT_TOLERANCE:
-            return strikers.move_to(player, *spot)
-        return strikers.turn_to(player, player.ball_x, player.ball_y)
+        return _support(player, support_spot(player), (player.ball_x, player.ball_y))
 
     def _pass_or(
         self, command: strikers.Command, view: TeamView, mate: tuple[float, float]
