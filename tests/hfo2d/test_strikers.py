@@ -201,6 +201,8 @@ def test_segment_distance_measures_to_the_nearest_point_of_the_segment() -> None
     from hfo2d.strikers import segment_distance
 
     assert segment_distance(1.0, 2.0, 0.0, 0.0, 4.0, 0.0) == pytest.approx(2.0)  # beside the segment
-    assert segment_distance(-3.0, 4.0, 0.0, 0.0, 4.0, 0.0) == pytest.approx(5.0)  # beyond its start: to the end
+    assert segment_distance(-3.0, 4.0, 0.0, 0.0, 4.0, 0.0) == pytest.approx(
+        5.0
+    )  # beyond its start: to the end
     assert segment_distance(7.0, -4.0, 0.0, 0.0, 4.0, 0.0) == pytest.approx(5.0)  # beyond its end
     assert segment_distance(3.0, 4.0, 1.0, 1.0, 1.0, 1.0) == pytest.approx(math.hypot(2.0, 3.0))  # a point
