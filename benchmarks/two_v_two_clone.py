@@ -34,15 +34,24 @@ import time
 from pathlib import Path
 from typing import Any
 
+import gymnasium as gym
 import numpy as np
 import torch as th
+from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper
 from torch import nn
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from two_v_two_scripted import DEFENSE_NPCS, ScriptedPair, read_team_view  # noqa: E402  (the sibling script)
+from two_v_two_scripted import (  # noqa: E402  (the sibling script)
+    DEFENSE_NPCS,
+    ROLES,
+    ScriptedPair,
+    own_pass_role,
+    read_team_view,
+)
 
 from hfo2d import strikers  # noqa: E402
 from hfo2d.team import TeamGame  # noqa: E402
+from sb3_hfo.common.routers import OneHotRouter  # noqa: E402
 from sb3_hfo.hybrid_ppo import HybridPPO  # noqa: E402
 from sb3_hfo.hybrid_ppo.distill import distill  # noqa: E402
 from sb3_hfo.multi_agent import evaluate_team_games, make_team_vec_env  # noqa: E402
@@ -76,6 +85,51 @@ class ScriptedPredictor:
         return np.stack([self.act(observation) for observation in observations]), None
 
 
+def with_roles(observations: np.ndarray, teammates: int) -> np.ndarray:
+    """``observations`` (a batch of HFO-master vectors) with ``own_pass``'s role of each striker appended as
+    ``len(ROLES)`` one-hot columns (:func:`two_v_two_scripted.own_pass_role`; with no teammate always ``play``)."""
+    observations = np.asarray(observations, dtype=np.float32)
+    roles = np.zeros((len(observations), len(ROLES)), dtype=np.float32)
+    for row, observation in enumerate(observations):
+        roles[row, own_pass_role(read_team_view(observation, teammates, DEFENSE_NPCS))] = 1.0
+    return np.concatenate([observations, roles], axis=1)
+
+
+class RoleObservations(VecEnvWrapper):
+    """A team VecEnv whose observations carry ``own_pass``'s roles (:func:`with_roles`), terminal ones included,
+    so that a policy routed by :class:`sb3_hfo.common.routers.OneHotRouter` can act and train on it."""
+
+    def __init__(self, venv: VecEnv, teammates: int) -> None:
+        space = venv.observation_space
+        low = np.concatenate([space.low, np.zeros(len(ROLES), dtype=np.float32)])
+        high = np.concatenate([space.high, np.ones(len(ROLES), dtype=np.float32)])
+        super().__init__(venv, observation_space=gym.spaces.Box(low, high, dtype=np.float32))
+        self.teammates = teammates
+
+    def reset(self) -> np.ndarray:
+        return with_roles(self.venv.reset(), self.teammates)
+
+    def step_wait(self) -> Any:
+        observations, rewards, dones, infos = self.venv.step_wait()
+        for info in infos:
+            if "terminal_observation" in info:
+                info["terminal_observation"] = with_roles(info["terminal_observation"][None], self.teammates)[
+                    0
+                ]
+        return with_roles(observations, self.teammates), rewards, dones, infos
+
+
+class RolePredictor:
+    """A role-routed model acting on plain HFO-master vectors: the roles are appended before ``model.predict``."""
+
+    def __init__(self, model: Any, teammates: int) -> None:
+        self.model = model
+        self.teammates = teammates
+
+    def predict(self, observations: np.ndarray, **kwargs: Any) -> tuple[np.ndarray, Any]:
+        return self.model.predict(with_roles(observations, self.teammates), **kwargs)
+
+
 class Recorder:
     """Wraps a predictor and keeps every batch of observations it is asked about."""
 
@@ -88,17 +142,52 @@ class Recorder:
         return self.predictor.predict(observations, **kwargs)
 
 
+def agreement_by_role(
+    policy: Any, observations: np.ndarray, discrete: np.ndarray, teammates: int
+) -> dict[str, dict[str, float]]:
+    """For each ``own_pass`` role: how many of ``observations`` (plain HFO-master vectors) have it, and in what
+    fraction the policy's most likely discrete action is the teacher's ``discrete``."""
+    routed = with_roles(observations, teammates)
+    roles = routed[:, -len(ROLES) :].argmax(axis=1)
+    if policy.observation_space.shape[0] != routed.shape[1]:
+        routed = np.asarray(observations, dtype=np.float32)  # an unrouted policy reads the plain vector
+    greedy = np.concatenate(
+        [
+            policy.action_distribution(th.as_tensor(routed[start : start + 4096]))
+            .log_pi.argmax(dim=-1)
+            .numpy()
+            for start in range(0, len(routed), 4096)
+        ]
+    )
+    return {
+        name: {
+            "states": int((roles == role).sum()),
+            "agreement": float((greedy == discrete)[roles == role].mean()),
+        }
+        for role, name in enumerate(ROLES)
+        if (roles == role).any()
+    }
+
+
 def team_games(strikers_per_game: int, games: int) -> list[TeamGame]:
     return [TeamGame(strikers_per_game, 0, DEFENSE_NPCS, feature_set="hfo") for _ in range(games)]
 
 
-def student_model(strikers_per_game: int, seed: int, actor: list[int]) -> HybridPPO:
+def student_model(strikers_per_game: int, seed: int, actor: list[int], routed: bool = False) -> HybridPPO:
+    """A fresh student; ``routed``: one head per ``own_pass`` role, picked by the role columns of
+    :class:`RoleObservations`."""
     env = make_team_vec_env(1, offense_agents=strikers_per_game, defense_npcs=DEFENSE_NPCS, feature_set="hfo")
-    policy_kwargs = {
+    policy_kwargs: dict[str, Any] = {
         "net_arch": {"pi": actor, "vf": [256, 128]},
         "activation_fn": nn.LeakyReLU,
         "squash_mean": True,
     }
+    if routed:
+        policy_kwargs |= {
+            "skills": len(ROLES),
+            "router": OneHotRouter(env.observation_space.shape[0], len(ROLES)),
+        }
+        env = RoleObservations(env, strikers_per_game - 1)
     return HybridPPO("MlpPolicy", env, seed=seed, policy_kwargs=policy_kwargs)
 
 
@@ -107,7 +196,8 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
     th.manual_seed(args.seed)
     th.set_num_threads(args.threads)
     teacher = ScriptedPredictor(teacher_team, strikers_per_game - 1)
-    model = student_model(strikers_per_game, args.seed, args.actor)
+    model = student_model(strikers_per_game, args.seed, args.actor, args.routed)
+    player: Any = RolePredictor(model, strikers_per_game - 1) if args.routed else model
     adapter = model.policy.adapter
     games = team_games(strikers_per_game, args.games)
     record: dict[str, Any] = {
@@ -119,6 +209,7 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
         "epochs": args.epochs,
         "lr": args.lr,
         "actor": args.actor,
+        "routed": args.routed,
         "rounds": [],
     }
     started = time.time()
@@ -127,7 +218,7 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
     observations = np.concatenate(recorder.batches)
     for round_index in range(args.dagger_rounds + 1):
         if round_index > 0:  # DAgger: the student's own states, labelled by the teacher
-            recorder = Recorder(model)
+            recorder = Recorder(player)
             play = evaluate_team_games(
                 recorder, games, args.episodes, seed=10_000 + 1_000 * round_index + args.seed
             )
@@ -136,7 +227,7 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
         labels = adapter.from_env(teacher.predict(observations)[0])
         history = distill(
             model.policy,
-            observations,
+            with_roles(observations, strikers_per_game - 1) if args.routed else observations,
             labels[:, 0].astype(np.int64),
             labels[:, 1:],
             epochs=args.epochs,
@@ -147,13 +238,18 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
         )
         record["rounds"].append({"states": len(observations), "last_epoch": history[-1]})
         print(json.dumps({"arm": args.arm, "round": round_index, **record["rounds"][-1]}), flush=True)
+    with th.no_grad():
+        record["agreement_by_role"] = agreement_by_role(
+            model.policy, observations, labels[:, 0].astype(np.int64), strikers_per_game - 1
+        )
+    print(json.dumps({"arm": args.arm, "agreement_by_role": record["agreement_by_role"]}), flush=True)
     record["seconds_cloning"] = round(time.time() - started, 1)
     out = args.out / f"arm_{args.arm}"
     out.mkdir(parents=True, exist_ok=True)
     model.save(out / "student.zip")
     evaluation_seed = 20_000 + args.seed
     record["evaluation_seed"] = evaluation_seed
-    record["student"] = evaluate_team_games(model, games, args.eval_episodes, seed=evaluation_seed)
+    record["student"] = evaluate_team_games(player, games, args.eval_episodes, seed=evaluation_seed)
     record["teacher_eval"] = evaluate_team_games(teacher, games, args.eval_episodes, seed=evaluation_seed)
     record["seconds"] = round(time.time() - started, 1)
     for name in ("student", "teacher_eval"):
@@ -173,6 +269,11 @@ def main(argv: list[str] | None = None) -> dict[str, Any]:
     parser.add_argument("--lr", type=float, default=1e-3)
     parser.add_argument(
         "--actor", type=int, nargs="+", default=ACTOR_ARCH, help="the actor's hidden layer sizes"
+    )
+    parser.add_argument(
+        "--routed",
+        action="store_true",
+        help="one actor head per own_pass role, the role appended to the observation and routed by it",
     )
     parser.add_argument("--eval-episodes", type=int, default=1000)
     parser.add_argument("--games", type=int, default=16, help="hfo2d games played at once")

@@ -78,6 +78,10 @@ RECEIVED_BALL_SPEED = 0.2  # m/cycle; a pass slower than this is over, and the n
 #: striker more than PASS_SEEN_MIN_DISTANCE m away is read as a pass to that striker (passes arrive at about
 #: PASS_BASE_SPEED; soft_dribble's touches go goalward, not across to the supporter)
 PASS_SEEN_SPEED, PASS_SEEN_ANGLE, PASS_SEEN_MIN_DISTANCE = 0.5, 25.0, 1.5
+#: ``own_pass``'s roles (:func:`own_pass_role`): play the ball (``soft_dribble``), pass it, run onto a pass, let a
+#: pass to the teammate go by, support
+ROLES: tuple[str, ...] = ("play", "pass", "receive", "wait", "support")
+PLAY, PASS, RECEIVE, WAIT, SUPPORT = range(len(ROLES))
 
 
 @dataclass(frozen=True)
@@ -198,56 +202,85 @@ class ScriptedPair:
         return commands
 
     def own_command(self, view: TeamView) -> strikers.Command:
-        """``own_pass``: one striker's command from its own view alone, no team memory: a pass seen on its way to
-        it is chased, one on its way to the teammate is left alone; otherwise the striker that the ball is no
-        farther from than from its teammate plays ``pass``'s ball player, the other ``pass``'s supporter."""
+        """``own_pass``: one striker's command from its own view alone, no team memory: the command of its role
+        (:func:`own_pass_role`)."""
+        role = own_pass_role(view)
         player = view.percept
-        if not view.teammates:  # HFO does not list the teammate (behind the halfway line): play alone
+        if role == PLAY:
             return self.striker.decide(player)
-        mate = view.teammates[0]
-        if not player.kickable and math.hypot(player.ball_vx, player.ball_vy) > PASS_SEEN_SPEED:
-            if _ball_heading_to(player, player.x, player.y):
-                return strikers.chase_ball(player, *strikers.GOAL_CENTRE)
-            if _ball_heading_to(player, *mate):
-                return strikers.idle()
-        mine = math.hypot(player.ball_x - player.x, player.ball_y - player.y)
-        theirs = math.hypot(player.ball_x - mate[0], player.ball_y - mate[1])
-        if mine <= theirs:
-            command = self.striker.decide(player)
-            return self._pass_or(command, view, mate) if player.kickable else command
+        if role == PASS:
+            self.passes += 1
+            self.passed_this_episode = True
+            return pass_to(player, view.teammates[0])
+        if role == RECEIVE:
+            return strikers.chase_ball(player, *strikers.GOAL_CENTRE)
+        if role == WAIT:
+            return strikers.idle()
         return _support(player, support_spot(player), (player.ball_x, player.ball_y))
 
     def _pass_or(
         self, command: strikers.Command, view: TeamView, mate: tuple[float, float]
     ) -> strikers.Command:
-        """A pass to the supporter at ``mate`` when the nearest field defender presses and the supporter is open
-        (``passed_now`` says whether it passed)."""
-        self.passed_now = False
-        player = view.percept
-        if not view.field_defenders:
+        """A pass to the supporter at ``mate`` when :func:`pass_is_on` (``passed_now`` says whether it passed)."""
+        self.passed_now = pass_is_on(view, mate)
+        if not self.passed_now:
             return command
-        defender = min(
-            view.field_defenders, key=lambda d: math.hypot(d[0] - player.ball_x, d[1] - player.ball_y)
-        )
-        pressing = math.hypot(defender[0] - player.ball_x, defender[1] - player.ball_y)
-        open_by = math.hypot(defender[0] - mate[0], defender[1] - mate[1]) - pressing
-        blockers = list(view.field_defenders) + ([player.goalie] if player.goalie is not None else [])
-        lane_clear = all(
-            strikers.segment_distance(bx, by, player.ball_x, player.ball_y, *mate) > LANE_CLEARANCE
-            for bx, by in blockers
-        )
-        if (
-            pressing < PRESS_RANGE
-            and open_by > OPEN_MARGIN
-            and lane_clear
-            and not strikers.kick_blocked(player, *mate)
-        ):
-            distance = math.hypot(mate[0] - player.ball_x, mate[1] - player.ball_y)
-            self.passes += 1
-            self.passed_this_episode = self.passed_now = True
-            speed = min(PASS_MAX_SPEED, PASS_BASE_SPEED + PASS_SPEED_PER_METRE * distance)
-            return strikers.kick_to(player, *mate, speed)
-        return command
+        self.passes += 1
+        self.passed_this_episode = True
+        return pass_to(view.percept, mate)
+
+
+def pass_is_on(view: TeamView, mate: tuple[float, float]) -> bool:
+    """``pass``'s rule for a ball player with the ball kickable: the nearest field defender presses (within
+    ``PRESS_RANGE`` of the ball), the supporter at ``mate`` is ``OPEN_MARGIN`` farther from it, no defender (the
+    goalie included) is within ``LANE_CLEARANCE`` of the lane, and nothing blocks the kick."""
+    player = view.percept
+    if not view.field_defenders:
+        return False
+    defender = min(view.field_defenders, key=lambda d: math.hypot(d[0] - player.ball_x, d[1] - player.ball_y))
+    pressing = math.hypot(defender[0] - player.ball_x, defender[1] - player.ball_y)
+    open_by = math.hypot(defender[0] - mate[0], defender[1] - mate[1]) - pressing
+    blockers = list(view.field_defenders) + ([player.goalie] if player.goalie is not None else [])
+    lane_clear = all(
+        strikers.segment_distance(bx, by, player.ball_x, player.ball_y, *mate) > LANE_CLEARANCE
+        for bx, by in blockers
+    )
+    return (
+        pressing < PRESS_RANGE
+        and open_by > OPEN_MARGIN
+        and lane_clear
+        and not strikers.kick_blocked(player, *mate)
+    )
+
+
+def pass_to(player: strikers.Percept, mate: tuple[float, float]) -> strikers.Command:
+    """The pass to ``mate``'s feet, at a speed that grows with the distance."""
+    distance = math.hypot(mate[0] - player.ball_x, mate[1] - player.ball_y)
+    return strikers.kick_to(
+        player, *mate, min(PASS_MAX_SPEED, PASS_BASE_SPEED + PASS_SPEED_PER_METRE * distance)
+    )
+
+
+def own_pass_role(view: TeamView) -> int:
+    """``own_pass``'s role of one striker (one of :data:`ROLES`), from its own view alone: a ball seen on its way
+    to it is chased (``RECEIVE``), one on its way to the teammate left alone (``WAIT``); otherwise the striker
+    that the ball is no farther from than from its teammate plays the ball (``PASS`` when it is kickable and
+    :func:`pass_is_on`, else ``PLAY``: ``soft_dribble``), the other supports (``SUPPORT``). A striker whose
+    teammate HFO does not list (behind the halfway line) plays alone."""
+    player = view.percept
+    if not view.teammates:
+        return PLAY
+    mate = view.teammates[0]
+    if not player.kickable and math.hypot(player.ball_vx, player.ball_vy) > PASS_SEEN_SPEED:
+        if _ball_heading_to(player, player.x, player.y):
+            return RECEIVE
+        if _ball_heading_to(player, *mate):
+            return WAIT
+    mine = math.hypot(player.ball_x - player.x, player.ball_y - player.y)
+    theirs = math.hypot(player.ball_x - mate[0], player.ball_y - mate[1])
+    if mine <= theirs:
+        return PASS if player.kickable and pass_is_on(view, mate) else PLAY
+    return SUPPORT
 
 
 def play(team_name: str, episodes: int, seed: int, backend: str = "hfo2d") -> dict[str, Any]:

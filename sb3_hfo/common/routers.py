@@ -31,6 +31,7 @@ __all__ = [
     "ROUTERS",
     "BallPlayerRouter",
     "FieldHalfRouter",
+    "OneHotRouter",
     "SingleSkillRouter",
     "SkillRouter",
     "check_skills",
@@ -215,6 +216,49 @@ class BallPlayerRouter(SkillRouter):
         if isinstance(obs, th.Tensor):
             return th.where(nearest, ball_skills, th.full_like(ball_skills, self.support_skill))
         return np.where(nearest, ball_skills, self.support_skill).astype(np.int64)
+
+
+class OneHotRouter(SkillRouter):
+    """The skill written into the observation as one-hot columns: ``obs[:, first_column + s]`` is 1 for skill ``s``
+    and the other ``n_skills - 1`` columns are 0.
+
+    For a hand-coded rule that is cheaper to run once per env step than on every training minibatch (e.g. a team's
+    roles read from HFO's features by per-agent geometry): an observation wrapper appends the rule's one-hot and
+    this router reads it back. A row that is not one-hot (an observation without the appended columns, or with
+    other features there) is refused, so a policy is never routed by columns that hold something else.
+
+    :param first_column: the column of skill 0's indicator.
+    :param n_skills: how many columns (skills), at least 2.
+    """
+
+    def __init__(self, first_column: int, n_skills: int) -> None:
+        for name, value, low in (("first_column", first_column, 0), ("n_skills", n_skills, 2)):
+            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
+                raise ValueError(f"OneHotRouter: {name} must be an int >= {low}, got {value!r}")
+        self.first_column = int(first_column)
+        self.n_skills = int(n_skills)
+
+    def __call__(self, obs: np.ndarray | th.Tensor) -> np.ndarray | th.Tensor:
+        end = self.first_column + self.n_skills
+        if obs.shape[-1] < end:
+            raise ValueError(
+                f"OneHotRouter reads columns {self.first_column}..{end - 1} but the observation has only "
+                f"{obs.shape[-1]} features (was the skill's one-hot appended?)"
+            )
+        columns = obs[:, self.first_column : end]
+        if isinstance(columns, th.Tensor):
+            one_hot = bool(((columns == 0) | (columns == 1)).all()) and bool((columns.sum(dim=1) == 1).all())
+            skills = columns.argmax(dim=1)
+        else:
+            columns = np.asarray(columns)
+            one_hot = bool(((columns == 0) | (columns == 1)).all() and (columns.sum(axis=1) == 1).all())
+            skills = columns.argmax(axis=1).astype(np.int64)
+        if not one_hot:
+            raise ValueError(
+                f"OneHotRouter: columns {self.first_column}..{end - 1} are not one-hot in every row (was the "
+                "skill's one-hot appended to these observations?)"
+            )
+        return skills
 
 
 #: Routers selectable by name (``skill_router="field_half"`` in policy_kwargs / YAML).
