@@ -7,6 +7,11 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+import pytest
+
+from hfo2d.team import TeamGame
+
 REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "benchmarks" / "two_v_two_rl.py"
 
@@ -42,3 +47,52 @@ def test_a_start_of_another_arm_or_a_second_run_in_one_folder_is_refused(tmp_pat
     assert wrong.returncode != 0 and "is it this arm's routed clone" in wrong.stderr
     missing = run("train", "--arm", "1v2", "--out", str(tmp_path / "other"))
     assert missing.returncode == 2 and "--start is required" in missing.stderr
+
+
+def load_script():
+    import importlib.util
+
+    sys.path.insert(0, str(REPO / "benchmarks"))  # the script imports its siblings, as it does when run
+    try:
+        spec = importlib.util.spec_from_file_location("two_v_two_rl_under_test", SCRIPT)
+        module = importlib.util.module_from_spec(spec)
+        sys.modules[spec.name] = module
+        spec.loader.exec_module(module)
+    finally:
+        sys.path.remove(str(REPO / "benchmarks"))
+    return module
+
+
+def game_observations(steps: int) -> list[np.ndarray]:
+    """Both strikers' HFO-master vectors over ``steps`` cycles of the scripted own_pass pair in 2v2."""
+    script = load_script()
+    game = TeamGame(2, 0, 2, seed=4, feature_set="hfo")
+    observations, _ = game.reset(seed=4)
+    rule = script.ScriptedPredictor("own_pass", 1)
+    batches = []
+    for _ in range(steps):
+        batch = np.stack([observations[name] for name in game.agent_names])
+        batches.append(batch)
+        observations, _, terminated, truncated, _ = game.step(
+            dict(zip(game.agent_names, rule.predict(batch)[0], strict=True))
+        )
+        if terminated or truncated:
+            observations, _ = game.reset()
+    return batches
+
+
+def test_a_mixed_team_without_models_is_the_rule_and_the_play_model_reads_the_vector_without_the_teammate() -> (
+    None
+):
+    script = load_script()
+    team = script.MixedTeam(None, [])
+    rule = script.ScriptedPredictor("own_pass", 1)
+    for batch in game_observations(40):
+        np.testing.assert_array_equal(team.predict(batch)[0], rule.predict(batch)[0])
+        for observation in batch:
+            with_mate = sys.modules["two_v_two_scripted"].read_team_view(observation, 1, 2)
+            alone = sys.modules["two_v_two_scripted"].read_team_view(observation[team.alone_columns], 0, 2)
+            assert alone.percept == with_mate.percept and alone.field_defenders == with_mate.field_defenders
+            assert alone.teammates == ()
+    with pytest.raises(ValueError, match="not both"):
+        script.MixedTeam(object(), ["play"], play_model=object())
