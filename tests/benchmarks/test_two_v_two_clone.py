@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-import importlib.util
 import json
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 import torch as th
@@ -18,20 +19,10 @@ REPO = Path(__file__).resolve().parents[2]
 SCRIPT = REPO / "benchmarks" / "two_v_two_clone.py"
 
 
-def load_script():
-    sys.path.insert(0, str(REPO / "benchmarks"))  # the script imports its sibling, as it does when run
-    try:
-        spec = importlib.util.spec_from_file_location("two_v_two_clone_under_test", SCRIPT)
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = module
-        spec.loader.exec_module(module)
-    finally:
-        sys.path.remove(str(REPO / "benchmarks"))
-    return module
-
-
-def test_the_teacher_labels_each_striker_as_the_scripted_rule_would_from_its_own_view() -> None:
-    script = load_script()
+def test_the_teacher_labels_each_striker_as_the_scripted_rule_would_from_its_own_view(
+    benchmark_script: Callable[[str], ModuleType],
+) -> None:
+    script = benchmark_script("two_v_two_clone")
     game = TeamGame(2, 0, 2, seed=5, feature_set="hfo")
     observations, _ = game.reset(seed=5)
     teacher = script.ScriptedPredictor("own_pass", 1)
@@ -70,8 +61,10 @@ def test_the_script_clones_an_arm_and_writes_its_student_and_figures(tmp_path: P
         assert record[name]["episodes"] == 2 and sum(record[name]["status"].values()) == 2
 
 
-def test_the_routed_student_sees_each_strikers_own_pass_role_and_plays_that_roles_head() -> None:
-    script = load_script()
+def test_the_routed_student_sees_each_strikers_own_pass_role_and_plays_that_roles_head(
+    benchmark_script: Callable[[str], ModuleType],
+) -> None:
+    script = benchmark_script("two_v_two_clone")
     game = TeamGame(2, 0, 2, seed=3, feature_set="hfo")
     observations, _ = game.reset(seed=3)
     batch = np.stack([observations[name] for name in game.agent_names])
@@ -89,8 +82,10 @@ def test_the_routed_student_sees_each_strikers_own_pass_role_and_plays_that_role
     assert actions.shape == (2, 8)
 
 
-def test_the_role_wrapper_appends_roles_to_terminal_observations_too() -> None:
-    script = load_script()
+def test_the_role_wrapper_appends_roles_to_terminal_observations_too(
+    benchmark_script: Callable[[str], ModuleType],
+) -> None:
+    script = benchmark_script("two_v_two_clone")
     from sb3_hfo.multi_agent import make_team_vec_env
 
     env = script.RoleObservations(

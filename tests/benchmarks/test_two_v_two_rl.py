@@ -5,7 +5,9 @@ from __future__ import annotations
 import json
 import subprocess
 import sys
+from collections.abc import Callable
 from pathlib import Path
+from types import ModuleType
 
 import numpy as np
 import pytest
@@ -49,23 +51,8 @@ def test_a_start_of_another_arm_or_a_second_run_in_one_folder_is_refused(tmp_pat
     assert missing.returncode == 2 and "--start is required" in missing.stderr
 
 
-def load_script():
-    import importlib.util
-
-    sys.path.insert(0, str(REPO / "benchmarks"))  # the script imports its siblings, as it does when run
-    try:
-        spec = importlib.util.spec_from_file_location("two_v_two_rl_under_test", SCRIPT)
-        module = importlib.util.module_from_spec(spec)
-        sys.modules[spec.name] = module
-        spec.loader.exec_module(module)
-    finally:
-        sys.path.remove(str(REPO / "benchmarks"))
-    return module
-
-
-def game_observations(steps: int) -> list[np.ndarray]:
+def game_observations(script: ModuleType, steps: int) -> list[np.ndarray]:
     """Both strikers' HFO-master vectors over ``steps`` cycles of the scripted own_pass pair in 2v2."""
-    script = load_script()
     game = TeamGame(2, 0, 2, seed=4, feature_set="hfo")
     observations, _ = game.reset(seed=4)
     rule = script.ScriptedPredictor("own_pass", 1)
@@ -81,17 +68,18 @@ def game_observations(steps: int) -> list[np.ndarray]:
     return batches
 
 
-def test_a_mixed_team_without_models_is_the_rule_and_the_play_model_reads_the_vector_without_the_teammate() -> (
-    None
-):
-    script = load_script()
+def test_a_mixed_team_without_models_is_the_rule_and_the_play_model_reads_the_vector_without_its_mate(
+    benchmark_script: Callable[[str], ModuleType],
+) -> None:
+    script = benchmark_script("two_v_two_rl")
+    read_team_view = sys.modules["two_v_two_scripted"].read_team_view  # the sibling the script imported
     team = script.MixedTeam(None, [])
     rule = script.ScriptedPredictor("own_pass", 1)
-    for batch in game_observations(40):
+    for batch in game_observations(script, 40):
         np.testing.assert_array_equal(team.predict(batch)[0], rule.predict(batch)[0])
         for observation in batch:
-            with_mate = sys.modules["two_v_two_scripted"].read_team_view(observation, 1, 2)
-            alone = sys.modules["two_v_two_scripted"].read_team_view(observation[team.alone_columns], 0, 2)
+            with_mate = read_team_view(observation, 1, 2)
+            alone = read_team_view(observation[team.alone_columns], 0, 2)
             assert alone.percept == with_mate.percept and alone.field_defenders == with_mate.field_defenders
             assert alone.teammates == ()
     with pytest.raises(ValueError, match="not both"):
