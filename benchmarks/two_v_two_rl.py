@@ -190,14 +190,15 @@ class MixedTeam:
         self.team_model, self.play_model = team_model, play_model
         self.team_roles = np.array([name in team_roles for name in ROLES])
         self.teacher = ScriptedPredictor("own_pass", 1)
-        players = hfo_num_features(1, DEFENSE_NPCS) - hfo_num_features(
-            0, DEFENSE_NPCS
-        )  # the teammate's columns
-        block = NUM_BASIC_FEATURES
-        unum = NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (1 + DEFENSE_NPCS)
-        dropped = {*range(block, block + FEATURES_PER_PLAYER), unum}
-        assert len(dropped) == players
-        self.alone_columns = [i for i in range(hfo_num_features(1, DEFENSE_NPCS)) if i not in dropped]
+        # the same striker's vector without a teammate (HFO master's layout, hfo2d.features.hfo_num_features): the
+        # teammate's 8-feature block after the 58 basic features, and its uniform number after the player blocks
+        teammate_block = range(NUM_BASIC_FEATURES, NUM_BASIC_FEATURES + FEATURES_PER_PLAYER)
+        teammate_unum = NUM_BASIC_FEATURES + FEATURES_PER_PLAYER * (1 + DEFENSE_NPCS)
+        self.alone_columns = [
+            column
+            for column in range(hfo_num_features(1, DEFENSE_NPCS))
+            if column not in teammate_block and column != teammate_unum
+        ]
 
     def predict(self, observations: np.ndarray, **kwargs: Any) -> tuple[np.ndarray, None]:
         routed = with_roles(observations, 1)

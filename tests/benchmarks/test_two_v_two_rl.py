@@ -75,6 +75,7 @@ def test_a_mixed_team_without_models_is_the_rule_and_the_play_model_reads_the_ve
     read_team_view = sys.modules["two_v_two_scripted"].read_team_view  # the sibling the script imported
     team = script.MixedTeam(None, [])
     rule = script.ScriptedPredictor("own_pass", 1)
+    assert len(team.alone_columns) == 77  # HFO master's 1v2 vector: 58 + 9 * 2 + 1
     for batch in game_observations(script, 40):
         np.testing.assert_array_equal(team.predict(batch)[0], rule.predict(batch)[0])
         for observation in batch:
