@@ -143,29 +143,27 @@ class Recorder:
 
 
 def agreement_by_role(
-    policy: Any, observations: np.ndarray, discrete: np.ndarray, teammates: int
+    policy: Any, inputs: np.ndarray, roles: np.ndarray, discrete: np.ndarray
 ) -> dict[str, dict[str, float]]:
-    """For each ``own_pass`` role: how many of ``observations`` (plain HFO-master vectors) have it, and in what
-    fraction the policy's most likely discrete action is the teacher's ``discrete``."""
-    routed = with_roles(observations, teammates)
-    roles = routed[:, -len(ROLES) :].argmax(axis=1)
-    if policy.observation_space.shape[0] != routed.shape[1]:
-        routed = np.asarray(observations, dtype=np.float32)  # an unrouted policy reads the plain vector
+    """For each ``own_pass`` role: how many of the states have it (``roles``: one-hot rows, :func:`with_roles`'s
+    columns), and in what fraction the policy's most likely discrete action on ``inputs`` (what it reads) is the
+    teacher's ``discrete``."""
+    role_index = roles.argmax(axis=1)
     greedy = np.concatenate(
         [
-            policy.action_distribution(th.as_tensor(routed[start : start + 4096]))
+            policy.action_distribution(th.as_tensor(inputs[start : start + 4096]))
             .log_pi.argmax(dim=-1)
             .numpy()
-            for start in range(0, len(routed), 4096)
+            for start in range(0, len(inputs), 4096)
         ]
     )
     return {
         name: {
-            "states": int((roles == role).sum()),
-            "agreement": float((greedy == discrete)[roles == role].mean()),
+            "states": int((role_index == role).sum()),
+            "agreement": float((greedy == discrete)[role_index == role].mean()),
         }
         for role, name in enumerate(ROLES)
-        if (roles == role).any()
+        if (role_index == role).any()
     }
 
 
@@ -215,7 +213,18 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
     started = time.time()
     recorder = Recorder(teacher)
     record["teacher_play"] = evaluate_team_games(recorder, games, args.episodes, seed=10_000 + args.seed)
-    observations = np.concatenate(recorder.batches)
+    teammates = strikers_per_game - 1
+
+    def labelled(batches: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """New states with the teacher's labels and their roles (each computed once: the rule is deterministic)."""
+        states = np.concatenate(batches)
+        return (
+            states,
+            adapter.from_env(teacher.predict(states)[0]),
+            with_roles(states, teammates)[:, -len(ROLES) :],
+        )
+
+    observations, labels, roles = labelled(recorder.batches)
     for round_index in range(args.dagger_rounds + 1):
         if round_index > 0:  # DAgger: the student's own states, labelled by the teacher
             recorder = Recorder(player)
@@ -223,11 +232,15 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
                 recorder, games, args.episodes, seed=10_000 + 1_000 * round_index + args.seed
             )
             record["rounds"][-1]["student_play_after"] = play
-            observations = np.concatenate([observations, *recorder.batches])
-        labels = adapter.from_env(teacher.predict(observations)[0])
+            new = labelled(recorder.batches)
+            observations, labels, roles = (
+                np.concatenate([old, extra])
+                for old, extra in zip((observations, labels, roles), new, strict=True)
+            )
+        inputs = np.concatenate([observations, roles], axis=1) if args.routed else observations
         history = distill(
             model.policy,
-            with_roles(observations, strikers_per_game - 1) if args.routed else observations,
+            inputs,
             labels[:, 0].astype(np.int64),
             labels[:, 1:],
             epochs=args.epochs,
@@ -240,7 +253,7 @@ def clone(args: argparse.Namespace) -> dict[str, Any]:
         print(json.dumps({"arm": args.arm, "round": round_index, **record["rounds"][-1]}), flush=True)
     with th.no_grad():
         record["agreement_by_role"] = agreement_by_role(
-            model.policy, observations, labels[:, 0].astype(np.int64), strikers_per_game - 1
+            model.policy, inputs, roles, labels[:, 0].astype(np.int64)
         )
     print(json.dumps({"arm": args.arm, "agreement_by_role": record["agreement_by_role"]}), flush=True)
     record["seconds_cloning"] = round(time.time() - started, 1)
